@@ -1,0 +1,151 @@
+"""Argument checks at the public boundary.
+
+Every check raises ``ValueError`` or ``TypeError`` whose message names the argument, shows the
+offending value (or shape) and says what would be valid, so that bad input never surfaces as a
+traceback from deep inside numpy or scipy.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import scipy.sparse as sp
+
+SYMMETRY_RTOL = 1e-9
+
+
+def describe(value) -> str:
+    """Short description of a value for error messages."""
+    if isinstance(value, np.ndarray) or sp.issparse(value):
+        return f"array of shape {value.shape}"
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def as_matrix(name: str, value, shape: tuple[int | None, int | None], *, allow_sparse=True):
+    """Return ``value`` as a float dense array or a CSR sparse matrix of the given shape.
+
+    ``None`` in ``shape`` accepts any size along that axis.
+    """
+    if value is None:
+        raise TypeError(f"{name} is required (got None); pass an array of shape {_shape_text(shape)}")
+    if sp.issparse(value):
+        value = sp.csr_matrix(value, dtype=float) if allow_sparse else value.toarray().astype(float)
+    else:
+        try:
+            value = np.array(value, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise TypeError(f"{name} must be a real array, got {describe(value)} ({exc})") from None
+        if value.ndim == 1 and shape[1] == 1:
+            value = value[:, None]
+        if value.ndim == 0 and shape == (1, 1):
+            value = value.reshape(1, 1)
+    if value.ndim != 2:
+        raise ValueError(f"{name} must be a 2-D array of shape {_shape_text(shape)}, got shape {value.shape}")
+    for axis, expected in enumerate(shape):
+        if expected is not None and value.shape[axis] != expected:
+            raise ValueError(f"{name} has shape {value.shape}, expected {_shape_text(shape)}")
+    check_finite(name, value.data if sp.issparse(value) else value)
+    return value
+
+
+def as_vector(name: str, value, size: int | None) -> np.ndarray:
+    """Return ``value`` as a finite float vector of the given size (a scalar is broadcast)."""
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a real vector, got {describe(value)}") from None
+    if arr.ndim == 0 and size is not None:
+        arr = np.full(size, float(arr))
+    if arr.ndim != 1 or (size is not None and arr.shape[0] != size):
+        raise ValueError(f"{name} must have shape ({size},), got shape {arr.shape}")
+    check_finite(name, arr)
+    return arr
+
+
+def check_finite(name: str, data) -> None:
+    data = np.asarray(data)
+    if not np.all(np.isfinite(data)):
+        bad = np.argwhere(~np.isfinite(data))[0]
+        where = tuple(int(i) for i in bad)
+        raise ValueError(f"{name} contains {float(data[where])!r} at index {where}; all entries must be finite")
+
+
+def check_symmetric(name: str, A) -> None:
+    """Raise ``ValueError`` if ``A`` is not symmetric to ``SYMMETRY_RTOL`` relative."""
+    diff = A - A.T
+    if sp.issparse(diff):
+        err = abs(diff).max() if diff.nnz else 0.0
+        scale = abs(A).max() if A.nnz else 0.0
+    else:
+        err = np.max(np.abs(diff)) if diff.size else 0.0
+        scale = np.max(np.abs(A)) if A.size else 0.0
+    if err > SYMMETRY_RTOL * max(scale, np.finfo(float).tiny):
+        raise ValueError(
+            f"{name} must be symmetric; max |{name} - {name}^T| = {err:.3g} "
+            f"(relative {err / scale:.3g} > {SYMMETRY_RTOL:g})"
+        )
+
+
+def check_psd(name: str, A: np.ndarray, *, strict=False) -> None:
+    """Raise ``ValueError`` if the dense symmetric ``A`` has a negative (or, if strict, zero) eigenvalue."""
+    if A.size == 0:
+        return
+    eig = np.linalg.eigvalsh(A)
+    scale = max(np.max(np.abs(eig)), np.finfo(float).tiny)
+    limit = 1e-12 * scale
+    if eig[0] < -limit or (strict and eig[0] <= limit):
+        need = "positive definite" if strict else "positive semidefinite"
+        raise ValueError(
+            f"{name} must be symmetric {need}; its smallest eigenvalue is {eig[0]:.3g} "
+            f"(largest {eig[-1]:.3g})"
+        )
+
+
+def positive_float(name: str, value) -> float:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a positive number, got {describe(value)}") from None
+    if not np.isfinite(x) or x <= 0:
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    return x
+
+
+def choice(name: str, value, valid) -> str:
+    """Validate a case-insensitive name against ``valid`` (an iterable of lower-case names)."""
+    valid = sorted(valid)
+    if not isinstance(value, str) or value.lower() not in valid:
+        names = ", ".join(repr(v) for v in valid)
+        raise ValueError(f"{name}={value!r} is not valid; valid names: {names}")
+    return value.lower()
+
+
+def time_function(name: str, value, size: int) -> tuple[Callable[[float], np.ndarray], bool]:
+    """Normalise a constant vector or a callable ``f(t) -> (size,)``.
+
+    Returns
+    -------
+    f : callable
+        ``f(t)`` returning a float array of shape ``(size,)``.
+    constant : bool
+        True if ``value`` was a constant.
+    """
+    if value is None:
+        zero = np.zeros(size)
+        return (lambda t: zero), True
+    if callable(value):
+        def checked(t, _f=value):
+            out = np.asarray(_f(t), dtype=float)
+            if out.shape != (size,):
+                raise ValueError(f"{name}(t) must return shape ({size},), got shape {out.shape} at t={t}")
+            check_finite(f"{name}(t={t})", out)
+            return out
+        return checked, False
+    vec = as_vector(name, value, size)
+    return (lambda t: vec), True
+
+
+def _shape_text(shape) -> str:
+    return "(" + ", ".join("any" if s is None else str(s) for s in shape) + ")"

@@ -1,0 +1,102 @@
+"""Initial states: the static unilateral problem, or given initial conditions (eqs. 10-12).
+
+Statics: ``K u = q(0) + F v``, ``psi = F^T u - H v - g(0)``, complementarity. Eliminating u gives
+the LCP ``w = Lambda(0) v - psiL_0 >= 0`` with ``Lambda(0) = H - F^T K^-1 F`` (positive
+semidefinite) and ``psiL_0 = F^T K^-1 q(0) - g(0)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _validate as V
+from .lcp import get_lcp_solver
+from .linalg import Factorization, dense, transpose_times
+
+
+@dataclass
+class InitialState:
+    """Base state of the increments.
+
+    Attributes
+    ----------
+    v : (m,) unilateral deformations
+    psi : (m,) reactions
+    u : (n,) displacements (None for kernel-only models)
+    udot : (n,) velocities (None for kernel-only models)
+    lcp_iterations : int
+    message : str
+        Empty on success; otherwise why no static equilibrium was found.
+    """
+
+    v: np.ndarray
+    psi: np.ndarray
+    u: np.ndarray | None = None
+    udot: np.ndarray | None = None
+    lcp_iterations: int = 0
+    message: str = ""
+
+
+def static_lcp(Lambda0, psiL0, solver, bilateral: bool) -> tuple[np.ndarray, int, str]:
+    """Solve ``w = Lambda0 v - psiL0 >= 0, v >= 0, v.w = 0`` with a fallback to Lemke.
+
+    ``Lambda0`` is only positive semidefinite when a constraint is attached to a part that
+    becomes a mechanism once it opens; principal pivoting may then fail where Lemke does not.
+
+    Returns
+    -------
+    v : (m,) ; iterations : int ; message : str (empty on success)
+    """
+    m = psiL0.shape[0]
+    if bilateral or m == 0:
+        return np.zeros(m), 0, ""
+    res = solver.solve(Lambda0, -psiL0)
+    iterations = res.iterations
+    if not res.success and solver.name != "lemke":
+        res = get_lcp_solver("lemke", tol=solver.tol).solve(Lambda0, -psiL0)
+        iterations += res.iterations
+    if not res.success:
+        return res.v, iterations, (
+            "no static equilibrium under the load at t = 0: the static LCP has no solution "
+            f"({res.message}). The load at t = 0 probably lifts the structure off all its "
+            "supports; check the sign of gravity, or start from given initial conditions"
+        )
+    return res.v, iterations, ""
+
+
+def static_state(model, q0, solver, bilateral: bool) -> InitialState:
+    """Static unilateral equilibrium of a matrix model under the total load ``q0`` (n,)."""
+    K = Factorization(
+        model.K, what="K (the structure with every constraint held bilateral must be stable)"
+    )
+    Y = K.solve(dense(model.F))                     # (n, m) = K^-1 F
+    uq = K.solve(q0)
+    Lambda0 = model.H - transpose_times(model.F, Y)
+    Lambda0 = 0.5 * (Lambda0 + Lambda0.T)
+    psiL0 = transpose_times(model.F, uq) - model.g(0.0)
+    v, iters, message = static_lcp(Lambda0, psiL0, solver, bilateral)
+    u = uq + Y @ v
+    return InitialState(v=v, psi=psiL0 - Lambda0 @ v, u=u, udot=np.zeros(model.n),
+                        lcp_iterations=iters, message=message)
+
+
+def given_state(model, initial: dict) -> InitialState:
+    """Initial conditions ``u0``, ``udot0``, ``v0`` (eqs. 10-12); missing entries are zero."""
+    unknown = set(initial) - {"u0", "udot0", "v0"}
+    if unknown:
+        raise ValueError(
+            f"initial has unknown keys {sorted(unknown)}; valid keys: 'u0', 'udot0', 'v0'"
+        )
+    n, m = model.n, model.m
+    u0 = V.as_vector("initial['u0']", initial.get("u0", 0.0), n)
+    udot0 = V.as_vector("initial['udot0']", initial.get("udot0", 0.0), n)
+    v0 = V.as_vector("initial['v0']", initial.get("v0", 0.0), m)
+    if np.any(v0 < 0):
+        i = int(np.argmax(v0 < 0))
+        raise ValueError(f"initial['v0'] must be >= 0; v0[{i}] = {float(v0[i])!r}")
+    psi0 = transpose_times(model.F, u0) - model.H @ v0 - model.g(0.0)
+    if model.F_v is not None:
+        psi0 = psi0 + transpose_times(model.F_v, udot0)
+    return InitialState(v=v0, psi=psi0, u=u0, udot=udot0)

@@ -1,0 +1,157 @@
+"""Laplace-domain kernels: the influence matrix ``Lambda(s)`` (eq. 23, with the sign corrected).
+
+A kernel is anything that maps complex Laplace arguments ``s`` to ``(m, m)`` matrices. Two kinds:
+
+* :class:`MatrixKernel` evaluates ``Lambda(s) = H(s) - F(s)^T D(s)^-1 F(s)`` from a
+  :class:`~unilateral.model.Model`, reusing one factorisation of ``D(s)`` for all right-hand
+  sides, and also the transfer ``F(s)^T D(s)^-1`` of loads to constraint reactions (eq. 22).
+* :class:`CallableKernel` wraps a user's function ``Lambda(s)``: the Laplace-domain route needs no
+  matrices at all (e.g. the impedance of an unbounded soil).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from . import _validate as V
+from .linalg import Factorization, transpose_times
+
+#: Models with at most this many DOFs are evaluated by batched dense solves.
+DENSE_BATCH_MAX_N = 64
+_BATCH = 2048
+
+
+class Kernel:
+    """Base class: ``kernel(s)`` for ``s`` of shape (L,) returns ``(L, m, m)``."""
+
+    m: int
+
+    def __call__(self, s) -> np.ndarray:
+        s = np.asarray(s)
+        scalar = s.ndim == 0
+        out = self.evaluate(np.atleast_1d(s))
+        return out[0] if scalar else out
+
+    def evaluate(self, s: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
+        raise TypeError(f"{type(self).__name__} does not define evaluate(s)")
+
+
+class MatrixKernel(Kernel):
+    """``Lambda(s)`` and the load transfer of a matrix :class:`~unilateral.model.Model`.
+
+    Parameters
+    ----------
+    model : Model
+    """
+
+    def __init__(self, model):
+        self.model = model
+        self.m = model.m
+        self.n = model.n
+        self._batched = not model.sparse and model.n <= DENSE_BATCH_MAX_N
+        if self._batched:
+            dense = lambda A: None if A is None else (A.toarray() if sp.issparse(A) else np.asarray(A))
+            self._K, self._M = dense(model.K), dense(model.M)
+            self._C = dense(model.C)
+            self._F, self._F_v = dense(model.F), dense(model.F_v)
+
+    def evaluate(self, s: np.ndarray) -> np.ndarray:
+        """``Lambda(s)`` for ``s`` of shape (L,); returns (L, m, m), real if every s is real."""
+        dtype = float if np.isrealobj(s) else complex
+        out = np.empty((s.shape[0], self.m, self.m), dtype=dtype)
+        if self._batched:
+            for lo in range(0, s.shape[0], _BATCH):
+                sl = s[lo:lo + _BATCH]
+                D = self._D_batch(sl)
+                Fs = self._F_batch(sl)
+                X = np.linalg.solve(D, Fs)
+                out[lo:lo + _BATCH] = self._H_batch(sl) - np.swapaxes(Fs, 1, 2) @ X
+            return out
+        model = self.model
+        for k, sk in enumerate(s):
+            sk = sk if dtype is complex else float(sk)
+            Fs = model.F_of(sk)
+            lu = Factorization(model.D(sk), what=f"D(s) = K + s C + s^2 M at s = {sk}")
+            X = lu.solve(Fs.toarray() if sp.issparse(Fs) else Fs)
+            out[k] = model.H_of(sk) - transpose_times(Fs, X)
+        return out
+
+    def transfer(self, s, d) -> np.ndarray:
+        """``F(s)^T D(s)^-1 d(s)``: constraint reactions of the bilateral structure (eq. 22).
+
+        Parameters
+        ----------
+        s : (L,) complex
+        d : (L, n) complex, transformed generalised loads ``d(s)`` (eq. 21)
+
+        Returns
+        -------
+        (L, m) complex
+        """
+        s = np.atleast_1d(np.asarray(s))
+        d = np.asarray(d)
+        if d.shape != (s.shape[0], self.n):
+            raise ValueError(f"d must have shape ({s.shape[0]}, {self.n}), got {d.shape}")
+        out = np.empty((s.shape[0], self.m), dtype=complex)
+        model = self.model
+        for k, sk in enumerate(s):
+            lu = Factorization(model.D(sk), what=f"D(s) at s = {sk}")
+            out[k] = transpose_times(model.F_of(sk), lu.solve(d[k]))
+        return out
+
+    # ----------------------------------------------------------------- batched dense pieces
+    def _D_batch(self, s):
+        D = self._K[None] + (s * s)[:, None, None] * self._M[None]
+        if self._C is not None:
+            D = D + s[:, None, None] * self._C[None]
+        return D
+
+    def _F_batch(self, s):
+        F = np.broadcast_to(self._F, (s.shape[0],) + self._F.shape)
+        if self._F_v is not None:
+            F = F + s[:, None, None] * self._F_v[None]
+        return F
+
+    def _H_batch(self, s):
+        H = self.model.H[None]
+        if self.model.H_v is not None:
+            H = H + s[:, None, None] * self.model.H_v[None]
+        return H
+
+
+class CallableKernel(Kernel):
+    """A user's ``Lambda(s)`` as a kernel.
+
+    Parameters
+    ----------
+    func : callable
+        ``func(s) -> (m, m)`` for a complex scalar ``s`` (a scalar if m = 1); if it also accepts
+        an array of shape (L,) and returns (L, m, m) it is called once per batch (much faster).
+    m : int
+        Number of unilateral unknowns.
+    vectorized : bool
+        Whether ``func`` accepts arrays of s.
+    """
+
+    def __init__(self, func, m: int, *, vectorized: bool = False):
+        if not callable(func):
+            raise TypeError(f"Lambda must be callable Lambda(s) -> (m, m), got {V.describe(func)}")
+        self.func = func
+        self.m = int(m)
+        self.vectorized = vectorized
+
+    def evaluate(self, s: np.ndarray) -> np.ndarray:
+        if self.vectorized:
+            out = np.asarray(self.func(s))
+            if self.m == 1 and out.shape == s.shape:
+                out = out.reshape(-1, 1, 1)
+        else:
+            out = np.array([np.atleast_2d(self.func(sk)) for sk in s])
+        if out.shape != (s.shape[0], self.m, self.m):
+            raise ValueError(
+                f"Lambda(s) must return shape ({self.m}, {self.m}) per s, got {out.shape[1:]} "
+                f"for {s.shape[0]} values of s"
+            )
+        V.check_finite("Lambda(s)", out)
+        return out

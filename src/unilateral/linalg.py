@@ -1,0 +1,67 @@
+"""Factorised linear solves for dense or sparse, real or complex matrices.
+
+One wrapper so that kernels and steppers never care whether the model is dense or sparse.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+
+class SingularMatrixError(ValueError):
+    """The matrix to factorise is singular (or numerically so)."""
+
+
+class Factorization:
+    """LU factorisation of a square matrix, reused across right-hand sides.
+
+    Parameters
+    ----------
+    A : (n, n) ndarray or sparse matrix, real or complex
+    what : str
+        Description used in the error message if ``A`` is singular.
+    """
+
+    def __init__(self, A, what: str = "matrix"):
+        self.shape = A.shape
+        self.sparse = sp.issparse(A)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("error", sla.LinAlgWarning)
+                warnings.simplefilter("error", spla.MatrixRankWarning)
+                if self.sparse:
+                    self._lu = spla.splu(sp.csc_matrix(A))
+                    diag = np.abs(self._lu.U.diagonal())
+                else:
+                    self._lu = sla.lu_factor(np.asarray(A))
+                    diag = np.abs(np.diag(self._lu[0]))
+        except (RuntimeError, sla.LinAlgError, sla.LinAlgWarning, spla.MatrixRankWarning) as exc:
+            raise SingularMatrixError(f"{what} is singular ({exc})") from None
+        if diag.size and diag.min() <= 1e-13 * diag.max():
+            raise SingularMatrixError(
+                f"{what} is singular or nearly so (pivot ratio {diag.min() / diag.max():.2e})"
+            )
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """Solve ``A x = b`` for ``b`` of shape (n,) or (n, k)."""
+        if self.sparse:
+            if sp.issparse(b):
+                b = b.toarray()
+            return self._lu.solve(np.asarray(b, dtype=np.result_type(b, self._lu.U.dtype)))
+        return sla.lu_solve(self._lu, b, check_finite=False)
+
+
+def dense(A) -> np.ndarray:
+    """Return ``A`` as a dense ndarray (for small matrices such as F^T X)."""
+    return A.toarray() if sp.issparse(A) else np.asarray(A)
+
+
+def transpose_times(F, X) -> np.ndarray:
+    """``F^T X`` as a dense array, for F (n, m) dense or sparse and X (n,) or (n, k)."""
+    out = F.T @ X
+    return out.toarray() if sp.issparse(out) else np.asarray(out)

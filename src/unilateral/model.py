@@ -1,0 +1,300 @@
+"""The reduced problem of Liolios (1990), eqs. (15)-(16), at matrix level.
+
+    M u'' + C u' + K u = q + F v + F_v v'
+    psi = F^T u + F_v^T u' - H v - H_v v' - g
+    psi <= 0,  v >= 0,  psi^T v = 0
+
+``n`` structural degrees of freedom, ``m`` unilateral unknowns. ``F_v`` and ``H_v`` are the viscous
+parts that Kelvin elements (``E(s) = E + s E_v``) add to ``F(s) = F + s F_v`` and
+``H(s) = H + s H_v``; without Kelvin elements they are absent. In the Laplace domain
+``D(s) = K + s C + s^2 M`` and the influence matrix is ``Lambda(s) = H(s) - F(s)^T D(s)^-1 F(s)``
+(the seed prints a plus sign in eq. 23; the minus follows from eqs. 18-19).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from . import _validate as V
+
+
+@dataclass(frozen=True)
+class NaturalForm:
+    """The unassembled ("natural") description the model was built from (eqs. 1-9).
+
+    Attributes
+    ----------
+    G : (n, ne) equilibrium matrix (``e = G^T u``)
+    E : (ne, ne) elasticity matrix, symmetric positive definite
+    B : (ne, m) maps unilateral deformations to strains (``mu = B v``)
+    A : (m, m) unilateral interaction matrix
+    r : (m,) resistances (capacities)
+    theta : callable ``theta(t) -> (ne,)`` imposed strains
+    E_v : (ne, ne) viscous elasticity matrix of Kelvin elements, or None
+    theta_rate : callable ``theta'(t) -> (ne,)`` or None
+    """
+
+    G: object
+    E: object
+    B: object
+    A: np.ndarray
+    r: np.ndarray
+    theta: object
+    E_v: object = None
+    theta_rate: object = None
+
+    def stresses(self, t, u, v, udot=None, vdot=None) -> np.ndarray:
+        """Element stresses ``sigma = E eps + E_v eps'`` with ``eps = G^T u - B v - theta``.
+
+        Parameters
+        ----------
+        t : (N,) times;  u : (N, n);  v : (N, m);  udot, vdot : (N, n), (N, m) (needed with E_v)
+
+        Returns
+        -------
+        sigma : (N, ne)
+        """
+        theta = np.array([self.theta(tk) for tk in np.atleast_1d(t)])
+        eps = (self.G.T @ u.T).T - (self.B @ v.T).T - theta
+        sigma = (self.E @ eps.T).T
+        if self.E_v is not None:
+            if udot is None or vdot is None:
+                raise ValueError("udot and vdot are required for stresses of Kelvin elements (E_v given)")
+            eps_rate = (self.G.T @ udot.T).T - (self.B @ vdot.T).T
+            if self.theta_rate is not None:
+                eps_rate = eps_rate - np.array([self.theta_rate(tk) for tk in np.atleast_1d(t)])
+            sigma = sigma + (self.E_v @ eps_rate.T).T
+        return np.asarray(sigma)
+
+
+class Model:
+    """Linear structure with unilateral constraints, eqs. (15)-(16) of Liolios (1990).
+
+    Parameters
+    ----------
+    M, K : (n, n) array_like or sparse
+        Mass and stiffness; symmetric. ``M`` may be positive semidefinite (massless DOFs);
+        ``K`` must be positive definite (the structure with every constraint bilateral is stable).
+    F : (n, m) array_like or sparse
+        Coupling of unilateral deformations into the equations of motion (``G E B``).
+    H : (m, m) array_like
+        ``A + B^T E B``; symmetric positive semidefinite.
+    C : (n, n), optional
+        Damping, symmetric positive semidefinite (default zero).
+    g : (m,) array_like or callable ``g(t) -> (m,)``, optional
+        Constraint offset ``B^T E theta + r`` (default zero).
+    F_v : (n, m), optional
+        Viscous coupling of Kelvin elements (``G E_v B``).
+    H_v : (m, m), optional
+        Viscous part of H (``B^T E_v B``), symmetric positive semidefinite.
+    q_imposed : (n,) array_like or callable ``q(t) -> (n,)``, optional
+        Load equivalent to imposed strains (``G E theta``), added to the applied load.
+    dof_names : sequence of n str, optional
+    constraint_names : sequence of m str, optional
+    """
+
+    def __init__(self, M, K, F, H, C=None, g=None, *, F_v=None, H_v=None, q_imposed=None,
+                 dof_names=None, constraint_names=None, natural: NaturalForm | None = None):
+        self.K = V.as_matrix("K", K, (None, None))
+        n = self.K.shape[0]
+        if self.K.shape != (n, n):
+            raise ValueError(f"K must be square, got shape {self.K.shape}")
+        self.M = V.as_matrix("M", M, (n, n))
+        self.C = None if C is None else V.as_matrix("C", C, (n, n))
+        self.F = V.as_matrix("F", F, (n, None))
+        m = self.F.shape[1]
+        self.H = V.as_matrix("H", H, (m, m), allow_sparse=False)
+        self.F_v = None if F_v is None else V.as_matrix("F_v", F_v, (n, m))
+        self.H_v = None if H_v is None else V.as_matrix("H_v", H_v, (m, m), allow_sparse=False)
+        for name in ("M", "K", "C", "H", "H_v"):
+            if getattr(self, name) is not None:
+                V.check_symmetric(name, getattr(self, name))
+        V.check_psd("H", self.H)
+        if self.H_v is not None:
+            V.check_psd("H_v", self.H_v)
+        _check_diagonal_nonnegative("M", self.M)
+        _check_diagonal_nonnegative("K", self.K, strict=True)
+        self.g, self.g_is_constant = V.time_function("g", g, m)
+        self.q_imposed, self.q_imposed_is_constant = V.time_function("q_imposed", q_imposed, n)
+        self.dof_names = _names("dof_names", dof_names, n, "u")
+        self.constraint_names = _names("constraint_names", constraint_names, m, "c")
+        self.natural = natural
+
+    # ------------------------------------------------------------------ sizes and flags
+    @property
+    def n(self) -> int:
+        """Number of structural degrees of freedom."""
+        return self.K.shape[0]
+
+    @property
+    def m(self) -> int:
+        """Number of unilateral unknowns."""
+        return self.F.shape[1]
+
+    @property
+    def sparse(self) -> bool:
+        return sp.issparse(self.K)
+
+    @property
+    def viscous(self) -> bool:
+        """True if the constraints carry Kelvin (viscous) terms F_v or H_v."""
+        return self.F_v is not None or self.H_v is not None
+
+    # ------------------------------------------------------------------ Laplace-domain pieces
+    def D(self, s):
+        """Dynamic stiffness ``D(s) = K + s C + s^2 M`` for a scalar ``s`` (real or complex)."""
+        out = self.K + (s * s) * self.M
+        if self.C is not None:
+            out = out + s * self.C
+        return out
+
+    def F_of(self, s):
+        """``F(s) = F + s F_v``, shape (n, m)."""
+        return self.F if self.F_v is None else self.F + s * self.F_v
+
+    def H_of(self, s) -> np.ndarray:
+        """``H(s) = H + s H_v``, shape (m, m)."""
+        return self.H if self.H_v is None else self.H + s * self.H_v
+
+    def damping(self):
+        """C, or a zero matrix of the right kind if the model is undamped."""
+        if self.C is not None:
+            return self.C
+        return sp.csr_matrix((self.n, self.n)) if self.sparse else np.zeros((self.n, self.n))
+
+    # ------------------------------------------------------------------ the natural form
+    @classmethod
+    def from_natural(cls, G, E, B, *, M, A=None, r=None, theta=None, C=None, E_v=None,
+                     theta_rate=None, dof_names=None, constraint_names=None) -> Model:
+        """Assemble the reduced problem from the unassembled structure, eqs. (13)-(16).
+
+        ``K = G E G^T``, ``F = G E B``, ``H = A + B^T E B``, ``g = B^T E theta + r``, and the
+        imposed-strain load ``G E theta`` (eq. 14). With Kelvin elements (``E_v``), by the
+        correspondence principle ``E -> E + s E_v``: ``C += G E_v G^T``, ``F_v = G E_v B``,
+        ``H_v = B^T E_v B``, and the rates of ``theta`` enter ``g`` and the load.
+
+        Parameters
+        ----------
+        G : (n, ne) equilibrium matrix; the compatibility is ``e = G^T u``
+        E : (ne, ne) elasticity matrix, symmetric positive definite
+        B : (ne, m) transformation of unilateral deformations into strains, ``mu = B v``
+        M : (n, n) mass matrix
+        A : (m, m) unilateral interaction matrix, symmetric PSD (default zero)
+        r : (m,) resistances (ultimate capacities), ``r >= 0`` (default zero)
+        theta : (ne,) or callable ``theta(t) -> (ne,)``, imposed strains (default zero)
+        C : (n, n) structural damping (default zero)
+        E_v : (ne, ne) viscous elasticity of Kelvin elements, symmetric PSD (default none)
+        theta_rate : callable ``theta'(t) -> (ne,)``; required when ``theta`` is a function of
+            time and ``E_v`` is given
+        """
+        G = V.as_matrix("G", G, (None, None))
+        n, ne = G.shape
+        E = V.as_matrix("E", E, (ne, ne))
+        B = V.as_matrix("B", B, (ne, None))
+        m = B.shape[1]
+        V.check_symmetric("E", E)
+        _check_diagonal_nonnegative("E", E, strict=True)
+        A = np.zeros((m, m)) if A is None else V.as_matrix("A", A, (m, m), allow_sparse=False)
+        V.check_symmetric("A", A)
+        V.check_psd("A", A)
+        r = np.zeros(m) if r is None else V.as_vector("r", r, m)
+        if np.any(r < 0):
+            i = int(np.argmax(r < 0))
+            raise ValueError(f"r must be >= 0 (resistances); r[{i}] = {float(r[i])!r}")
+        theta_f, theta_const = V.time_function("theta", theta, ne)
+        if E_v is not None:
+            E_v = V.as_matrix("E_v", E_v, (ne, ne))
+            V.check_symmetric("E_v", E_v)
+            _check_diagonal_nonnegative("E_v", E_v)
+        rate_f = None
+        if theta_rate is not None:
+            rate_f, _ = V.time_function("theta_rate", theta_rate, ne)
+        elif E_v is not None and not theta_const:
+            raise ValueError(
+                "theta_rate is required when theta is a function of time and E_v is given "
+                "(Kelvin elements respond to the rate of imposed strains)"
+            )
+
+        GE = G @ E
+        K = GE @ G.T
+        F = _dense_if_small(GE @ B)
+        H = A + _dense(B.T @ E @ B)
+        BtE = _dense(B.T @ E)
+        q_imposed = _load_of(GE, theta_f, theta_const)
+        g = _offset_of(BtE, theta_f, theta_const, r)
+        F_v = H_v = None
+        C_total = C
+        if E_v is not None:
+            GEv = G @ E_v
+            C_v = GEv @ G.T
+            C_total = C_v if C is None else V.as_matrix("C", C, (n, n)) + C_v
+            F_v = _dense_if_small(GEv @ B)
+            H_v = _dense(B.T @ E_v @ B)
+            if rate_f is not None:
+                BtEv = _dense(B.T @ E_v)
+                q_imposed = _sum(q_imposed, lambda t: np.asarray(GEv @ rate_f(t)).ravel())
+                g = _sum(g, lambda t: BtEv @ rate_f(t))
+        natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=theta_f, E_v=E_v, theta_rate=rate_f)
+        return cls(M=M, K=K, F=F, H=H, C=C_total, g=g, F_v=F_v, H_v=H_v, q_imposed=q_imposed,
+                   dof_names=dof_names, constraint_names=constraint_names, natural=natural)
+
+    def __repr__(self) -> str:
+        kind = "sparse" if self.sparse else "dense"
+        visc = ", Kelvin constraints" if self.viscous else ""
+        return f"Model(n={self.n}, m={self.m}, {kind}{visc})"
+
+
+# ---------------------------------------------------------------------- helpers
+def _dense(A) -> np.ndarray:
+    return A.toarray() if sp.issparse(A) else np.asarray(A, dtype=float)
+
+
+def _dense_if_small(A, limit=2_000_000):
+    """Keep a sparse product sparse only when its dense form would be large."""
+    if sp.issparse(A) and A.shape[0] * A.shape[1] <= limit:
+        return A.toarray()
+    return A
+
+
+def _load_of(GE, theta_f, constant):
+    if constant:
+        return np.asarray(GE @ theta_f(0.0)).ravel()
+    return lambda t: np.asarray(GE @ theta_f(t)).ravel()
+
+
+def _offset_of(BtE, theta_f, constant, r):
+    if constant:
+        return BtE @ theta_f(0.0) + r
+    return lambda t: BtE @ theta_f(t) + r
+
+
+def _sum(a, f):
+    """Sum of a constant-or-callable and a callable, as a callable."""
+    if callable(a):
+        return lambda t: a(t) + f(t)
+    return lambda t: a + f(t)
+
+
+def _names(arg, names, size, prefix):
+    if names is None:
+        return [f"{prefix}{i}" for i in range(size)]
+    names = [str(x) for x in names]
+    if len(names) != size:
+        raise ValueError(f"{arg} must have {size} entries, got {len(names)}")
+    return names
+
+
+def _check_diagonal_nonnegative(name, A, *, strict=False):
+    """Cheap necessary condition for (semi)definiteness: the diagonal is (positive) nonnegative."""
+    d = A.diagonal() if sp.issparse(A) else np.diag(A)
+    bad = np.flatnonzero(d <= 0) if strict else np.flatnonzero(d < 0)
+    if bad.size:
+        i = int(bad[0])
+        need = "positive" if strict else "nonnegative"
+        raise ValueError(
+            f"{name} must have a {need} diagonal ({name} is a stiffness/mass-type matrix); "
+            f"{name}[{i}, {i}] = {float(d[i])!r}"
+        )

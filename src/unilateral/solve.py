@@ -1,0 +1,253 @@
+"""One entry point for dynamic analyses: :func:`solve`."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from . import _validate as V
+from .clcp import march_cq, march_direct
+from .cq import cq_weights
+from .history import NaiveHistory
+from .initial import InitialState, given_state, static_lcp, static_state
+from .kernel_model import KernelModel
+from .kernels import MatrixKernel
+from .lcp import get_lcp_solver
+from .linalg import transpose_times
+from .model import Model
+from .result import Solution
+from .rules import get_rule
+from .stepping import StructureStepper
+
+METHODS = ("cq", "direct")
+
+
+def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="static",
+          lcp="bpp", lcp_options=None, bilateral=False, cq_options=None, callback=None) -> Solution:
+    """Dynamic response of a structure with unilateral constraints.
+
+    Parameters
+    ----------
+    model : Model or KernelModel
+    load : callable ``q(t) -> (n,)`` or array (N+1, n), optional
+        Total applied load (gravity included) at ``t_k = k dt``; ``N = round(t_end / dt)``.
+        Not used by a :class:`KernelModel` (its ``psiL`` carries the loading).
+    dt : float
+        Time step, > 0.
+    t_end : float
+        End time, >= dt.
+    method : {"cq", "direct"}
+        ``"cq"``: the convolutional LCP of Liolios (1990), eq. (27), with convolution-quadrature
+        weights and one LCP per step. ``"direct"``: the full model stepped with the same rule and
+        one LCP per step on the condensed matrix (also Newmark and HHT).
+    rule : str or Rule
+        ``"bdf1"``, ``"bdf2"`` (default), ``"trapezoidal"``; with ``method="direct"`` also
+        ``"newmark"`` and ``"hht"``, or a :class:`~unilateral.rules.Newmark` instance.
+    initial : "static", "rest" or dict
+        ``"static"``: start at rest from the static unilateral equilibrium under ``q(0)``.
+        ``"rest"`` (kernel models): ``v(0) = 0``. A dict with ``u0``, ``udot0``, ``v0``
+        (kernel models: ``v0`` only) gives the initial conditions, eqs. (10)-(12).
+    lcp : str or LCPSolver
+        ``"bpp"`` (block principal pivoting, default), ``"lemke"``, ``"pgs"``, ``"newton"``,
+        ``"enumerate"``, or a solver instance.
+    lcp_options : dict, optional
+        Options for a named solver (e.g. ``{"tol": 1e-12}``).
+    bilateral : bool
+        Hold every constraint bilateral (``v = v(0)``): the paper's "without uplift" case.
+    cq_options : dict, optional
+        ``L`` and ``rho`` of the FFT that computes the weights (see :func:`cq_weights`).
+    callback : callable ``callback(k, N)``, optional
+        Called after every step (progress bars).
+
+    Returns
+    -------
+    Solution
+    """
+    timer = _Timer()
+    dt = V.positive_float("dt", dt)
+    t_end = V.positive_float("t_end", t_end)
+    if t_end < dt * (1 - 1e-12):
+        raise ValueError(f"t_end={t_end!r} must be >= dt={dt!r}")
+    N = int(round(t_end / dt))
+    method = V.choice("method", method, METHODS)
+    if not isinstance(model, (Model, KernelModel)):
+        raise TypeError(f"model must be a unilateral.Model or KernelModel, got {V.describe(model)}")
+    if isinstance(model, KernelModel) and method != "cq":
+        raise ValueError(f"method={method!r} needs matrices; a KernelModel is solved with method='cq'")
+    rule = get_rule(rule, cq=method == "cq")
+    solver = get_lcp_solver(lcp, **(lcp_options or {}))
+    if cq_options is not None and method != "cq":
+        raise ValueError(f"cq_options apply to method='cq' only (method={method!r})")
+    stats = {"method": method, "rule": rule.name, "lcp_solver": solver.name, "steps": N,
+             "dt": dt, "m": model.m}
+    timer.lap("setup")
+    if isinstance(model, KernelModel):
+        if load is not None:
+            raise ValueError("load is not used by a KernelModel: its psiL carries the loading; pass load=None")
+        return _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options or {},
+                             callback, stats, timer)
+    return _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral,
+                         cq_options or {}, callback, stats, timer)
+
+
+# ---------------------------------------------------------------------- matrix models
+def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, cq_options,
+                  callback, stats, timer):
+    stats["n"] = model.n
+    q = _load_function(model, load, N, dt)
+    init = _initial_matrix(model, q, initial, solver, bilateral)
+    t = dt * np.arange(N + 1)
+    if init.message:
+        return _failed_at_start(model, init, stats, timer)
+    stats["static_lcp_iterations"] = init.lcp_iterations
+    u_b, v_b = init.u, init.v
+    K_ub = model.K @ u_b
+    F_vb = model.F @ v_b
+    HFu = transpose_times(model.F, u_b) - model.H @ v_b
+    load_inc = lambda k: q(k) + F_vb - K_ub
+    offset = lambda k: HFu - model.g(k * dt)
+    make_stepper = lambda: StructureStepper(model, rule, dt, load_inc, offset, init.udot)
+    timer.lap("initial")
+
+    psiL = None
+    if method == "direct":
+        stepper = make_stepper()
+        timer.lap("factorize")
+        du, dud, v, psi, log = march_direct(stepper, N, v_b, init.psi, solver, dt=dt,
+                                            bilateral=bilateral, callback=callback)
+        timer.lap("steps")
+    else:
+        _, _, _, psiL, _ = march_direct(make_stepper(), N, v_b, init.psi, None, dt=dt,
+                                        bilateral=True)
+        timer.lap("bilateral")
+        W = cq_weights(MatrixKernel(model), N, dt, rule, **cq_options)
+        timer.lap("weights")
+        v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback)
+        timer.lap("steps")
+        K = v.shape[0] - 1
+        dv = v - v_b
+        du, dud, _, _, _ = march_direct(make_stepper(), K, v_b, init.psi, None, dt=dt, dv=dv)
+        timer.lap("recover")
+    K = v.shape[0] - 1
+    return _finish(model, t[: K + 1], v, psi, None if psiL is None else psiL[: K + 1],
+                   u_b + du, dud, log, stats, timer)
+
+
+def _initial_matrix(model, q, initial, solver, bilateral) -> InitialState:
+    if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
+        return static_state(model, q(0), solver, bilateral)
+    if isinstance(initial, str):                              # "rest"
+        return given_state(model, {})
+    if isinstance(initial, dict):
+        return given_state(model, initial)
+    raise TypeError(f"initial must be 'static', 'rest' or a dict of u0, udot0, v0; got {V.describe(initial)}")
+
+
+def _load_function(model, load, N, dt):
+    """Return ``q(k) -> (n,)``: applied load plus the load of imposed strains at ``t_k``."""
+    n = model.n
+    imposed = model.q_imposed
+    if load is None:
+        return lambda k: imposed(k * dt)
+    if callable(load):
+        def q(k):
+            value = np.asarray(load(k * dt), dtype=float)
+            if value.shape != (n,):
+                raise ValueError(f"load(t) must return shape ({n},), got shape {value.shape} at t={k * dt}")
+            if not np.all(np.isfinite(value)):
+                raise ValueError(f"load(t) returned a non-finite value at t={k * dt} (step {k})")
+            return value + imposed(k * dt)
+        return q
+    arr = V.as_matrix("load", load, (None, n), allow_sparse=False)
+    if arr.shape[0] < N + 1:
+        raise ValueError(
+            f"load has {arr.shape[0]} rows but t_end/dt = {N} steps need {N + 1} (rows at t = k dt)"
+        )
+    return lambda k: arr[k] + imposed(k * dt)
+
+
+# ---------------------------------------------------------------------- kernel models
+def _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options, callback, stats, timer):
+    psiL = model.psiL_samples(N, dt)
+    timer.lap("setup")
+    W = cq_weights(model.kernel, N, dt, rule, **cq_options)
+    W = np.real_if_close(W) if np.iscomplexobj(W) else W
+    timer.lap("weights")
+    if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
+        Lambda0 = model.Lambda_real(0.0)
+        v_b, iters, message = static_lcp(Lambda0, psiL[0], solver, bilateral)
+        stats["static_lcp_iterations"] = iters
+        if message:
+            return _failed_at_start(model, InitialState(v=v_b, psi=psiL[0], message=message), stats, timer)
+        # psi_n = psiL_n - Lambda(0) v_b for a v held at its static value since -infinity.
+        psi_affine = psiL - Lambda0 @ v_b
+    else:
+        if isinstance(initial, dict):
+            unknown = set(initial) - {"v0"}
+            if unknown:
+                raise ValueError(f"initial for a KernelModel takes only 'v0'; got keys {sorted(unknown)}")
+            v_b = V.as_vector("initial['v0']", initial.get("v0", 0.0), model.m)
+            if np.any(v_b < 0):
+                raise ValueError(f"initial['v0'] must be >= 0, got {v_b}")
+        elif isinstance(initial, str):
+            v_b = np.zeros(model.m)
+        else:
+            raise TypeError(f"initial must be 'static', 'rest' or dict(v0=...), got {V.describe(initial)}")
+        # v jumps to v_b at t = 0: its convolution is the CQ step response sum_{j<=n} W_j v_b.
+        psi_affine = psiL - np.cumsum(W, axis=0) @ v_b
+    v, psi, log = _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback)
+    timer.lap("steps")
+    K = v.shape[0] - 1
+    return _finish(model, dt * np.arange(K + 1), v, psi, psiL[: K + 1], None, None, log, stats, timer)
+
+
+# ---------------------------------------------------------------------- shared pieces
+def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback):
+    W0 = 0.5 * (W[0] + W[0].T)
+    return march_cq(W0, NaiveHistory(W), psi_affine, v_b, solver, dt=dt, bilateral=bilateral,
+                    callback=callback)
+
+
+def _finish(model, t, v, psi, psiL, u, udot, log, stats, timer):
+    N = stats["steps"]
+    stats.update(log.stats())
+    stats["steps_done"] = len(t) - 1
+    stats["time"] = timer.laps()
+    if log.failure:
+        success = False
+        message = f"stopped after {len(t) - 1} of {N} steps: {log.failure}"
+    else:
+        success = True
+        message = f"{N} steps, {stats['contact_changes']} contact changes"
+    return Solution(t=t, v=v, psi=psi, psiL=psiL, u=u, udot=udot, success=success,
+                    message=message, stats=stats, dof_names=list(getattr(model, "dof_names", [])),
+                    constraint_names=list(model.constraint_names))
+
+
+def _failed_at_start(model, init, stats, timer):
+    stats["time"] = timer.laps()
+    stats["steps_done"] = 0
+    n_u = None if init.u is None else init.u[None]
+    return Solution(t=np.zeros(1), v=init.v[None], psi=init.psi[None], psiL=init.psi[None],
+                    u=n_u, udot=None if init.udot is None else init.udot[None], success=False,
+                    message=init.message, stats=stats, dof_names=list(getattr(model, "dof_names", [])),
+                    constraint_names=list(model.constraint_names))
+
+
+class _Timer:
+    """Wall time per phase."""
+
+    def __init__(self):
+        self._start = self._last = time.perf_counter()
+        self._laps = {}
+
+    def lap(self, name):
+        now = time.perf_counter()
+        self._laps[name] = self._laps.get(name, 0.0) + now - self._last
+        self._last = now
+
+    def laps(self):
+        out = dict(self._laps)
+        out["total"] = time.perf_counter() - self._start
+        return out

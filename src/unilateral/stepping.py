@@ -1,0 +1,124 @@
+"""Direct time stepping of the full model with a rule, in increments around a base state.
+
+Unknowns are increments ``du = u - u_b`` and ``dv = v - v_b`` about a base state
+``(u_b, v_b)`` (the static state, or the given initial state). With the rule's
+
+    du'_n = c1 du_n - h1,   du''_n = c0 du_n - h2,   dv'_n = c1 dv_n - k1
+
+(HHT-alpha weights the previous step by alpha) the equations of motion at a step become
+
+    D_eff du_n = r_n + (1 - alpha) F(c1) dv_n,       D_eff = c0 M + (1 - alpha)(c1 C + K)
+
+so ``du_n = du_free + X dv_n`` with ``X = D_eff^-1 (1 - alpha) F(c1)`` and
+
+    psi_n = psi_free - W0 dv_n,        W0 = H(c1) - (1 - alpha) F(c1)^T D_eff^-1 F(c1)
+
+For the rules with a convolution-quadrature form ``W0 = Lambda(s*)``, and one step of this
+stepper is one step of the CLCP with the same rule.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from .linalg import Factorization, SingularMatrixError, dense, transpose_times
+
+
+class StructureStepper:
+    """Steps the increments of a matrix :class:`~unilateral.model.Model` with a rule.
+
+    Parameters
+    ----------
+    model : Model
+    rule : Rule
+    dt : float
+    load : callable
+        ``load(k) -> (n,)``: the load increment ``f_k = q(t_k) + F v_b - K u_b`` at step k.
+    offset : callable
+        ``offset(k) -> (m,)``: ``F^T u_b - H v_b - g(t_k)``, the reaction of the base state.
+    udot0 : (n,) initial velocity increment (the given initial velocity; zero from statics).
+    """
+
+    def __init__(self, model, rule, dt, load, offset, udot0=None):
+        self.model, self.rule, self.dt = model, rule, dt
+        self.load, self.offset = load, offset
+        c1, c0 = rule.coefficients(dt)
+        self.c1, self.alpha = c1, rule.alpha
+        a = 1.0 - self.alpha
+        C = model.damping()
+        D_eff = c0 * model.M + a * (c1 * C + model.K)
+        self.lu = Factorization(D_eff, what="the effective stiffness c0 M + c1 C + K")
+        self.Fp = model.F_of(c1)
+        self.X = self.lu.solve(a * dense(self.Fp))                      # (n, m)
+        W0 = model.H_of(c1) - transpose_times(self.Fp, self.X)
+        self.W0 = 0.5 * (W0 + W0.T)
+        self.C = C
+        n, m = model.n, model.m
+        ud0 = np.zeros(n) if udot0 is None else udot0
+        f0 = load(0)
+        rhs = f0 - C @ ud0
+        a0 = _initial_acceleration(model.M, rhs) if np.any(rhs) else np.zeros(n)
+        zero_n, zero_m = np.zeros(n), np.zeros(m)
+        self.state = rule.start(zero_n, ud0, a0, dt)
+        self.vstate = rule.start(zero_m, zero_m, zero_m, dt) if model.viscous else None
+        self.k = 0
+        self.u, self.ud = zero_n, ud0
+        self.dv, self.dvd = zero_m, zero_m
+        self.f_prev = f0
+
+    def predict(self):
+        """Free step (``dv_n = 0`` increment coupling): return ``(du_free, psi_free)``."""
+        model, rule, dt = self.model, self.rule, self.dt
+        k = self.k + 1
+        a = 1.0 - self.alpha
+        h1, h2 = rule.history(self.state, dt)
+        f = self.load(k)
+        rhs = a * f + model.M @ h2 + a * (self.C @ h1)
+        psi = self.offset(k)
+        if self.alpha:
+            rhs = rhs + self.alpha * (self.f_prev - self.C @ self.ud - model.K @ self.u
+                                      + model.F @ self.dv)
+            if model.F_v is not None:
+                rhs = rhs + self.alpha * (model.F_v @ self.dvd)
+        if self.vstate is not None:
+            k1, _ = rule.history(self.vstate, dt)
+            if model.F_v is not None:
+                rhs = rhs - a * (model.F_v @ k1)
+                psi = psi - transpose_times(model.F_v, h1)
+            if model.H_v is not None:
+                psi = psi + model.H_v @ k1
+        du_free = self.lu.solve(rhs)
+        psi = psi + transpose_times(self.Fp, du_free)
+        self._pending = (k, f, h1, h2, du_free)
+        return du_free, psi
+
+    def correct(self, dv):
+        """Complete the step with the unilateral increment ``dv`` (m,); return ``(du, du')``."""
+        k, f, h1, h2, du_free = self._pending
+        du = du_free + self.X @ dv if dv.any() else du_free
+        c1 = self.c1
+        c0 = self.rule.coefficients(self.dt)[1]
+        ud = c1 * du - h1
+        self.state = self.rule.advance(self.state, du, ud, c0 * du - h2)
+        if self.vstate is not None:
+            k1, k2 = self.rule.history(self.vstate, self.dt)
+            dvd = c1 * dv - k1
+            self.vstate = self.rule.advance(self.vstate, dv, dvd, c0 * dv - k2)
+            self.dvd = dvd
+        self.k, self.u, self.ud, self.dv, self.f_prev = k, du, ud, dv, f
+        return du, ud
+
+
+def _initial_acceleration(M, rhs):
+    """Solve ``M a0 = rhs``; for a singular (lumped, partly massless) M use the massive DOFs."""
+    try:
+        return Factorization(M, what="M").solve(rhs)
+    except SingularMatrixError:
+        diag = M.diagonal() if sp.issparse(M) else np.diag(M)
+        idx = np.flatnonzero(diag > 0)
+        a0 = np.zeros_like(rhs)
+        if idx.size:
+            Mm = M[idx][:, idx]
+            a0[idx] = Factorization(Mm, what="M on the DOFs with mass").solve(rhs[idx])
+        return a0
