@@ -195,3 +195,15 @@ def test_lcp_failure_is_reported_not_hidden():
     assert not sol.success
     assert "LCP of step" in sol.message and "failed" in sol.message
     assert len(sol.t) == sol.stats["steps_done"] + 1 < 301
+
+
+@pytest.mark.parametrize("method", ["cq", "direct"])
+def test_a_model_without_constraints_is_plain_linear_dynamics(method):
+    """m = 0: both methods reduce to the linear structure (a damped oscillator under a step)."""
+    model = ul.Model(M=[[1.0]], K=[[100.0]], C=[[2.0]], F=np.zeros((1, 0)), H=np.zeros((0, 0)))
+    sol = ul.solve(model, lambda t: np.array([1.0 if t > 0 else 0.0]), dt=1e-3, t_end=2.0, method=method)
+    assert sol.success and sol.v.shape == (2001, 0)
+    w, z = 10.0, 0.1
+    wd = w * np.sqrt(1 - z * z)
+    exact = 0.01 * (1 - np.exp(-z * w * sol.t) * (np.cos(wd * sol.t) + z * w / wd * np.sin(wd * sol.t)))
+    assert np.max(np.abs(sol.u[:, 0] - exact)) < 1e-2 * 0.01

@@ -70,6 +70,8 @@ def cq_weights(kernel, N: int, dt: float, rule, *, L: int | None = None,
     zeta = rho * np.exp(2j * np.pi * np.arange(L // 2 + 1) / L)
     s = rule.delta(zeta) / dt
     values = kernel(s)                          # (L/2+1, m, m) complex
+    if values.shape[1] == 0:
+        return np.zeros((N + 1, 0, 0))
     A0, A1 = _asymptote(s, values)
     if A0 is not None:
         values = values - A0[None] - s[:, None, None] * A1[None]

@@ -1,0 +1,266 @@
+"""Solutions as xarray Datasets, netCDF files and CSV tables.
+
+Dataset layout (:func:`to_dataset`)
+-----------------------------------
+dimensions ``time``, ``dof``, ``constraint`` (and ``case`` for several analyses in one Dataset);
+coordinates hold the times and the names; variables ``u``, ``udot`` (time, dof) and ``v``, ``psi``,
+``psiL`` (time, constraint), those the solution has, each with ``long_name`` and, given the units,
+``units``. Attributes: ``success`` (0/1), ``message``, ``stats`` (the statistics as JSON, for an
+exact round trip), the statistics flattened (``steps``, ``time_total``, ...) for netCDF tools, and
+the user's attributes, flattened alike.
+
+Several analyses on one time axis, e.g. ``{"unilateral": sol, "bilateral": bil}``, share one
+Dataset with a leading ``case`` dimension. Attributes equal in all cases stay attributes; those
+that differ (``success``, ``message``, ``stats``, timings, ...) become variables along ``case``, so
+``from_dataset(ds.sel(case="bilateral"))`` gives back that case's Solution.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .. import __version__
+from ..result import Solution
+from .atomic import atomic_write, to_jsonable, write_text_atomic
+
+ENGINE = "h5netcdf"
+
+# name: (dims, physical quantity, long_name)
+_VARIABLES = {
+    "u": (("time", "dof"), "length", "displacement"),
+    "udot": (("time", "dof"), "velocity", "velocity"),
+    "v": (("time", "constraint"), "length", "unilateral deformation (uplift, gap opening, slack)"),
+    "psi": (("time", "constraint"), "force", "constraint reaction (compression negative)"),
+    "psiL": (("time", "constraint"), "force", "constraint reaction with every constraint bilateral"),
+}
+
+
+def to_dataset(data: Solution | dict[str, Solution], *, units: dict | None = None,
+               attrs: dict | None = None) -> xr.Dataset:
+    """Return a solution, or several on one time axis, as an :class:`xarray.Dataset`.
+
+    Parameters
+    ----------
+    data : Solution or dict of str to Solution
+        A dict gives a Dataset with a leading ``case`` dimension labelled by its keys; the
+        solutions must share their time axis, DOF names and constraint names.
+    units : dict, optional
+        Units of the base quantities, e.g. ``{"length": "m", "force": "kN", "time": "s"}``; they
+        set the ``units`` attribute of each variable (``udot`` gets ``length/time``).
+    attrs : dict, optional
+        Further attributes, e.g. model metadata; nested dicts are flattened to ``outer_inner``.
+        An attribute may repeat a statistic (``method``, ``rule``) but not contradict it.
+
+    Returns
+    -------
+    xarray.Dataset
+    """
+    if isinstance(data, dict):
+        return _combine({label: to_dataset(sol, units=units, attrs=attrs) for label, sol in data.items()})
+    if not isinstance(data, Solution):
+        raise TypeError(f"data must be a Solution or a dict of Solutions, got {type(data).__name__}")
+    units = units or {}
+    data_vars = {}
+    for name, (dims, quantity, long_name) in _VARIABLES.items():
+        values = getattr(data, name)
+        if values is not None:
+            data_vars[name] = (dims, np.asarray(values, dtype=float), _var_attrs(long_name, units, quantity))
+    coords = {"time": ("time", np.asarray(data.t, dtype=float), _var_attrs("time", units, "time")),
+              "constraint": list(data.constraint_names)}
+    if "u" in data_vars or "udot" in data_vars:
+        coords["dof"] = list(data.dof_names)
+    meta = {"source": f"unilateral {__version__}", "success": data.success, "message": data.message,
+            "stats": json.dumps(to_jsonable(data.stats))}
+    merged = _flatten(meta) | _flatten(data.stats)
+    for key, value in _flatten(attrs or {}).items():
+        if key in merged and not _same(merged[key], value):
+            raise ValueError(f"attrs[{key!r}] = {value!r} contradicts the solution's {key} = {merged[key]!r}")
+        merged[key] = value
+    return xr.Dataset(data_vars, coords=coords, attrs=merged)
+
+
+def from_dataset(ds: xr.Dataset) -> Solution:
+    """Rebuild the :class:`~unilateral.Solution` stored by :func:`to_dataset`.
+
+    A Dataset with several cases must be narrowed to one first: ``ds.sel(case="unilateral")``.
+    """
+    if "case" in ds.dims:
+        raise ValueError(f"the dataset holds the cases {ds['case'].values.tolist()}; "
+                         "pick one first, e.g. from_dataset(ds.sel(case=...))")
+
+    def array(name):
+        return ds[name].values.astype(float) if name in ds.data_vars else None
+
+    def names(dim):
+        return [str(x) for x in ds[dim].values] if dim in ds.coords else []
+
+    return Solution(t=ds["time"].values.astype(float), v=array("v"), psi=array("psi"), psiL=array("psiL"),
+                    u=array("u"), udot=array("udot"), success=bool(_meta(ds, "success")),
+                    message=str(_meta(ds, "message")), stats=json.loads(_meta(ds, "stats")),
+                    dof_names=names("dof"), constraint_names=names("constraint"))
+
+
+def save_netcdf(data: Solution | dict[str, Solution] | xr.Dataset, path: str | os.PathLike, *,
+                units: dict | None = None, attrs: dict | None = None) -> Path:
+    """Write a solution, a dict of cases or a Dataset to a netCDF-4 file, atomically.
+
+    Parameters
+    ----------
+    data : Solution, dict of str to Solution, or xarray.Dataset
+        Solutions go through :func:`to_dataset` (with ``units`` and ``attrs``).
+    path : str or path-like
+        Target file (conventionally ``.nc``); replaced only once the new file is complete.
+
+    Returns
+    -------
+    pathlib.Path
+        The target path.
+    """
+    if isinstance(data, xr.Dataset):
+        if units is not None or attrs is not None:
+            raise TypeError("units and attrs apply to Solutions; set them on the Dataset instead")
+        ds = data
+    else:
+        ds = to_dataset(data, units=units, attrs=attrs)
+    return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
+
+
+def load_netcdf(path: str | os.PathLike) -> xr.Dataset:
+    """Read a netCDF file written by :func:`save_netcdf` into memory (the file is closed)."""
+    return xr.load_dataset(path, engine=ENGINE, decode_times=False, decode_timedelta=False)
+
+
+def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "") -> list[Path]:
+    """Write the histories as CSV tables with a header row, atomically and at full precision.
+
+    Files, in ``directory`` (created if missing):
+
+    - ``<prefix>displacements.csv``: ``time``, then one column per DOF name (if the solution has
+      displacements);
+    - ``<prefix>constraints.csv``: ``time``, ``v:<name>`` and ``psi:<name>`` per constraint, and
+      ``psiL:<name>`` if present.
+
+    Numbers are written as the shortest decimal that reads back to the same float.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    tables = {}
+    if sol.u is not None:
+        tables["displacements.csv"] = {"time": sol.t} | dict(zip(sol.dof_names, np.asarray(sol.u).T))
+    columns = {"time": sol.t}
+    for name in ("v", "psi", "psiL"):
+        values = getattr(sol, name)
+        if values is not None:
+            columns |= {f"{name}:{c}": col for c, col in zip(sol.constraint_names, np.asarray(values).T)}
+    tables["constraints.csv"] = columns
+    return [write_text_atomic(directory / f"{prefix}{filename}", _csv_text(table))
+            for filename, table in tables.items()]
+
+
+def _csv_text(columns: dict[str, np.ndarray]) -> str:
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(columns)
+    writer.writerows(np.column_stack(list(columns.values())).astype(float).tolist())   # str(float) == repr
+    return buffer.getvalue()
+
+
+def _var_attrs(long_name: str, units: dict, quantity: str) -> dict:
+    if quantity == "velocity":
+        unit = f"{units['length']}/{units['time']}" if "length" in units and "time" in units else None
+    else:
+        unit = units.get(quantity)
+    return {"long_name": long_name} | ({"units": unit} if unit else {})
+
+
+def _flatten(mapping: dict, prefix: str = "") -> dict:
+    """netCDF attributes from a nested dict: keys joined by ``_``, None dropped, bools as 0/1."""
+    out = {}
+    for key, value in mapping.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            out |= _flatten(value, f"{name}_")
+        elif value is not None:
+            out[name] = _attribute(name, value)
+    return out
+
+
+def _attribute(name: str, value):
+    if isinstance(value, (bool, np.bool_)):
+        return int(value)
+    if isinstance(value, (str, int, float, np.integer, np.floating)):
+        return value
+    if isinstance(value, (list, tuple, np.ndarray)):
+        array = np.asarray(value)
+        if array.dtype.kind in "biuf":
+            return array.astype(np.int8) if array.dtype.kind == "b" else array
+        return json.dumps(to_jsonable(value))
+    raise TypeError(f"attribute {name!r} has type {type(value).__name__}; "
+                    "netCDF attributes must be str, numbers, arrays or lists of them")
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, str) or isinstance(b, str):
+        return a == b
+    return bool(np.array_equal(a, b))
+
+
+def _meta(ds: xr.Dataset, key: str):
+    """A solution's metadata: an attribute, or a 0-d variable after selecting one case."""
+    if key in ds.attrs:
+        return ds.attrs[key]
+    if key in ds.data_vars and ds[key].ndim == 0:
+        return ds[key].item()
+    raise KeyError(f"the dataset has no {key!r} attribute; was it written by unilateral.io.to_dataset?")
+
+
+def _combine(cases: dict[str, xr.Dataset]) -> xr.Dataset:
+    """One Dataset with a leading ``case`` dimension; differing attributes become variables."""
+    if not cases:
+        raise ValueError("no cases to combine: the dict is empty")
+    (first_label, first), *rest = cases.items()
+    for label, ds in rest:
+        if not np.array_equal(ds["time"].values, first["time"].values):
+            raise ValueError(
+                f"case {label!r} has {ds.sizes['time']} times in [{ds['time'].values[0]:g}, "
+                f"{ds['time'].values[-1]:g}], case {first_label!r} has {first.sizes['time']} in "
+                f"[{first['time'].values[0]:g}, {first['time'].values[-1]:g}]; cases share a Dataset only "
+                "on a common time axis (did one analysis stop early?): store them separately")
+    datasets = list(cases.values())
+    common, per_case = {}, {}
+    for key in dict.fromkeys(key for ds in datasets for key in ds.attrs):
+        values = [ds.attrs.get(key) for ds in datasets]
+        if all(value is not None and _same(value, values[0]) for value in values):
+            common[key] = values[0]
+        else:
+            per_case[key] = ("case", _case_column(values))
+    combined = xr.concat(datasets, dim="case", data_vars="all", coords="minimal", compat="equals",
+                         join="exact", combine_attrs="override")     # variables keep their attributes
+    combined.attrs = common
+    return combined.assign_coords(case=list(cases)).assign(per_case)
+
+
+def _case_column(values: list) -> np.ndarray:
+    """Per-case values of one attribute (None where a case lacks it) as a 1-d array."""
+    present = [value for value in values if value is not None]
+    if all(isinstance(value, (int, float, np.integer, np.floating)) for value in present):
+        return np.array([np.nan if value is None else value for value in values])
+    return np.array([_text(value) for value in values])
+
+
+def _text(value) -> str:
+    if value is None:
+        return ""
+    return value if isinstance(value, str) else json.dumps(to_jsonable(value))

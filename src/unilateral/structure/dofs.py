@@ -1,0 +1,136 @@
+"""Numbering of the free DOFs: supports, rotational DOFs and rigid (master-slave) links.
+
+Every node has three nodal DOFs ``(ux, uy, rz)``; the structure's unknowns ``u`` (n,) are the
+free ones. ``u_full = T u`` gives all nodal DOFs (``3 n_nodes``): supported DOFs are zero, and a
+node rigidly linked to a master follows the master's rigid-body motion
+
+    ux_s = ux_m - (y_s - y_m) rz_m,   uy_s = uy_m + (x_s - x_m) rz_m,   rz_s = rz_m
+
+A node gets a free ``rz`` only if something rotates it (a beam end, an ``"rz"`` spring, a
+rotational mass, or a rigid link whose slave is offset or rotated), so that trusses and springs
+do not leave rotations without stiffness. Rotations of the other nodes are reported as 0.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable
+
+import numpy as np
+import scipy.sparse as sp
+
+from .elements import DOF_NAMES
+
+
+class DofMap:
+    """Free DOFs of a frame and the master-slave transformation ``u_full = T u``.
+
+    Parameters
+    ----------
+    coords : dict node -> (2,) coordinates, in definition order
+    restrained : set of (node, dof) supported DOFs
+    rotated : set of nodes whose rotation something uses
+    links : dict slave node -> master node (chains allowed, no cycles)
+
+    Attributes
+    ----------
+    nodes : list of node ids, in definition order
+    free : list of (node, dof) pairs; ``u[k]`` is the DOF ``free[k]``
+    masters : dict slave -> root master (the end of the chain of links)
+    T : (3 n_nodes, n) csr matrix; row ``3 p + d`` is DOF ``d`` of ``nodes[p]``
+    """
+
+    def __init__(self, coords: dict, restrained: set, rotated: set, links: dict):
+        self.nodes = list(coords)
+        self._position = {node: p for p, node in enumerate(self.nodes)}
+        self.masters = {s: _root(s, links) for s in links}
+        offset = {s: np.asarray(coords[s]) - np.asarray(coords[m]) for s, m in self.masters.items()}
+        rotating = set(rotated) - set(self.masters)
+        rotating |= {m for s, m in self.masters.items() if s in rotated or offset[s].any()}
+        self.free = [(node, dof) for node in self.nodes if node not in self.masters for dof in DOF_NAMES
+                     if (node, dof) not in restrained and (dof != "rz" or node in rotating)]
+        self._index = {key: k for k, key in enumerate(self.free)}
+        self._restrained = set(restrained)
+        rows, cols, vals = [], [], []
+        for node in self.nodes:
+            p = 3 * self._position[node]
+            if node in self.masters:
+                m = self.masters[node]
+                dx, dy = offset[node]
+                terms = [(p, "ux", 1.0, m), (p, "rz", -dy, m), (p + 1, "uy", 1.0, m),
+                         (p + 1, "rz", dx, m), (p + 2, "rz", 1.0, m)]
+            else:
+                terms = [(p + d, dof, 1.0, node) for d, dof in enumerate(DOF_NAMES)]
+            for row, dof, value, owner in terms:
+                col = self._index.get((owner, dof))
+                if col is not None and value != 0.0:
+                    rows.append(row)
+                    cols.append(col)
+                    vals.append(value)
+        self.T = sp.csr_matrix((vals, (rows, cols)), shape=(3 * len(self.nodes), len(self.free)))
+
+    @property
+    def n(self) -> int:
+        """Number of free DOFs."""
+        return len(self.free)
+
+    @property
+    def names(self) -> list[str]:
+        """DOF names ``"node.dof"``, e.g. ``"3.uy"``."""
+        return [f"{node}.{dof}" for node, dof in self.free]
+
+    def full_index(self, node: Hashable, dof: str) -> int:
+        """Row of nodal DOF ``dof`` of ``node`` in ``u_full``."""
+        if dof not in DOF_NAMES:
+            raise ValueError(f"dof={dof!r} is not valid; use 'ux', 'uy' or 'rz'")
+        if node not in self._position:
+            raise ValueError(f"node {node!r} is not defined (nodes: {node_list(self.nodes)})")
+        return 3 * self._position[node] + DOF_NAMES.index(dof)
+
+    def index(self, node: Hashable, dof: str) -> int:
+        """Position of the free DOF ``(node, dof)`` in ``u``; ``ValueError`` if it is not free."""
+        self.full_index(node, dof)
+        if (node, dof) in self._index:
+            return self._index[(node, dof)]
+        if node in self.masters:
+            reason = f"node {node!r} is rigidly linked to node {self.masters[node]!r} (a slave node)"
+        elif (node, dof) in self._restrained:
+            reason = f"{dof} of node {node!r} is supported"
+        else:
+            reason = f"node {node!r} has no {dof} DOF: no element rotates it"
+        raise ValueError(f"{node}.{dof} is not a free DOF: {reason}; "
+                         "use nodal() for the displacements of every node")
+
+    def nodal(self, u) -> np.ndarray:
+        """Displacements of every node (supported and slave nodes included).
+
+        Parameters
+        ----------
+        u : (..., n) free DOFs
+
+        Returns
+        -------
+        (..., n_nodes, 3) array of ``(ux, uy, rz)`` per node, in the order of ``nodes``
+        """
+        u = np.asarray(u, dtype=float)
+        if u.shape[-1:] != (self.n,):
+            raise ValueError(f"u must have shape (..., {self.n}), got {u.shape}")
+        flat = u.reshape(-1, self.n)
+        full = (self.T @ flat.T).T
+        return full.reshape(u.shape[:-1] + (len(self.nodes), 3))
+
+    def gather(self, f_full) -> np.ndarray:
+        """Free-DOF load ``T^T f_full`` (n,) of nodal loads ``f_full`` (3 n_nodes,)."""
+        return np.asarray(self.T.T @ f_full).ravel()
+
+
+def node_list(nodes, limit=10) -> str:
+    """``"1, 2, 3"`` (truncated with ``...`` beyond ``limit`` nodes) for error messages."""
+    shown = ", ".join(repr(node) if isinstance(node, str) else str(node) for node in list(nodes)[:limit])
+    return shown + (", ..." if len(nodes) > limit else "") if nodes else "none"
+
+
+def _root(node, links):
+    """End of the chain of rigid links starting at ``node`` (chains are checked acyclic)."""
+    while node in links:
+        node = links[node]
+    return node

@@ -1,0 +1,83 @@
+"""The numerical example of Liolios (1990), built with :class:`~unilateral.structure.Frame2D`.
+
+The seed's Fig. 1 is lost; this is the reconstruction adopted in DESIGN.md, section 5 (kN, m, s):
+a mass M on top of a column of height 10 m, standing on a rigid massless foundation 10 m wide
+that rests on three tensionless soil elements (spring k and dashpot c in parallel, acting only in
+contact) under its edges and centre. Gravity first, then a horizontal rectangular pulse rocks the
+structure and the left edge (node 3) lifts off.
+"""
+
+from __future__ import annotations
+
+from ..loads import Rectangular
+from .frame import Frame2D
+
+MASS = 40.0          # kN s^2/m
+K_SOIL = 200e3       # kN/m   (200 MN/m)
+C_SOIL = 10e3        # kN s/m (10 MN s/m)
+EI = 1e9             # kN m^2 (10^6 MN m^2)
+EA_RIGID = 1e12      # kN: the column is axially practically rigid
+HEIGHT = 10.0        # m
+HALF_WIDTH = 5.0     # m
+GRAVITY = 10.0       # m/s^2
+PULSE = 200.0        # kN, half the weight
+T_PULSE = 0.1        # s
+
+
+def liolios1990(kelvin=True):
+    """Build the seed's example: the structure, its load and a description.
+
+    Nodes: 1 top of the column (0, 10) carrying the mass (both translations); 2 foundation centre
+    (0, 0), restrained horizontally; 3 and 4 foundation edges (-5, 0) and (+5, 0), rigidly linked
+    to node 2. Column: beam 2 -> 1 with ``EI = 1e9`` kN m^2 and ``EA = 1e12`` kN. Soil elements
+    ``"soil3"``, ``"soil2"``, ``"soil4"`` under nodes 3, 2, 4 (vertical, ``k = 200e3`` kN/m).
+
+    Parameters
+    ----------
+    kelvin : bool
+        True (the seed's model): the soil dashpots ``c = 10e3`` kN s/m are in parallel with the
+        springs and act only in contact (Kelvin elements). False: the dashpots stay attached to
+        the foundation (they pull too) and go into ``C``.
+
+    Returns
+    -------
+    structure : Structure
+        DOFs ``1.ux, 1.uy, 1.rz, 2.uy, 2.rz``.
+    load : callable ``q(t) -> (5,)``
+        Gravity ``g = 10`` m/s^2 downwards plus ``P = 200`` kN at node 1 towards +x for
+        ``0 < t <= 0.1`` s (zero at ``t = 0``: the static state is under gravity alone).
+    info : dict
+        ``units``; ``static_displacement`` ``-M g / (3 k)`` of the foundation (m);
+        ``figure2``: the node, DOF and label of the quantity of the seed's Fig. 2 (the
+        vertical displacement of node 3, for :meth:`Structure.node_displacement`).
+    """
+    fr = Frame2D()
+    fr.node(1, 0.0, HEIGHT)
+    fr.node(2, 0.0, 0.0)
+    fr.node(3, -HALF_WIDTH, 0.0)
+    fr.node(4, HALF_WIDTH, 0.0)
+    fr.support(2, ux=True, uy=False)
+    fr.rigid_link(2, 3)
+    fr.rigid_link(2, 4)
+    fr.beam("column", 2, 1, E=1.0, A=EA_RIGID, I=EI)
+    fr.mass(1, MASS)
+    for node in (3, 2, 4):
+        fr.soil(f"soil{node}", node, K_SOIL, c=C_SOIL if kelvin else 0.0)
+        if not kelvin:
+            fr.dashpot(f"dashpot{node}", node, C_SOIL)
+    structure = fr.build()
+    weight = structure.gravity(GRAVITY)
+    push = structure.nodal_load(1, ux=1.0)
+    # The relative tolerance keeps the step at t_k = k dt ~ 0.1 s inside the pulse whatever the
+    # round-off of k dt.
+    pulse = Rectangular(PULSE, t_end=T_PULSE * (1 + 1e-9))
+
+    def load(t):
+        return weight + pulse(t) * push
+
+    info = {
+        "units": "kN, m, s",
+        "static_displacement": -MASS * GRAVITY / (3 * K_SOIL),
+        "figure2": {"node": 3, "dof": "uy", "label": "vertical displacement of node 3 (m)"},
+    }
+    return structure, load, info

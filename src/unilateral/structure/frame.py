@@ -1,0 +1,518 @@
+"""A 2-D frame builder: nodes, supports, elements and masses -> the natural form and a Model.
+
+Example (the seed's foundation, see :func:`unilateral.structure.examples.liolios1990`)::
+
+    fr = Frame2D()
+    fr.node(1, 0.0, 10.0); fr.node(2, 0.0, 0.0); fr.node(3, -5.0, 0.0)
+    fr.support(2, ux=True, uy=False)
+    fr.rigid_link(2, 3)
+    fr.beam("column", 2, 1, E=1.0, A=1e12, I=1e9)
+    fr.mass(1, 40.0)
+    fr.soil("soil3", 3, 200e3, c=10e3)
+    fr.soil("soil2", 2, 200e3, c=10e3)
+    st = fr.build()
+    model = st.to_model()
+    q = lambda t: st.gravity(10.0) + 200.0 * (0 < t <= 0.1) * st.nodal_load(1, ux=1.0)
+
+Strain and sign conventions of the elements are in :mod:`unilateral.structure.elements`.
+"""
+
+from __future__ import annotations
+
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..model import Model, NaturalForm
+from . import elements as el
+from .dofs import DofMap, node_list
+
+
+class Frame2D:
+    """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
+
+    Nodes have the DOFs ``ux``, ``uy`` (along global x, y) and ``rz`` (counter-clockwise). Define
+    nodes first, then supports, links, elements and masses in any order, then :meth:`build`.
+    Every element name must be unique. Each unilateral element (:meth:`soil`, :meth:`cable`,
+    :meth:`gap`) adds one unilateral unknown ``v >= 0`` and one reaction ``psi <= 0``, named
+    after the element.
+    """
+
+    def __init__(self):
+        self._coords: dict = {}
+        self._restrained: set = set()
+        self._links: dict = {}
+        self._elements: list[el.Element] = []
+        self._dashpots: list[el.Element] = []
+        self._names: set = set()
+        self._mass: dict = {}
+        self._rayleigh: tuple[float, float] | None = None
+
+    # ------------------------------------------------------------------ nodes and supports
+    def node(self, node_id, x, y) -> None:
+        """Define node ``node_id`` (int or str) at ``(x, y)``."""
+        if isinstance(node_id, numbers.Integral) and not isinstance(node_id, bool):
+            node_id = int(node_id)
+        elif not isinstance(node_id, str):
+            raise TypeError(f"node id must be an int or a str, got {node_id!r}")
+        if node_id in self._coords:
+            x0, y0 = self._coords[node_id]
+            raise ValueError(f"node {node_id!r} is already defined (at ({x0:g}, {y0:g}))")
+        where = f"node {node_id!r}"
+        self._coords[node_id] = np.array([_real(where, "x", x), _real(where, "y", y)])
+
+    def support(self, node, ux=True, uy=True, rz=False) -> None:
+        """Restrain DOFs of ``node`` (True = restrained); restrained DOFs are removed from ``u``."""
+        where = f"support at node {node!r}"
+        self._node(where, "node", node)
+        flags = {"ux": ux, "uy": uy, "rz": rz}
+        for dof, flag in flags.items():
+            if not isinstance(flag, (bool, np.bool_)):
+                raise TypeError(f"{where}: {dof}={flag!r} must be True or False")
+        if not any(flags.values()):
+            raise ValueError(f"{where}: ux, uy and rz are all False; the support restrains nothing")
+        if node in self._links:
+            raise ValueError(
+                f"{where}: node {node!r} is rigidly linked to node {self._links[node]!r}; "
+                "support the master node instead"
+            )
+        self._restrained |= {(node, dof) for dof, flag in flags.items() if flag}
+
+    def rigid_link(self, master, slave) -> None:
+        """Attach node ``slave`` rigidly (ux, uy, rz) to node ``master``: ``u_full = T u``.
+
+        The slave's DOFs are eliminated; chains of links are allowed (a master may itself be a
+        slave). A slave node cannot be supported; support its master.
+        """
+        where = f"rigid_link({master!r}, {slave!r})"
+        self._node(where, "master", master)
+        self._node(where, "slave", slave)
+        if master == slave:
+            raise ValueError(f"{where}: master and slave are the same node")
+        if slave in self._links:
+            raise ValueError(f"{where}: node {slave!r} is already a slave of node {self._links[slave]!r}")
+        supported = [dof for dof in el.DOF_NAMES if (slave, dof) in self._restrained]
+        if supported:
+            raise ValueError(
+                f"{where}: slave node {slave!r} is supported ({', '.join(supported)}); "
+                "support the master node instead"
+            )
+        root = master
+        while root in self._links:
+            root = self._links[root]
+            if root == slave:
+                raise ValueError(
+                    f"{where}: the link would close a loop of rigid links through node {slave!r}"
+                )
+        self._links[slave] = master
+
+    def mass(self, node, m, *, J=0.0) -> None:
+        """Lumped mass ``m`` on ``ux`` and ``uy`` of ``node`` and rotational inertia ``J`` on ``rz``.
+
+        Repeated calls add up. A slave node's mass acts on its master through ``T^T M T``.
+        """
+        where = f"mass at node {node!r}"
+        self._node(where, "node", node)
+        add = np.array([_real(where, "m", m, ">=0")] * 2 + [_real(where, "J", J, ">=0")])
+        self._mass[node] = self._mass.get(node, np.zeros(3)) + add
+
+    def rayleigh(self, a0, a1) -> None:
+        """Rayleigh damping ``C += a0 M + a1 K``.
+
+        ``K = G E G^T`` is the stiffness of the bilateral structure, unilateral elements held
+        closed: its part ``a1 K`` of a contact spring therefore acts in tension too.
+        """
+        if self._rayleigh is not None:
+            a0, a1 = self._rayleigh
+            raise ValueError(f"Rayleigh damping is already set (a0={a0!r}, a1={a1!r})")
+        self._rayleigh = (_real("rayleigh", "a0", a0, ">=0"), _real("rayleigh", "a1", a1, ">=0"))
+
+    def rayleigh_from_ratios(self, zeta, f1, f2) -> None:
+        """Rayleigh damping with the damping ratio ``zeta`` at the frequencies ``f1``, ``f2`` (Hz).
+
+        ``a0 = 2 zeta w1 w2 / (w1 + w2)``, ``a1 = 2 zeta / (w1 + w2)``, ``w = 2 pi f``; see
+        :meth:`rayleigh` for the stiffness used.
+        """
+        where = "rayleigh_from_ratios"
+        zeta = _real(where, "zeta", zeta, ">=0")
+        w1 = 2 * np.pi * _real(where, "f1", f1, ">0")
+        w2 = 2 * np.pi * _real(where, "f2", f2, ">0")
+        self.rayleigh(2 * zeta * w1 * w2 / (w1 + w2), 2 * zeta / (w1 + w2))
+
+    # ------------------------------------------------------------------ bilateral elements
+    def beam(self, name, i, j, E, A, I, *, axial_strain=0.0, curvature=0.0) -> None:
+        """Euler-Bernoulli beam-column from node ``i`` to node ``j``.
+
+        Natural strains: elongation, and the end rotations at ``i`` and ``j`` relative to the
+        chord; stiffness ``[[EA/L, 0, 0], [0, 4EI/L, 2EI/L], [0, 2EI/L, 4EI/L]]``.
+        ``axial_strain`` and ``curvature`` are imposed (e.g. thermal) strains, constant in time.
+        """
+        where = self._label("beam", name)
+        self._two_nodes(where, i, j)
+        E, A, I = (_real(where, arg, value, ">0") for arg, value in (("E", E), ("A", A), ("I", I)))
+        self._add(el.beam(name, i, self._coords[i], j, self._coords[j], E, A, I,
+                          _real(where, "axial_strain", axial_strain),
+                          _real(where, "curvature", curvature)))
+
+    def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
+        """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
+        where = self._label("bar", name)
+        self._two_nodes(where, i, j)
+        self._add(el.bar(name, i, self._coords[i], j, self._coords[j], _real(where, "E", E, ">0"),
+                         _real(where, "A", A, ">0"), _real(where, "axial_strain", axial_strain)))
+
+    def spring(self, name, i, k, *, j=None, direction="uy") -> None:
+        """Linear spring ``k`` from node ``i`` to the ground (``j=None``) or to node ``j``.
+
+        Strain: extension ``d . u_i`` to the ground, ``d . (u_j - u_i)`` between two nodes, for
+        ``direction`` ``"ux"``, ``"uy"``, ``"rz"`` or a vector ``(dx, dy)`` (normalised).
+        """
+        self._add(self._directional("spring", name, i, j, k, direction))
+
+    def dashpot(self, name, i, c, *, j=None, direction="uy") -> None:
+        """Attached linear dashpot ``c`` (acts in tension too; goes into ``C``), like :meth:`spring`."""
+        element = self._directional("dashpot", name, i, j, c, direction)
+        self._dashpots.append(element)
+        self._names.add(name)
+
+    # ------------------------------------------------------------------ unilateral elements
+    def soil(self, name, node, k, *, c=0.0, direction="uy", gap=0.0, capacity=0.0) -> None:
+        """Tensionless soil element under ``node``: spring ``k`` and dashpot ``c`` in parallel (a
+        Kelvin element, ``E_v = c``) in series with a unilateral contact.
+
+        Strain ``e = d . u_node``: the displacement of the node along ``direction`` (default
+        ``"uy"``), which points from the soil to the node, i.e. the direction in which the node
+        separates. ``e < 0`` compresses the soil. ``v >= 0`` is the separation; the force
+        ``sigma = k (e - v + gap) + c (e' - v')`` (tension positive) satisfies ``sigma <= capacity``,
+        with ``v > 0`` only where ``sigma = capacity``.
+
+        Parameters
+        ----------
+        gap : initial gap between node and soil (imposed strain ``theta = -gap``); negative: an
+            initial penetration (preload)
+        capacity : the tension ``r >= 0`` the element carries before separating (default 0)
+        """
+        where = self._label("soil", name)
+        self._node(where, "node", node)
+        self._add(self._contact("soil", where, name, None, node, k, c, direction, gap, capacity))
+
+    def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None) -> None:
+        """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
+        (with a Kelvin dashpot ``c`` in parallel) that engages when the gap closes.
+
+        Strain ``e = d . (u_j - u_i)``: the opening of the gap along ``direction``, which points
+        from ``i`` to ``j`` (default: the unit vector from node ``i`` to node ``j``). The link
+        engages when ``e <= -gap``; ``v >= 0`` is the gap opening, force as :meth:`soil` with
+        capacity 0.
+        """
+        where = self._label("gap", name)
+        self._two_nodes(where, i, j)
+        if direction is None:
+            _, direction = el.chord(where, i, self._coords[i], j, self._coords[j])
+        self._add(self._contact("gap", where, name, i, j, k, c, direction, gap, 0.0))
+
+    def cable(self, name, i, j, E, A, *, slack=0.0, capacity=0.0) -> None:
+        """Tension-only cable (bar) from node ``i`` to node ``j`` that goes slack in compression.
+
+        Strain ``e`` = elongation; ``B = -1`` and ``theta = slack``, so the axial force is
+        ``EA/L (e + v - slack)`` with ``v >= 0`` the slack shortening: the cable is taut once
+        ``e >= slack`` and carries at most the compression ``capacity`` (default 0).
+        Negative ``slack``: a pretensioned cable.
+        """
+        where = self._label("cable", name)
+        self._two_nodes(where, i, j)
+        self._add(el.cable(name, i, self._coords[i], j, self._coords[j], _real(where, "E", E, ">0"),
+                           _real(where, "A", A, ">0"), _real(where, "slack", slack),
+                           _real(where, "capacity", capacity, ">=0")))
+
+    # ------------------------------------------------------------------ build
+    def build(self) -> Structure:
+        """Number the DOFs and assemble the natural form, the mass and the damping matrices.
+
+        Raises ``ValueError`` if a free DOF has no stiffness (``K`` would be singular).
+        """
+        if not self._coords:
+            raise ValueError("the frame has no nodes; add nodes with Frame2D.node()")
+        everything = self._elements + self._dashpots
+        rotated = {node for e in everything for node, dof in e.dofs if dof == "rz"}
+        rotated |= {node for node, mass in self._mass.items() if mass[2] > 0}
+        dofs = DofMap(self._coords, self._restrained, rotated, self._links)
+        if dofs.n == 0:
+            raise ValueError("every DOF is supported or linked: the frame has no free DOF")
+        G = _compatibility(self._elements, dofs)
+        E = _block_diagonal([e.E for e in self._elements])
+        kelvin = any(e.E_v is not None for e in self._elements)
+        E_v = _block_diagonal([np.zeros_like(e.E) if e.E_v is None else e.E_v
+                               for e in self._elements]) if kelvin else None
+        theta = np.concatenate([e.theta for e in self._elements]) if self._elements else np.zeros(0)
+        starts = np.cumsum([0] + [e.E.shape[0] for e in self._elements])
+        unilateral = [p for p, e in enumerate(self._elements) if e.unilateral]
+        rows = starts[unilateral].astype(int)
+        m = len(unilateral)
+        B = sp.csr_matrix(([self._elements[p].b for p in unilateral], (rows, np.arange(m))),
+                          shape=(G.shape[1], m))
+        r = np.array([self._elements[p].r for p in unilateral])
+        nodal_mass = np.array([self._mass.get(node, np.zeros(3)) for node in dofs.nodes])
+        M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
+        K = (G @ E @ G.T).tocsr()
+        _check_stiffness(K, dofs)
+        C = self._damping(dofs, M, K)
+        natural = NaturalForm(G=G, E=E, B=B, A=np.zeros((m, m)), r=r, theta=lambda t: theta, E_v=E_v)
+        return Structure(
+            natural=natural, M=M, C=C, dofs=dofs,
+            element_names=tuple(e.name for e in self._elements),
+            strain_names=tuple(s for e in self._elements for s in e.strain_labels),
+            constraint_names=tuple(self._elements[p].name for p in unilateral),
+            constraint_strains=rows, nodal_mass=nodal_mass,
+        )
+
+    # ------------------------------------------------------------------ helpers
+    def _damping(self, dofs, M, K):
+        """Attached dashpots plus Rayleigh damping, or None."""
+        C = None
+        if self._dashpots:
+            Gd = _compatibility(self._dashpots, dofs)
+            C = (Gd @ _block_diagonal([d.E for d in self._dashpots]) @ Gd.T).tocsr()
+        if self._rayleigh is not None:
+            a0, a1 = self._rayleigh
+            R = (a0 * M + a1 * K).tocsr()
+            C = R if C is None else (C + R).tocsr()
+        return C
+
+    def _label(self, kind, name) -> str:
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"{kind} name must be a non-empty str, got {name!r}")
+        if name in self._names:
+            raise ValueError(f"{kind} {name!r}: the name is already used by another element")
+        return f"{kind} {name!r}"
+
+    def _add(self, element: el.Element) -> None:
+        self._elements.append(element)
+        self._names.add(element.name)
+
+    def _node(self, where, arg, node) -> None:
+        try:
+            known = node in self._coords
+        except TypeError:
+            known = False
+        if not known:
+            nodes = node_list(list(self._coords))
+            raise ValueError(f"{where}: {arg}={node!r} is not defined (nodes: {nodes})")
+
+    def _two_nodes(self, where, i, j) -> None:
+        self._node(where, "i", i)
+        self._node(where, "j", j)
+        if i == j:
+            raise ValueError(f"{where}: i and j are the same node {i!r}")
+
+    def _directional(self, kind, name, i, j, k, direction) -> el.Element:
+        where = self._label(kind, name)
+        self._node(where, "i", i)
+        if j is not None:
+            self._two_nodes(where, i, j)
+        coefficient = "c" if kind == "dashpot" else "k"
+        k = _real(where, coefficient, k, ">0")
+        terms = el.direction_terms(where, direction)
+        ends = (None, i) if j is None else (i, j)
+        return el.directional(name, kind, *ends, terms, k)
+
+    def _contact(self, kind, where, name, i, j, k, c, direction, gap, capacity) -> el.Element:
+        return el.directional(
+            name, kind, i, j, el.direction_terms(where, direction), _real(where, "k", k, ">0"),
+            c=_real(where, "c", c, ">=0"), theta=-_real(where, "gap", gap), b=1.0,
+            r=_real(where, "capacity", capacity, ">=0"),
+        )
+
+
+@dataclass(frozen=True, eq=False)
+class Structure:
+    """A built frame: the natural form (Liolios 1990, eqs. 1-9) and the DOF map.
+
+    Attributes
+    ----------
+    natural : NaturalForm
+        ``G`` (n, ne) csr, ``E`` (ne, ne) csr, ``B`` (ne, m) csr, ``A`` (m, m) zero, ``r`` (m,),
+        ``theta`` (constant imposed strains, as a function of time), ``E_v`` (ne, ne) csr or None.
+    M : (n, n) csr mass matrix (lumped, transformed by the rigid links)
+    C : (n, n) csr damping of attached dashpots and Rayleigh damping, or None; the Kelvin
+        dashpots of unilateral elements are in ``natural.E_v`` instead
+    dofs : DofMap
+    element_names : names of the elements of the natural form, in strain order
+    strain_names : (ne,) names of the natural strains (``"col.axial"``, ``"col.rot_i"``, ...)
+    constraint_names : (m,) names of the unilateral elements, the order of ``v`` and ``psi``
+    constraint_strains : (m,) int, the strain (row of ``G^T u``) of each unilateral element
+    nodal_mass : (n_nodes, 3) lumped ``(m, m, J)`` per node, in the order of ``dofs.nodes``
+    """
+
+    natural: NaturalForm
+    M: sp.csr_matrix
+    C: sp.csr_matrix | None
+    dofs: DofMap
+    element_names: tuple
+    strain_names: tuple
+    constraint_names: tuple
+    constraint_strains: np.ndarray
+    nodal_mass: np.ndarray
+
+    @property
+    def n(self) -> int:
+        """Number of free DOFs."""
+        return self.dofs.n
+
+    @property
+    def m(self) -> int:
+        """Number of unilateral unknowns."""
+        return len(self.constraint_names)
+
+    def to_model(self) -> Model:
+        """The reduced problem (eqs. 13-16) via :meth:`Model.from_natural`.
+
+        DOF names are ``"node.dof"`` (e.g. ``"3.uy"``), constraint names the unilateral
+        element names.
+        """
+        nat = self.natural
+        return Model.from_natural(
+            nat.G, nat.E, nat.B, M=self.M, A=nat.A, r=nat.r,
+            theta=nat.theta(0.0),                   # the builder's imposed strains are constant
+            C=self.C, E_v=nat.E_v, dof_names=self.dofs.names,
+            constraint_names=list(self.constraint_names),
+        )
+
+    def gravity(self, g=9.81, direction=(0.0, -1.0)) -> np.ndarray:
+        """Load (n,) of gravity ``g`` along ``direction`` (normalised) on the lumped masses."""
+        g = _real("gravity", "g", g)
+        d = dict(el.direction_terms("gravity", direction))
+        if "rz" in d:
+            raise ValueError("gravity: direction='rz' is not a direction of gravity; use a vector (dx, dy)")
+        f = np.zeros_like(self.nodal_mass)
+        f[:, 0] = self.nodal_mass[:, 0] * g * d.get("ux", 0.0)
+        f[:, 1] = self.nodal_mass[:, 1] * g * d.get("uy", 0.0)
+        return self.dofs.gather(f.ravel())
+
+    def nodal_load(self, node, ux=0.0, uy=0.0, rz=0.0) -> np.ndarray:
+        """Load (n,) of a force ``(ux, uy)`` and a moment ``rz`` at ``node`` (slave nodes too).
+
+        Raises ``ValueError`` if a nonzero component acts on a DOF that nothing free can move
+        (a supported DOF, or a rotation no element resists).
+        """
+        f = np.zeros(self.dofs.T.shape[0])
+        for dof, value in (("ux", ux), ("uy", uy), ("rz", rz)):
+            value = _real(f"nodal_load at node {node!r}", dof, value)
+            if value:
+                row = self.dofs.full_index(node, dof)
+                if self.dofs.T[row].nnz == 0:
+                    raise ValueError(
+                        f"nodal_load at node {node!r}: {dof}={value!r} acts on a DOF that cannot move "
+                        "(supported, or a rotation no element resists)"
+                    )
+                f[row] = value
+        return self.dofs.gather(f)
+
+    def element_deformations(self, u, v) -> tuple[np.ndarray, np.ndarray]:
+        """Deformations of the unilateral elements.
+
+        Parameters
+        ----------
+        u : (..., n) displacements;  v : (..., m) unilateral deformations
+
+        Returns
+        -------
+        e : (..., m) total strain: the relative displacement along the element (soil, gap:
+            positive = separating) or the elongation (cable)
+        eps : (..., m) elastic part ``e - b v - theta`` (force ``= k eps`` plus the Kelvin part)
+        """
+        u = np.asarray(u, dtype=float)
+        v = np.asarray(v, dtype=float)
+        rows = self.constraint_strains
+        Gu = self.natural.G[:, rows]
+        e = (Gu.T @ u.reshape(-1, self.n).T).T.reshape(u.shape[:-1] + (self.m,))
+        b = np.asarray(self.natural.B.sum(axis=0)).ravel()        # one entry per column
+        return e, e - b * v - self.natural.theta(0.0)[rows]
+
+    def element_forces(self, t, u, v, udot=None, vdot=None) -> np.ndarray:
+        """Forces (tension positive) of the unilateral elements, ``sigma`` of their strains.
+
+        Parameters
+        ----------
+        t : (N,) times;  u, udot : (N, n);  v, vdot : (N, m)
+            ``udot`` and ``vdot`` are needed with Kelvin elements. ``psi = b sigma - r`` holds,
+            so from a :class:`~unilateral.Solution` the force is also ``b (psi + r)``.
+
+        Returns
+        -------
+        (N, m)
+        """
+        sigma = self.natural.stresses(t, np.atleast_2d(u), np.atleast_2d(v),
+                                      None if udot is None else np.atleast_2d(udot),
+                                      None if vdot is None else np.atleast_2d(vdot))
+        return sigma[:, self.constraint_strains]
+
+    def node_displacement(self, sol, node, dof) -> np.ndarray:
+        """History (N+1,) of DOF ``dof`` of ``node`` (supported and slave nodes included)."""
+        if sol.u is None or sol.u.shape[1] != self.n:
+            shape = None if sol.u is None else sol.u.shape
+            raise ValueError(f"sol.u must have shape (N+1, {self.n}) for this structure, got {shape}")
+        row = self.dofs.T[self.dofs.full_index(node, dof)]
+        return np.asarray(row @ sol.u.T).ravel()
+
+
+# ---------------------------------------------------------------------- assembly
+def _compatibility(elements, dofs: DofMap) -> sp.csr_matrix:
+    """``G = T^T L^T`` (n, ne) with ``e = L u_full`` the elements' strains of the nodal DOFs."""
+    rows, cols, vals = [], [], []
+    start = 0
+    for e in elements:
+        k, d = e.a.shape
+        rows.append(np.tile([dofs.full_index(node, dof) for node, dof in e.dofs], k))
+        cols.append(np.repeat(np.arange(start, start + k), d))
+        vals.append(e.a.ravel())
+        start += k
+    Lt = _coo(rows, cols, vals, (dofs.T.shape[0], start))
+    return (dofs.T.T @ Lt).tocsr()
+
+
+def _block_diagonal(blocks) -> sp.csr_matrix:
+    """Sparse block-diagonal matrix of small dense blocks."""
+    rows, cols, vals = [], [], []
+    start = 0
+    for block in blocks:
+        k = block.shape[0]
+        idx = np.arange(start, start + k)
+        rows.append(np.repeat(idx, k))
+        cols.append(np.tile(idx, k))
+        vals.append(block.ravel())
+        start += k
+    return _coo(rows, cols, vals, (start, start))
+
+
+def _coo(rows, cols, vals, shape) -> sp.csr_matrix:
+    if not vals:
+        return sp.csr_matrix(shape)
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=shape)
+
+
+def _check_stiffness(K, dofs: DofMap) -> None:
+    d = K.diagonal()
+    bad = np.flatnonzero(d <= 0)
+    if bad.size:
+        names = ", ".join(dofs.names[i] for i in bad[:10]) + (", ..." if bad.size > 10 else "")
+        raise ValueError(
+            f"no element gives stiffness to DOF(s) {names}: the structure is a mechanism; "
+            "support these DOFs or connect elements to them"
+        )
+
+
+def _real(where, arg, value, bound=None) -> float:
+    """``float(value)``, finite, and ``> 0`` (bound ``">0"``) or ``>= 0`` (``">=0"``)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{where}: {arg} must be a real number, got {value!r}")
+    x = float(value)
+    if not np.isfinite(x):
+        raise ValueError(f"{where}: {arg}={value!r} must be finite")
+    if bound == ">0" and x <= 0:
+        raise ValueError(f"{where}: {arg}={value!r} must be > 0")
+    if bound == ">=0" and x < 0:
+        raise ValueError(f"{where}: {arg}={value!r} must be >= 0")
+    return x

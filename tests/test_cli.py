@@ -1,0 +1,83 @@
+"""The command line: help, the paper's example end to end, plotting, atomic outputs."""
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from unilateral.cli import main
+from unilateral.io import load_netcdf
+
+
+@pytest.fixture(scope="module")
+def example_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("runs") / "liolios1990"
+    result = CliRunner().invoke(main, ["example", "liolios1990", "--out", str(out), "--t-end", "0.3"])
+    assert result.exit_code == 0, result.output
+    return out, result.output
+
+
+@pytest.mark.parametrize("args", [[], ["example"], ["run"], ["plot"]])
+def test_help(args):
+    result = CliRunner().invoke(main, args + ["--help"])
+    assert result.exit_code == 0
+    assert "Usage: main" in result.output or "Usage:" in result.output
+    assert "--help" in result.output
+
+
+def test_version():
+    result = CliRunner().invoke(main, ["--version"])
+    assert result.exit_code == 0 and "unilateral" in result.output
+
+
+def test_example_prints_and_writes_the_seed_values(example_run):
+    out, output = example_run
+    assert "-0.0006667" in output                        # static foundation displacement
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["success"] is True
+    np.testing.assert_allclose(summary["static"]["2.uy"], -0.667e-3, rtol=1e-3)
+    fig = summary["extra"]["figure"]
+    np.testing.assert_allclose(fig["static"], -0.667e-3, rtol=1e-3)
+    # with uplift node 3 rises many times higher than without (the seed's Fig. 2)
+    assert fig["peak"]["with uplift"] > 5 * fig["peak"]["without uplift"] > 0
+    for name in ("results.nc", "fig2.png", "fig2.pdf", "constraints.png", "force_deformation.png",
+                 "displacements.csv", "constraints.csv", "bilateral_displacements.csv"):
+        assert (out / name).stat().st_size > 0, name
+    assert (out / "fig2.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    ds = load_netcdf(out / "results.nc")
+    assert list(ds["case"].values) == ["unilateral", "bilateral"]
+    node3 = ds["node_displacement"].sel(node="3", component="uy")
+    np.testing.assert_allclose(float(node3.sel(case="unilateral").max()), fig["peak"]["with uplift"])
+
+
+def test_plot_command_redraws_the_figures(example_run, tmp_path):
+    out, _ = example_run
+    result = CliRunner().invoke(main, ["plot", str(out / "results.nc"), "--out", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "fig2.png").stat().st_size > 0
+    assert (tmp_path / "constraints_unilateral.png").stat().st_size > 0
+
+
+def test_an_interrupted_run_keeps_the_previous_results(example_run, monkeypatch):
+    out, _ = example_run
+    before = (out / "results.nc").read_bytes()
+    import xarray as xr
+
+    def broken(self, path, *args, **kwargs):
+        with open(path, "wb") as fh:
+            fh.write(b"half a file")
+        raise OSError("disk full")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    result = CliRunner().invoke(main, ["example", "liolios1990", "--out", str(out), "--t-end", "0.05"])
+    assert result.exit_code != 0
+    assert (out / "results.nc").read_bytes() == before
+    assert not [p for p in out.iterdir() if p.name.startswith(".") or "tmp" in p.name]
+
+
+def test_bad_options_name_the_option():
+    result = CliRunner().invoke(main, ["example", "liolios1990", "--rule", "rk4"])
+    assert result.exit_code == 2 and "--rule" in result.output
+    result = CliRunner().invoke(main, ["example", "liolios1990", "--dt", "-1", "--out", "/tmp/unused-unilateral"])
+    assert result.exit_code == 1 and "dt must be a positive finite number, got -1.0" in result.output
