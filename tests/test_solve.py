@@ -207,3 +207,16 @@ def test_a_model_without_constraints_is_plain_linear_dynamics(method):
     wd = w * np.sqrt(1 - z * z)
     exact = 0.01 * (1 - np.exp(-z * w * sol.t) * (np.cos(wd * sol.t) + z * w / wd * np.sin(wd * sol.t)))
     assert np.max(np.abs(sol.u[:, 0] - exact)) < 1e-2 * 0.01
+
+
+def test_fft_blocked_history_equals_naive_history_in_a_march():
+    model = rocking_model()
+    runs = {h: ul.solve(model, rocking_load(), dt=1e-3, t_end=1.0, cq_options={"history": h})
+            for h in ("naive", "fft")}
+    assert runs["fft"].stats["history"] == "fft" and runs["naive"].stats["history"] == "naive"
+    assert rel(runs["fft"].v, runs["naive"].v) <= 1e-10
+    assert rel(runs["fft"].psi, runs["naive"].psi) <= 1e-10
+    with pytest.raises(ValueError, match=r"cq_options\['history'\]='tree' is not valid; valid names: 'fft', 'naive'"):
+        ul.solve(model, rocking_load(), dt=1e-3, t_end=0.01, cq_options={"history": "tree"})
+    with pytest.raises(ValueError, match=r"cq_options has unknown keys \['order'\]"):
+        ul.solve(model, rocking_load(), dt=1e-3, t_end=0.01, cq_options={"order": 2})

@@ -17,7 +17,8 @@ import scipy.sparse as sp
 from . import _validate as V
 from .linalg import Factorization, transpose_times
 
-#: Models with at most this many DOFs are evaluated by batched dense solves.
+#: Models with at most this many DOFs are evaluated by batched dense solves (also when stored
+#: sparse); larger ones by one sparse LU per Laplace argument.
 DENSE_BATCH_MAX_N = 64
 _BATCH = 2048
 
@@ -49,7 +50,7 @@ class MatrixKernel(Kernel):
         self.model = model
         self.m = model.m
         self.n = model.n
-        self._batched = not model.sparse and model.n <= DENSE_BATCH_MAX_N
+        self._batched = model.n <= DENSE_BATCH_MAX_N          # dense or sparse storage alike
         if self._batched:
             dense = lambda A: None if A is None else (A.toarray() if sp.issparse(A) else np.asarray(A))
             self._K, self._M = dense(model.K), dense(model.M)

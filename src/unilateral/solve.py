@@ -10,6 +10,7 @@ from . import _validate as V
 from .clcp import march_cq, march_direct
 from .cq import cq_weights
 from .history import NaiveHistory
+from .history_fft import FFTBlockedHistory
 from .initial import InitialState, given_state, static_lcp, static_state
 from .kernel_model import KernelModel
 from .kernels import MatrixKernel
@@ -21,6 +22,9 @@ from .rules import get_rule
 from .stepping import StructureStepper
 
 METHODS = ("cq", "direct")
+HISTORIES = {"naive": NaiveHistory, "fft": FFTBlockedHistory}
+#: Above this many steps the CQ history is summed by the FFT-blocked algorithm by default.
+FFT_HISTORY_MIN_STEPS = 256
 
 
 def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="static",
@@ -56,7 +60,9 @@ def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="sta
     bilateral : bool
         Hold every constraint bilateral (``v = v(0)``): the paper's "without uplift" case.
     cq_options : dict, optional
-        ``L`` and ``rho`` of the FFT that computes the weights (see :func:`cq_weights`).
+        ``L`` and ``rho`` of the FFT that computes the weights (see :func:`cq_weights`);
+        ``history``: ``"naive"`` (direct summation, O(N^2 m^2)) or ``"fft"`` (FFT-blocked,
+        O(m^2 N log^2 N); the default above 256 steps).
     callback : callable ``callback(k, N)``, optional
         Called after every step (progress bars).
 
@@ -121,9 +127,10 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
         _, _, _, psiL, _ = march_direct(make_stepper(), N, v_b, init.psi, None, dt=dt,
                                         bilateral=True)
         timer.lap("bilateral")
-        W = cq_weights(MatrixKernel(model), N, dt, rule, **cq_options)
+        weight_options, history = _split_cq_options(cq_options)
+        W = cq_weights(MatrixKernel(model), N, dt, rule, **weight_options)
         timer.lap("weights")
-        v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback)
+        v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback, history, stats)
         timer.lap("steps")
         K = v.shape[0] - 1
         dv = v - v_b
@@ -171,7 +178,8 @@ def _load_function(model, load, N, dt):
 def _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options, callback, stats, timer):
     psiL = model.psiL_samples(N, dt)
     timer.lap("setup")
-    W = cq_weights(model.kernel, N, dt, rule, **cq_options)
+    weight_options, history = _split_cq_options(cq_options)
+    W = cq_weights(model.kernel, N, dt, rule, **weight_options)
     W = np.real_if_close(W) if np.iscomplexobj(W) else W
     timer.lap("weights")
     if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
@@ -196,16 +204,31 @@ def _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options, ca
             raise TypeError(f"initial must be 'static', 'rest' or dict(v0=...), got {V.describe(initial)}")
         # v jumps to v_b at t = 0: its convolution is the CQ step response sum_{j<=n} W_j v_b.
         psi_affine = psiL - np.cumsum(W, axis=0) @ v_b
-    v, psi, log = _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback)
+    v, psi, log = _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, history, stats)
     timer.lap("steps")
     K = v.shape[0] - 1
     return _finish(model, dt * np.arange(K + 1), v, psi, psiL[: K + 1], None, None, log, stats, timer)
 
 
 # ---------------------------------------------------------------------- shared pieces
-def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback):
+def _split_cq_options(cq_options):
+    """Split ``cq_options`` into the weight options (``L``, ``rho``) and the history name."""
+    options = dict(cq_options)
+    history = options.pop("history", None)
+    unknown = set(options) - {"L", "rho"}
+    if unknown:
+        raise ValueError(f"cq_options has unknown keys {sorted(unknown)}; valid keys: 'L', 'rho', 'history'")
+    return options, history
+
+
+def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, history, stats):
     W0 = 0.5 * (W[0] + W[0].T)
-    return march_cq(W0, NaiveHistory(W), psi_affine, v_b, solver, dt=dt, bilateral=bilateral,
+    N = W.shape[0] - 1
+    if history is None:
+        history = "fft" if N > FFT_HISTORY_MIN_STEPS else "naive"
+    evaluator = HISTORIES[V.choice("cq_options['history']", history, HISTORIES)](W)
+    stats["history"] = evaluator.name
+    return march_cq(W0, evaluator, psi_affine, v_b, solver, dt=dt, bilateral=bilateral,
                     callback=callback)
 
 

@@ -24,6 +24,9 @@ import scipy.sparse as sp
 
 from .linalg import Factorization, SingularMatrixError, dense, transpose_times
 
+#: Models with at most this many DOFs are stepped with dense arrays.
+DENSE_STEPPING_MAX_N = 64
+
 
 class StructureStepper:
     """Steps the increments of a matrix :class:`~unilateral.model.Model` with a rule.
@@ -46,10 +49,14 @@ class StructureStepper:
         c1, c0 = rule.coefficients(dt)
         self.c1, self.alpha = c1, rule.alpha
         a = 1.0 - self.alpha
-        C = model.damping()
-        D_eff = c0 * model.M + a * (c1 * C + model.K)
+        # Small models step with dense arrays: sparse products cost more than they save there.
+        small = model.n <= DENSE_STEPPING_MAX_N
+        as_used = (lambda A: None if A is None else dense(A)) if small else (lambda A: A)
+        self.M, self.K, self.F, self.F_v = (as_used(A) for A in (model.M, model.K, model.F, model.F_v))
+        C = as_used(model.damping())
+        D_eff = c0 * self.M + a * (c1 * C + self.K)
         self.lu = Factorization(D_eff, what="the effective stiffness c0 M + c1 C + K")
-        self.Fp = model.F_of(c1)
+        self.Fp = self.F if self.F_v is None else self.F + c1 * self.F_v
         self.X = self.lu.solve(a * dense(self.Fp))                      # (n, m)
         W0 = model.H_of(c1) - transpose_times(self.Fp, self.X)
         self.W0 = 0.5 * (W0 + W0.T)
@@ -58,7 +65,7 @@ class StructureStepper:
         ud0 = np.zeros(n) if udot0 is None else udot0
         f0 = load(0)
         rhs = f0 - C @ ud0
-        a0 = _initial_acceleration(model.M, rhs) if np.any(rhs) else np.zeros(n)
+        a0 = _initial_acceleration(self.M, rhs) if np.any(rhs) else np.zeros(n)
         zero_n, zero_m = np.zeros(n), np.zeros(m)
         self.state = rule.start(zero_n, ud0, a0, dt)
         self.vstate = rule.start(zero_m, zero_m, zero_m, dt) if model.viscous else None
@@ -74,18 +81,18 @@ class StructureStepper:
         a = 1.0 - self.alpha
         h1, h2 = rule.history(self.state, dt)
         f = self.load(k)
-        rhs = a * f + model.M @ h2 + a * (self.C @ h1)
+        rhs = a * f + self.M @ h2 + a * (self.C @ h1)
         psi = self.offset(k)
         if self.alpha:
-            rhs = rhs + self.alpha * (self.f_prev - self.C @ self.ud - model.K @ self.u
-                                      + model.F @ self.dv)
-            if model.F_v is not None:
-                rhs = rhs + self.alpha * (model.F_v @ self.dvd)
+            rhs = rhs + self.alpha * (self.f_prev - self.C @ self.ud - self.K @ self.u
+                                      + self.F @ self.dv)
+            if self.F_v is not None:
+                rhs = rhs + self.alpha * (self.F_v @ self.dvd)
         if self.vstate is not None:
             k1, _ = rule.history(self.vstate, dt)
-            if model.F_v is not None:
-                rhs = rhs - a * (model.F_v @ k1)
-                psi = psi - transpose_times(model.F_v, h1)
+            if self.F_v is not None:
+                rhs = rhs - a * (self.F_v @ k1)
+                psi = psi - transpose_times(self.F_v, h1)
             if model.H_v is not None:
                 psi = psi + model.H_v @ k1
         du_free = self.lu.solve(rhs)
