@@ -220,3 +220,19 @@ def test_fft_blocked_history_equals_naive_history_in_a_march():
         ul.solve(model, rocking_load(), dt=1e-3, t_end=0.01, cq_options={"history": "tree"})
     with pytest.raises(ValueError, match=r"cq_options has unknown keys \['order'\]"):
         ul.solve(model, rocking_load(), dt=1e-3, t_end=0.01, cq_options={"order": 2})
+
+
+@pytest.mark.parametrize("kelvin", [False, True])
+def test_compiled_march_equals_python_march(kelvin):
+    model = rocking_model(kelvin=kelvin)
+    load = rocking_pulses if not kelvin else rocking_load()
+    runs = {e: ul.solve(model, load, dt=DT, t_end=0.6, cq_options={"history": "naive", "engine": e})
+            for e in ("compiled", "python")}
+    assert runs["compiled"].stats["engine"] == "compiled" and runs["python"].stats["engine"] == "python"
+    np.testing.assert_allclose(runs["compiled"].v, runs["python"].v, rtol=0, atol=1e-14)
+    assert rel(runs["compiled"].psi, runs["python"].psi) <= 1e-12
+    assert runs["compiled"].stats["contact_changes"] == runs["python"].stats["contact_changes"]
+    # the default picks the compiled loop for the default LCP solver and a short run
+    assert ul.solve(model, load, dt=DT, t_end=0.1).stats["engine"] == "compiled"
+    with pytest.raises(ValueError, match="engine'\\]='compiled' needs history='naive' and lcp='bpp'"):
+        ul.solve(model, load, dt=DT, t_end=0.1, lcp="lemke", cq_options={"engine": "compiled"})

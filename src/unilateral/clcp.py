@@ -136,3 +136,25 @@ def march_direct(stepper, N, v_b, psi0, solver, *, dt, bilateral=False, dv=None,
         if callback is not None:
             callback(k, N)
     return du, dud, v, psi, log
+
+
+def march_cq_compiled(W, psi_affine, v_b, *, dt, max_iter, tol):
+    """:func:`march_cq` with the naive history and block principal pivoting, compiled.
+
+    Returns the same ``(v, psi, log)`` as :func:`march_cq`.
+    """
+    from .compiled import march_naive
+
+    v, psi, stats, failed = march_naive(W, psi_affine, v_b, max_iter, tol)
+    log = StepLog(psi_affine.shape[1], v_b > 0)
+    log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
+    log.contact_changes, log.max_error = int(stats[2]), float(stats[3])
+    if failed:
+        log.failure = (
+            f"the LCP of step {failed} (t = {failed * dt:.6g}) failed: block principal pivoting "
+            f"found a principal submatrix of W0 that is not positive definite, did not converge in "
+            f"{max_iter} solves, or left an LCP error above tol = {tol:g}; try lcp='lemke'"
+        )
+    if len(v):
+        log.active = v[-1] > 0
+    return v, psi, log

@@ -7,14 +7,14 @@ import time
 import numpy as np
 
 from . import _validate as V
-from .clcp import march_cq, march_direct
+from .clcp import march_cq, march_cq_compiled, march_direct
 from .cq import cq_weights
 from .history import NaiveHistory
 from .history_fft import FFTBlockedHistory
 from .initial import InitialState, given_state, static_lcp, static_state
 from .kernel_model import KernelModel
 from .kernels import MatrixKernel
-from .lcp import get_lcp_solver
+from .lcp import BlockPrincipalPivoting, get_lcp_solver
 from .linalg import transpose_times
 from .model import Model
 from .result import Solution
@@ -23,6 +23,7 @@ from .stepping import StructureStepper
 
 METHODS = ("cq", "direct")
 HISTORIES = {"naive": NaiveHistory, "fft": FFTBlockedHistory}
+ENGINES = ("auto", "compiled", "python")
 #: Above this many steps the CQ history is summed by the FFT-blocked algorithm by default.
 FFT_HISTORY_MIN_STEPS = 256
 
@@ -62,7 +63,9 @@ def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="sta
     cq_options : dict, optional
         ``L`` and ``rho`` of the FFT that computes the weights (see :func:`cq_weights`);
         ``history``: ``"naive"`` (direct summation, O(N^2 m^2)) or ``"fft"`` (FFT-blocked,
-        O(m^2 N log^2 N); the default above 256 steps).
+        O(m^2 N log^2 N); the default above 256 steps); ``engine``: ``"auto"`` (default: the
+        compiled march where it applies, i.e. naive history and the default ``lcp="bpp"``),
+        ``"compiled"`` or ``"python"``.
     callback : callable ``callback(k, N)``, optional
         Called after every step (progress bars).
 
@@ -127,10 +130,10 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
         _, _, _, psiL, _ = march_direct(make_stepper(), N, v_b, init.psi, None, dt=dt,
                                         bilateral=True)
         timer.lap("bilateral")
-        weight_options, history = _split_cq_options(cq_options)
+        weight_options, march = _split_cq_options(cq_options)
         W = cq_weights(MatrixKernel(model), N, dt, rule, **weight_options)
         timer.lap("weights")
-        v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback, history, stats)
+        v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback, march, stats)
         timer.lap("steps")
         K = v.shape[0] - 1
         dv = v - v_b
@@ -178,7 +181,7 @@ def _load_function(model, load, N, dt):
 def _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options, callback, stats, timer):
     psiL = model.psiL_samples(N, dt)
     timer.lap("setup")
-    weight_options, history = _split_cq_options(cq_options)
+    weight_options, march = _split_cq_options(cq_options)
     W = cq_weights(model.kernel, N, dt, rule, **weight_options)
     W = np.real_if_close(W) if np.iscomplexobj(W) else W
     timer.lap("weights")
@@ -204,7 +207,7 @@ def _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options, ca
             raise TypeError(f"initial must be 'static', 'rest' or dict(v0=...), got {V.describe(initial)}")
         # v jumps to v_b at t = 0: its convolution is the CQ step response sum_{j<=n} W_j v_b.
         psi_affine = psiL - np.cumsum(W, axis=0) @ v_b
-    v, psi, log = _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, history, stats)
+    v, psi, log = _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, march, stats)
     timer.lap("steps")
     K = v.shape[0] - 1
     return _finish(model, dt * np.arange(K + 1), v, psi, psiL[: K + 1], None, None, log, stats, timer)
@@ -212,23 +215,35 @@ def _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options, ca
 
 # ---------------------------------------------------------------------- shared pieces
 def _split_cq_options(cq_options):
-    """Split ``cq_options`` into the weight options (``L``, ``rho``) and the history name."""
+    """Split ``cq_options`` into the weight options (``L``, ``rho``) and the march options."""
     options = dict(cq_options)
-    history = options.pop("history", None)
+    march = {"history": options.pop("history", None), "engine": options.pop("engine", "auto")}
     unknown = set(options) - {"L", "rho"}
     if unknown:
-        raise ValueError(f"cq_options has unknown keys {sorted(unknown)}; valid keys: 'L', 'rho', 'history'")
-    return options, history
+        raise ValueError(
+            f"cq_options has unknown keys {sorted(unknown)}; valid keys: 'L', 'rho', 'history', 'engine'"
+        )
+    V.choice("cq_options['engine']", march["engine"], ENGINES)
+    return options, march
 
 
-def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, history, stats):
-    W0 = 0.5 * (W[0] + W[0].T)
+def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, march, stats):
+    W = W.copy()
+    W[0] = 0.5 * (W[0] + W[0].T)
     N = W.shape[0] - 1
-    if history is None:
-        history = "fft" if N > FFT_HISTORY_MIN_STEPS else "naive"
-    evaluator = HISTORIES[V.choice("cq_options['history']", history, HISTORIES)](W)
-    stats["history"] = evaluator.name
-    return march_cq(W0, evaluator, psi_affine, v_b, solver, dt=dt, bilateral=bilateral,
+    history = march["history"] or ("fft" if N > FFT_HISTORY_MIN_STEPS else "naive")
+    history = V.choice("cq_options['history']", history, HISTORIES)
+    engine = march["engine"].lower()
+    compiled_ok = history == "naive" and isinstance(solver, BlockPrincipalPivoting) and not bilateral
+    if engine == "compiled" and not compiled_ok:
+        raise ValueError("cq_options['engine']='compiled' needs history='naive' and lcp='bpp'")
+    stats["history"] = history
+    if engine == "compiled" or (engine == "auto" and compiled_ok and callback is None):
+        stats["engine"] = "compiled"
+        return march_cq_compiled(W, psi_affine, v_b, dt=dt, tol=solver.tol,
+                                 max_iter=solver.max_iter or 10 * W.shape[1] + 10)
+    stats["engine"] = "python"
+    return march_cq(W[0], HISTORIES[history](W), psi_affine, v_b, solver, dt=dt, bilateral=bilateral,
                     callback=callback)
 
 

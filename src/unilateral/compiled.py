@@ -1,0 +1,193 @@
+"""Compiled inner loops (numba): the per-step LCP and the CLCP march.
+
+The Python march (:mod:`unilateral.clcp`) calls an LCP solver object per step; its overhead
+(tens of microseconds) dominates for the small ``m`` of most structures. These loops run the
+whole march in machine code with a block principal pivoting solver specialised for the
+symmetric positive definite ``W0`` of the CLCP, warm-started from the previous step's active set.
+Compiled code is cached on disk (``cache=True``), so a second process does not compile again.
+
+The results equal the Python march with ``lcp="bpp"`` (the same pivoting rule, exact linear
+solves), which the tests check.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+#: Number of non-improving block pivots before Murty's single pivot (Judice & Pires 1994).
+_BLOCK_TRIES = 3
+
+
+@njit(cache=True)
+def _cholesky_solve(W, idx, k, rhs, S, x):
+    """Solve ``W[idx[:k], idx[:k]] x = rhs[:k]`` by Cholesky; False if not positive definite."""
+    for a in range(k):
+        for b in range(k):
+            S[a, b] = W[idx[a], idx[b]]
+    for j in range(k):
+        d = S[j, j]
+        for p in range(j):
+            d -= S[j, p] * S[j, p]
+        if d <= 0.0:
+            return False
+        d = np.sqrt(d)
+        S[j, j] = d
+        for i in range(j + 1, k):
+            t = S[i, j]
+            for p in range(j):
+                t -= S[i, p] * S[j, p]
+            S[i, j] = t / d
+    for i in range(k):                      # forward: L y = rhs
+        t = rhs[i]
+        for p in range(i):
+            t -= S[i, p] * x[p]
+        x[i] = t / S[i, i]
+    for i in range(k - 1, -1, -1):          # backward: L^T x = y
+        t = x[i]
+        for p in range(i + 1, k):
+            t -= S[p, i] * x[p]
+        x[i] = t / S[i, i]
+    return True
+
+
+@njit(cache=True)
+def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x):
+    """Block principal pivoting for ``w = W v + q >= 0, v >= 0, v.w = 0`` with SPD ``W``.
+
+    ``active`` (bool, m) is the warm start and is updated in place to the final active set
+    (``v > 0``). ``v`` and ``w`` are outputs. Returns the number of linear solves, or minus
+    that number if the method failed (``W_AA`` not positive definite, or no convergence).
+    """
+    m = q.shape[0]
+    scale = 1.0
+    for i in range(m):
+        scale = max(scale, abs(q[i]))
+    eps = 1e-13 * scale
+    best = m + 1
+    tries = _BLOCK_TRIES
+    for it in range(1, max_iter + 1):
+        k = 0
+        for i in range(m):
+            if active[i]:
+                work_idx[k] = i
+                work_rhs[k] = -q[i]
+                k += 1
+        if not _cholesky_solve(W, work_idx, k, work_rhs, work_S, work_x):
+            return -it
+        for i in range(m):
+            v[i] = 0.0
+        for a in range(k):
+            v[work_idx[a]] = work_x[a]
+        for i in range(m):
+            t = q[i]
+            for j in range(m):
+                t += W[i, j] * v[j]
+            w[i] = t
+        count = 0
+        last = -1
+        for i in range(m):
+            if (active[i] and v[i] < -eps) or (not active[i] and w[i] < -eps):
+                count += 1
+                last = i
+        if count == 0:
+            for i in range(m):
+                if active[i]:
+                    w[i] = 0.0
+                    if v[i] < 0.0:
+                        v[i] = 0.0
+            return it
+        if count < best:
+            best = count
+            tries = _BLOCK_TRIES
+        elif tries > 0:
+            tries -= 1
+        else:                               # Murty: flip only the largest infeasible index
+            active[last] = not active[last]
+            continue
+        for i in range(m):
+            if (active[i] and v[i] < -eps) or (not active[i] and w[i] < -eps):
+                active[i] = not active[i]
+    return -max_iter
+
+
+@njit(cache=True)
+def lcp_error(v, w, q):
+    """``||min(v, w)|| / (1 + ||q||)``, the scaled natural-map residual."""
+    num = 0.0
+    den = 0.0
+    for i in range(v.shape[0]):
+        r = min(v[i], w[i])
+        num += r * r
+        den += q[i] * q[i]
+    return np.sqrt(num) / (1.0 + np.sqrt(den))
+
+
+@njit(cache=True)
+def march_naive(W, psi_affine, v_b, max_iter, tol):
+    """The CLCP march with direct summation of the history; see :func:`clcp.march_cq`.
+
+    Parameters
+    ----------
+    W : (N+1, m, m) weights (``W[0]`` symmetric positive definite)
+    psi_affine : (N+1, m)
+    v_b : (m,)
+    max_iter : int, linear solves per LCP at most
+    tol : float, largest acceptable LCP error of a step
+
+    Returns
+    -------
+    v, psi : (N+1, m)
+    stats : (4,) float: total solves, largest solves in a step, contact changes, max LCP error
+    failed_step : int, 0 if every step succeeded, else the step whose LCP failed
+    """
+    N1, m = psi_affine.shape
+    v = np.zeros((N1, m))
+    psi = np.zeros((N1, m))
+    dv = np.zeros((N1, m))
+    v[0] = v_b
+    psi[0] = psi_affine[0]
+    W0 = W[0]
+    base = W0 @ v_b
+    active = v_b > 0.0
+    previous = active.copy()
+    q = np.empty(m)
+    vn = np.empty(m)
+    wn = np.empty(m)
+    idx = np.empty(m, dtype=np.int64)
+    S = np.empty((m, m))
+    rhs = np.empty(m)
+    x = np.empty(m)
+    stats = np.zeros(4)
+    first = -1                              # first step with a nonzero increment
+    for n in range(1, N1):
+        for a in range(m):
+            q[a] = -psi_affine[n, a] - base[a]
+        if first >= 0:
+            for j in range(1, n - first + 1):
+                Wj = W[j]
+                d = dv[n - j]
+                for a in range(m):
+                    t = 0.0
+                    for b in range(m):
+                        t += Wj[a, b] * d[b]
+                    q[a] += t
+        it = bpp(W0, q, active, vn, wn, max_iter, idx, S, rhs, x)
+        err = lcp_error(vn, wn, q)
+        if it < 0 or err > tol:
+            return v[:n], psi[:n], stats, n
+        stats[0] += it
+        stats[1] = max(stats[1], it)
+        stats[3] = max(stats[3], err)
+        nonzero = False
+        for a in range(m):
+            if active[a] != previous[a]:
+                stats[2] += 1
+            previous[a] = active[a]
+            v[n, a] = vn[a]
+            psi[n, a] = -wn[a]
+            dv[n, a] = vn[a] - v_b[a]
+            nonzero = nonzero or dv[n, a] != 0.0
+        if first < 0 and nonzero:
+            first = n
+    return v, psi, stats, 0
