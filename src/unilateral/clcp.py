@@ -86,7 +86,7 @@ def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callb
     return v, psi, log
 
 
-def march_direct(stepper, N, v_b, psi0, solver, *, dt, bilateral=False, dv=None, callback=None):
+def march_direct(stepper, N, v_b, psi0, solver=None, *, dt, bilateral=False, dv=None, callback=None):
     """March the full model: per step a free prediction, an LCP on ``W0``, a correction.
 
     Parameters

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import time
+from functools import partial
 
 import numpy as np
 
 from . import _validate as V
+from .active_set import march_direct_active_set
 from .clcp import march_cq, march_cq_compiled, march_direct
 from .cq import cq_weights
 from .history import NaiveHistory
@@ -24,6 +26,9 @@ from .stepping import StructureStepper
 METHODS = ("cq", "direct")
 HISTORIES = {"naive": NaiveHistory, "fft": FFTBlockedHistory}
 ENGINES = ("auto", "compiled", "python")
+#: method="direct" solves the LCP in the full sparse space (active-set pivoting with cached
+#: factorisations) for sparse models with more constraints than this, when lcp="bpp".
+FULL_SPACE_MIN_M = 64
 #: Above this many steps the CQ history is summed by the FFT-blocked algorithm by default.
 FFT_HISTORY_MIN_STEPS = 256
 
@@ -121,10 +126,14 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
 
     psiL = None
     if method == "direct":
-        stepper = make_stepper()
+        full_space = (model.sparse and model.m > FULL_SPACE_MIN_M
+                      and isinstance(solver, BlockPrincipalPivoting))
+        stats["lcp_space"] = "full" if full_space else "condensed"
+        stepper = StructureStepper(model, rule, dt, load_inc, offset, init.udot, condensed=not full_space)
         timer.lap("factorize")
-        du, dud, v, psi, log = march_direct(stepper, N, v_b, init.psi, solver, dt=dt,
-                                            bilateral=bilateral, callback=callback)
+        march = march_direct_active_set if full_space else partial(march_direct, solver=solver)
+        du, dud, v, psi, log = march(stepper, N, v_b, init.psi, dt=dt, bilateral=bilateral,
+                                     callback=callback)
         timer.lap("steps")
     else:
         _, _, _, psiL, _ = march_direct(make_stepper(), N, v_b, init.psi, None, dt=dt,
@@ -250,6 +259,8 @@ def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, march, s
 def _finish(model, t, v, psi, psiL, u, udot, log, stats, timer):
     N = stats["steps"]
     stats.update(log.stats())
+    if hasattr(log, "factorizations"):
+        stats["factorizations"] = log.factorizations
     stats["steps_done"] = len(t) - 1
     stats["time"] = timer.laps()
     if log.failure:

@@ -43,7 +43,7 @@ class StructureStepper:
     udot0 : (n,) initial velocity increment (the given initial velocity; zero from statics).
     """
 
-    def __init__(self, model, rule, dt, load, offset, udot0=None):
+    def __init__(self, model, rule, dt, load, offset, udot0=None, *, condensed=True):
         self.model, self.rule, self.dt = model, rule, dt
         self.load, self.offset = load, offset
         c1, c0 = rule.coefficients(dt)
@@ -55,11 +55,14 @@ class StructureStepper:
         self.M, self.K, self.F, self.F_v = (as_used(A) for A in (model.M, model.K, model.F, model.F_v))
         C = as_used(model.damping())
         D_eff = c0 * self.M + a * (c1 * C + self.K)
+        self.D_eff = D_eff
         self.lu = Factorization(D_eff, what="the effective stiffness c0 M + c1 C + K")
         self.Fp = self.F if self.F_v is None else self.F + c1 * self.F_v
-        self.X = self.lu.solve(a * dense(self.Fp))                      # (n, m)
-        W0 = model.H_of(c1) - transpose_times(self.Fp, self.X)
-        self.W0 = 0.5 * (W0 + W0.T)
+        self.Hs = model.H_of(c1)
+        if condensed:
+            self.X = self.lu.solve(a * dense(self.Fp))                  # (n, m)
+            W0 = self.Hs - transpose_times(self.Fp, self.X)
+            self.W0 = 0.5 * (W0 + W0.T)
         self.C = C
         n, m = model.n, model.m
         ud0 = np.zeros(n) if udot0 is None else udot0
@@ -76,6 +79,19 @@ class StructureStepper:
 
     def predict(self):
         """Free step (``dv_n = 0`` increment coupling): return ``(du_free, psi_free)``."""
+        rhs, c = self.free_terms()
+        du_free = self.lu.solve(rhs)
+        self._du_free = du_free
+        return du_free, c + transpose_times(self.Fp, du_free)
+
+    def free_terms(self):
+        """Right-hand side and reaction offset of the next step.
+
+        Returns
+        -------
+        rhs : (n,) with ``D_eff du_n = rhs + (1 - alpha) F(c1) dv_n``
+        c : (m,) with ``psi_n = F(c1)^T du_n + c - H(c1) dv_n``
+        """
         model, rule, dt = self.model, self.rule, self.dt
         k = self.k + 1
         a = 1.0 - self.alpha
@@ -95,15 +111,18 @@ class StructureStepper:
                 psi = psi - transpose_times(self.F_v, h1)
             if model.H_v is not None:
                 psi = psi + model.H_v @ k1
-        du_free = self.lu.solve(rhs)
-        psi = psi + transpose_times(self.Fp, du_free)
-        self._pending = (k, f, h1, h2, du_free)
-        return du_free, psi
+        self._pending = (k, f, h1, h2)
+        return rhs, psi
 
-    def correct(self, dv):
-        """Complete the step with the unilateral increment ``dv`` (m,); return ``(du, du')``."""
-        k, f, h1, h2, du_free = self._pending
-        du = du_free + self.X @ dv if dv.any() else du_free
+    def correct(self, dv, du=None):
+        """Complete the step with the unilateral increment ``dv`` (m,); return ``(du, du')``.
+
+        ``du`` is the displacement increment if the caller solved for it; otherwise it is
+        ``du_free + X dv`` from the last :meth:`predict`.
+        """
+        k, f, h1, h2 = self._pending
+        if du is None:
+            du = self._du_free + self.X @ dv if dv.any() else self._du_free
         c1 = self.c1
         c0 = self.rule.coefficients(self.dt)[1]
         ud = c1 * du - h1

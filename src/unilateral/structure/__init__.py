@@ -10,7 +10,7 @@ and :meth:`Frame2D.build` assembles them (sparse) into a :class:`Structure`: the
 """
 
 from .dofs import DofMap
-from .examples import liolios1990
+from .examples import liolios1990, winkler_beam
 from .frame import Frame2D, Structure
 
-__all__ = ["DofMap", "Frame2D", "Structure", "liolios1990"]
+__all__ = ["DofMap", "Frame2D", "Structure", "liolios1990", "winkler_beam"]

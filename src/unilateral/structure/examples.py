@@ -9,6 +9,8 @@ structure and the left edge (node 3) lifts off.
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..loads import Rectangular
 from .frame import Frame2D
 
@@ -81,3 +83,66 @@ def liolios1990(kelvin=True):
         "figure2": {"node": 3, "dof": "uy", "label": "vertical displacement of node 3 (m)"},
     }
     return structure, load, info
+
+
+def winkler_beam(n_elements=100, *, length=50.0, EI=2e6, EA=2e7, mass_per_length=2.0,
+                 k_soil=5e3, c_soil=0.0, zeta=0.02, load="impact", P=500.0, speed=40.0):
+    """A free beam on a tensionless Winkler foundation (kN, m, s): large sparse models.
+
+    Nodes ``0 .. n_elements`` along ``x`` at ``y = 0``; beam elements between them; lumped
+    masses; one compression-only soil element (``"s0"``, ``"s1"``, ...) per node with the
+    tributary stiffness ``k_soil`` per metre (and dashpot ``c_soil`` per metre); node 0 held
+    horizontally; Rayleigh damping ``zeta`` at the first two frequencies of about 1 and 50 Hz.
+    Gravity (g = 9.81) presses the beam onto the soil; then
+
+    * ``load="impact"``: a downward half-sine impact ``P`` of 20 ms at the left quarter point,
+    * ``load="moving"``: a downward force ``P`` moving from the left end at ``speed`` m/s,
+
+    so that parts of the beam lift off and land again.
+
+    Returns
+    -------
+    structure : Structure (``n = 3 (n_elements + 1) - 1`` DOFs, ``m = n_elements + 1``)
+    load : callable ``q(t) -> (n,)``
+    info : dict (units, the loaded node for figures)
+    """
+    from ..loads import HalfSine
+
+    if load not in ("impact", "moving"):
+        raise ValueError(f"load={load!r} is not valid; valid: 'impact', 'moving'")
+    fr = Frame2D()
+    h = length / n_elements
+    for i in range(n_elements + 1):
+        fr.node(i, i * h, 0.0)
+    for i in range(n_elements):
+        fr.beam(f"b{i}", i, i + 1, E=1.0, A=EA, I=EI)
+    for i in range(n_elements + 1):
+        trib = h if 0 < i < n_elements else h / 2
+        fr.mass(i, mass_per_length * trib)
+        fr.soil(f"s{i}", i, k_soil * trib, c=c_soil * trib)
+    fr.support(0, ux=True, uy=False)
+    if zeta:
+        fr.rayleigh_from_ratios(zeta, 1.0, 50.0)
+    structure = fr.build()
+    weight = structure.gravity(9.81)
+    if load == "impact":
+        node = n_elements // 4
+        push = structure.nodal_load(node, uy=-P)
+        pulse = HalfSine(1.0, duration=0.02)
+
+        def q(t):
+            return weight + pulse(t) * push
+    else:
+        node = n_elements // 2
+        unit = [structure.nodal_load(i, uy=-P) for i in range(n_elements + 1)]
+
+        def q(t):
+            x = speed * t / h                   # position in elements; linear between nodes
+            i = int(np.floor(x))
+            if t <= 0.0 or i >= n_elements:
+                return weight
+            f = x - i
+            return weight + (1.0 - f) * unit[i] + f * unit[i + 1]
+    info = {"units": "kN, m, s", "node": node,
+            "figure": {"node": node, "dof": "uy", "label": f"vertical displacement of node {node} (m)"}}
+    return structure, q, info
