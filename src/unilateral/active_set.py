@@ -23,7 +23,7 @@ from collections import OrderedDict
 import numpy as np
 import scipy.sparse as sp
 
-from .clcp import StepLog
+from .clcp import direct_outputs
 from .linalg import Factorization
 
 #: Factorisations kept (least recently used first out).
@@ -114,16 +114,8 @@ class ActiveSetSolver:
 def march_direct_active_set(stepper, N, v_b, psi0, *, dt, bilateral=False, callback=None,
                             max_iter=50):
     """:func:`~unilateral.clcp.march_direct` for large sparse models (same returns)."""
-    n, m = stepper.model.n, stepper.model.m
-    du = np.zeros((N + 1, n))
-    dud = np.zeros((N + 1, n))
-    v = np.empty((N + 1, m))
-    psi = np.empty((N + 1, m))
-    dud[0] = stepper.ud
-    v[0] = v_b
-    psi[0] = psi0
+    du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
     solver = ActiveSetSolver(stepper, v_b, max_iter)
-    log = StepLog(m, v_b > 0)
     active = v_b > 0
     for k in range(1, N + 1):
         rhs, c = stepper.free_terms()

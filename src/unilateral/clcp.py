@@ -86,6 +86,19 @@ def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callb
     return v, psi, log
 
 
+def direct_outputs(stepper, N, v_b, psi0):
+    """Histories of a direct march, initialised at step 0: ``du, dudot, v, psi, log``."""
+    n, m = stepper.model.n, stepper.model.m
+    du = np.zeros((N + 1, n))
+    dud = np.zeros((N + 1, n))
+    v = np.empty((N + 1, m))
+    psi = np.empty((N + 1, m))
+    dud[0] = stepper.ud
+    v[0] = v_b
+    psi[0] = psi0
+    return du, dud, v, psi, StepLog(m, v_b > 0)
+
+
 def march_direct(stepper, N, v_b, psi0, solver=None, *, dt, bilateral=False, dv=None, callback=None):
     """March the full model: per step a free prediction, an LCP on ``W0``, a correction.
 
@@ -107,16 +120,8 @@ def march_direct(stepper, N, v_b, psi0, solver=None, *, dt, bilateral=False, dv=
     -------
     du, dudot : (K+1, n) ; v, psi : (K+1, m) ; log : StepLog
     """
-    n, m = stepper.model.n, stepper.model.m
-    du = np.zeros((N + 1, n))
-    dud = np.zeros((N + 1, n))
-    v = np.empty((N + 1, m))
-    psi = np.empty((N + 1, m))
-    dud[0] = stepper.ud
-    v[0] = v_b
-    psi[0] = psi0
-    log = StepLog(m, v_b > 0)
-    zero = np.zeros(m)
+    du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
+    zero = np.zeros(stepper.model.m)
     W0 = stepper.W0
     base = W0 @ v_b
     for k in range(1, N + 1):
