@@ -28,7 +28,7 @@ from .solve import solve
 COMPONENTS = ("ux", "uy", "rz")
 
 
-def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp",
+def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", initial="static",
               bilateral_reference=True, unilateral=True, progress=None) -> dict:
     """Solve the unilateral case and, optionally, the bilateral reference.
 
@@ -36,7 +36,7 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp",
     -------
     dict ``{"unilateral": Solution, "bilateral": Solution}`` (the cases asked for)
     """
-    kw = dict(dt=dt, t_end=t_end, method=method, rule=rule, lcp=lcp)
+    kw = dict(dt=dt, t_end=t_end, method=method, rule=rule, lcp=lcp, initial=initial)
     cases = {}
     if unilateral:
         cases["unilateral"] = solve(model, load, callback=progress, **kw)
@@ -46,7 +46,7 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp",
 
 
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
-                  meta=None) -> dict:
+                  meta=None, labels=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     Parameters
@@ -59,7 +59,9 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     figure : dict ``node``, ``dof``, ``label``, optional: the main history to plot
     title : str
     meta : dict, optional: attributes stored in ``results.nc`` and ``summary.json``
+    labels : dict, optional: legend label of each case (default: the case names)
     """
+    labels = labels or {}
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     meta = dict(meta or {})
@@ -73,7 +75,7 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
 
     extra = dict(meta)
     if figure is not None and structure is not None:
-        histories = {_case_label(name): (sol.t, structure.node_displacement(sol, figure["node"], figure["dof"]))
+        histories = {labels.get(name, name): (sol.t, structure.node_displacement(sol, figure["node"], figure["dof"]))
                      for name, sol in cases.items()}
         extra["figure"] = {
             "node": figure["node"], "dof": figure["dof"],
@@ -117,10 +119,6 @@ def report(result: dict) -> str:
         if not case["success"]:
             text += f"\n{name} case FAILED: {case['message']}"
     return text
-
-
-def _case_label(name: str) -> str:
-    return {"unilateral": "with uplift", "bilateral": "without uplift"}.get(name, name)
 
 
 def _with_unit(label, units, dof):

@@ -63,7 +63,8 @@ def example(name, method, rule, dt, t_end, lcp, out):
     _run(structure.to_model(), load, settings, out or Path(name), structure=structure,
          units=UNITS_KN, figure=fig, title="Liolios (1990), Fig. 2: vertical displacement of node 3",
          meta={"example": name, "model": "Liolios (1990) section 5, reconstruction of DESIGN.md"},
-         bilateral_reference=True, unilateral=True)
+         bilateral_reference=True, unilateral=True,
+         labels={"unilateral": "with uplift", "bilateral": "without uplift"})
 
 
 @main.command()
@@ -84,7 +85,7 @@ def run(model_file, method, rule, dt, t_end, lcp, out, bilateral):
          units=spec.units, figure=spec.figure, title=a.get("title") or model_file.stem,
          meta={"model_file": str(model_file)},
          bilateral_reference=bool(a.get("bilateral_reference", True)) and not bilateral,
-         unilateral=not bilateral)
+         unilateral=not bilateral, labels=None)
 
 
 @main.command()
@@ -119,13 +120,14 @@ def plot(results, out):
 
 # ---------------------------------------------------------------------- helpers
 def _settings(defaults: dict, **given) -> dict:
-    out = {key: defaults.get(key) for key in ("dt", "t_end", "method", "rule", "lcp")}
+    out = {key: defaults.get(key) for key in ("dt", "t_end", "method", "rule", "lcp", "initial")}
+    out["initial"] = out["initial"] or "static"
     out.update({key: value for key, value in given.items() if value is not None})
     return out
 
 
 def _run(model, load, settings, out, *, structure, units, figure, title, meta,
-         bilateral_reference, unilateral):
+         bilateral_reference, unilateral, labels):
     from .analysis import report, run_cases, write_outputs
 
     N = int(round(settings["t_end"] / settings["dt"]))
@@ -139,7 +141,7 @@ def _run(model, load, settings, out, *, structure, units, figure, title, meta,
         if figure is not None:
             meta.update(figure_node=str(figure["node"]), figure_dof=figure["dof"])
         result = write_outputs(out, cases, structure=structure, units=units, figure=figure,
-                               title=title, meta=meta)
+                               title=title, meta=meta, labels=labels)
     except (ValueError, TypeError) as exc:
         raise click.ClickException(str(exc)) from None
     click.echo(report(result))

@@ -39,7 +39,7 @@ class InitialState:
     message: str = ""
 
 
-def static_lcp(Lambda0, psiL0, solver, bilateral: bool) -> tuple[np.ndarray, int, str]:
+def static_lcp(Lambda0, psiL0, solver) -> tuple[np.ndarray, int, str]:
     """Solve ``w = Lambda0 v - psiL0 >= 0, v >= 0, v.w = 0`` with a fallback to Lemke.
 
     ``Lambda0`` is only positive semidefinite when a constraint is attached to a part that
@@ -50,7 +50,7 @@ def static_lcp(Lambda0, psiL0, solver, bilateral: bool) -> tuple[np.ndarray, int
     v : (m,) ; iterations : int ; message : str (empty on success)
     """
     m = psiL0.shape[0]
-    if bilateral or m == 0:
+    if m == 0:
         return np.zeros(m), 0, ""
     res = solver.solve(Lambda0, -psiL0)
     iterations = res.iterations
@@ -66,7 +66,7 @@ def static_lcp(Lambda0, psiL0, solver, bilateral: bool) -> tuple[np.ndarray, int
     return res.v, iterations, ""
 
 
-def static_state(model, q0, solver, bilateral: bool) -> InitialState:
+def static_state(model, q0, solver) -> InitialState:
     """Static unilateral equilibrium of a matrix model under the total load ``q0`` (n,)."""
     K = Factorization(
         model.K, what="K (the structure with every constraint held bilateral must be stable)"
@@ -76,7 +76,7 @@ def static_state(model, q0, solver, bilateral: bool) -> InitialState:
     Lambda0 = model.H - transpose_times(model.F, Y)
     Lambda0 = 0.5 * (Lambda0 + Lambda0.T)
     psiL0 = transpose_times(model.F, uq) - model.g(0.0)
-    v, iters, message = static_lcp(Lambda0, psiL0, solver, bilateral)
+    v, iters, message = static_lcp(Lambda0, psiL0, solver)
     u = uq + Y @ v
     return InitialState(v=v, psi=psiL0 - Lambda0 @ v, u=u, udot=np.zeros(model.n),
                         lcp_iterations=iters, message=message)

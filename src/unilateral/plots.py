@@ -118,13 +118,13 @@ def plot_constraints(sol: Solution, *, units: dict | None = None, max_panels: in
         ax.axhline(0.0, color="0.3", linewidth=0.5)
         ax.margins(x=0)
         ax.set_title(sol.constraint_names[i], loc="left")
-        ax.set_ylabel(_scaled(ax.yaxis, v[:, i], "uplift $v$", units, "length"), color=_V_COLOR)
+        ax.set_ylabel(_scaled(ax.yaxis, v[:, i], "opening $v$", units, "length"), color=_V_COLOR)
         twin.set_ylabel(_scaled(twin.yaxis, psi[:, i], r"reaction $\psi$", units, "force"), color=_PSI_COLOR)
         ax.tick_params(axis="y", colors=_V_COLOR)
         twin.tick_params(axis="y", colors=_PSI_COLOR)
     axes[-1, 0].set_xlabel(_label("time $t$", units, "time"))
-    fig.suptitle(f"{len(shown)} of {m} constraints, those with the largest peak uplift" if m > max_panels
-                 else "Unilateral constraints: uplift and reaction")
+    fig.suptitle(f"{len(shown)} of {m} constraints, those with the largest peak opening" if m > max_panels
+                 else "Unilateral constraints: opening (uplift, gap, slack) and reaction")
     return fig
 
 

@@ -64,7 +64,8 @@ def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="sta
     lcp_options : dict, optional
         Options for a named solver (e.g. ``{"tol": 1e-12}``).
     bilateral : bool
-        Hold every constraint bilateral (``v = v(0)``): the paper's "without uplift" case.
+        Hold every constraint at its initial state (``v = v(0)``, e.g. the static one): the
+        paper's "without uplift" case. A gap that is open statically stays open by as much.
     cq_options : dict, optional
         ``L`` and ``rho`` of the FFT that computes the weights (see :func:`cq_weights`);
         ``history``: ``"naive"`` (direct summation, O(N^2 m^2)) or ``"fft"`` (FFT-blocked,
@@ -110,7 +111,7 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
                   callback, stats, timer):
     stats["n"] = model.n
     q = _load_function(model, load, N, dt)
-    init = _initial_matrix(model, q, initial, solver, bilateral)
+    init = _initial_matrix(model, q, initial, solver)
     t = dt * np.arange(N + 1)
     if init.message:
         return _failed_at_start(model, init, stats, timer)
@@ -153,9 +154,9 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
                    u_b + du, dud, log, stats, timer)
 
 
-def _initial_matrix(model, q, initial, solver, bilateral) -> InitialState:
+def _initial_matrix(model, q, initial, solver) -> InitialState:
     if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
-        return static_state(model, q(0), solver, bilateral)
+        return static_state(model, q(0), solver)
     if isinstance(initial, str):                              # "rest"
         return given_state(model, {})
     if isinstance(initial, dict):
@@ -196,7 +197,7 @@ def _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options, ca
     timer.lap("weights")
     if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
         Lambda0 = model.Lambda_real(0.0)
-        v_b, iters, message = static_lcp(Lambda0, psiL[0], solver, bilateral)
+        v_b, iters, message = static_lcp(Lambda0, psiL[0], solver)
         stats["static_lcp_iterations"] = iters
         if message:
             return _failed_at_start(model, InitialState(v=v_b, psi=psiL[0], message=message), stats, timer)

@@ -22,6 +22,10 @@ from unilateral._validate import as_vector, choice, positive_float
 from unilateral.loads.records import RecordFormatError, _read_only_view, read_table
 
 
+#: Relative tolerance of the inclusive end of a rectangular pulse (round-off of k dt).
+END_TOLERANCE = 1e-9
+
+
 class TimeFunction(ABC):
     """Base of the load time functions: a scalar function of time ``f(t)``."""
 
@@ -56,7 +60,8 @@ class Rectangular(TimeFunction):
     t_start : float, optional, keyword-only
         Start time, s (default 0); the value at ``t_start`` itself is 0.
     t_end : float, keyword-only
-        End time, s, ``> t_start``; the value at ``t_end`` is ``amplitude``.
+        End time, s, ``> t_start``; the value at ``t_end`` is ``amplitude`` (times that exceed
+        ``t_end`` by round-off only, a relative ``END_TOLERANCE``, count as ``t_end``).
     """
 
     amplitude: float
@@ -69,7 +74,10 @@ class Rectangular(TimeFunction):
         _check_order(self, "t_start", "t_end", strict=True)
 
     def _evaluate(self, t):
-        return np.where((t > self.t_start) & (t <= self.t_end), self.amplitude, 0.0)
+        # the inclusive end is widened by a relative 1e-9 so that sampled times k dt that
+        # round to just above t_end (3 * 0.1 > 0.3) still see the pulse
+        end = self.t_end + END_TOLERANCE * max(abs(self.t_end), abs(self.t_start), 1e-300)
+        return np.where((t > self.t_start) & (t <= end), self.amplitude, 0.0)
 
 
 @dataclass(frozen=True)

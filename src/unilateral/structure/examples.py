@@ -70,9 +70,7 @@ def liolios1990(kelvin=True):
     structure = fr.build()
     weight = structure.gravity(GRAVITY)
     push = structure.nodal_load(1, ux=1.0)
-    # The relative tolerance keeps the step at t_k = k dt ~ 0.1 s inside the pulse whatever the
-    # round-off of k dt.
-    pulse = Rectangular(PULSE, t_end=T_PULSE * (1 + 1e-9))
+    pulse = Rectangular(PULSE, t_end=T_PULSE)
 
     def load(t):
         return weight + pulse(t) * push

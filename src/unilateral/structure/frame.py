@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from ..loads.units import STANDARD_GRAVITY
 from ..model import Model, NaturalForm
 from . import elements as el
 from .dofs import DofMap, node_list
@@ -121,8 +122,9 @@ class Frame2D:
     def rayleigh(self, a0, a1) -> None:
         """Rayleigh damping ``C += a0 M + a1 K``.
 
-        ``K = G E G^T`` is the stiffness of the bilateral structure, unilateral elements held
-        closed: its part ``a1 K`` of a contact spring therefore acts in tension too.
+        ``K`` here is the stiffness of the bilateral elements only: a unilateral element (soil,
+        gap, cable) gets no stiffness-proportional damping, which would act across an open
+        contact. Give a contact its own dashpot (``c``) instead.
         """
         if self._rayleigh is not None:
             a0, a1 = self._rayleigh
@@ -258,7 +260,7 @@ class Frame2D:
         M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
         K = (G @ E @ G.T).tocsr()
         _check_stiffness(K, dofs)
-        C = self._damping(dofs, M, K)
+        C = self._damping(dofs, M)
         natural = NaturalForm(G=G, E=E, B=B, A=np.zeros((m, m)), r=r, theta=lambda t: theta, E_v=E_v)
         return Structure(
             natural=natural, M=M, C=C, dofs=dofs,
@@ -269,16 +271,24 @@ class Frame2D:
         )
 
     # ------------------------------------------------------------------ helpers
-    def _damping(self, dofs, M, K):
-        """Attached dashpots plus Rayleigh damping, or None."""
+    def _damping(self, dofs, M):
+        """Attached dashpots plus Rayleigh damping, or None.
+
+        The stiffness-proportional part uses the bilateral elements only: a unilateral element
+        must not transmit damping forces across an open contact.
+        """
         C = None
         if self._dashpots:
             Gd = _compatibility(self._dashpots, dofs)
             C = (Gd @ _block_diagonal([d.E for d in self._dashpots]) @ Gd.T).tocsr()
         if self._rayleigh is not None:
             a0, a1 = self._rayleigh
-            R = (a0 * M + a1 * K).tocsr()
-            C = R if C is None else (C + R).tocsr()
+            R = a0 * M
+            bilateral = [e for e in self._elements if not e.unilateral]
+            if a1 and bilateral:
+                Gb = _compatibility(bilateral, dofs)
+                R = R + a1 * (Gb @ _block_diagonal([e.E for e in bilateral]) @ Gb.T)
+            C = R.tocsr() if C is None else (C + R).tocsr()
         return C
 
     def _label(self, kind, name) -> str:
@@ -380,7 +390,7 @@ class Structure:
             constraint_names=list(self.constraint_names),
         )
 
-    def gravity(self, g=9.81, direction=(0.0, -1.0)) -> np.ndarray:
+    def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, -1.0)) -> np.ndarray:
         """Load (n,) of gravity ``g`` along ``direction`` (normalised) on the lumped masses."""
         g = _real("gravity", "g", g)
         d = dict(el.direction_terms("gravity", direction))

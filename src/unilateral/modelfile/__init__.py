@@ -1,0 +1,21 @@
+"""Model files: a structure, its loads and the analysis settings in one TOML file.
+
+A model file describes either a 2-D frame (nodes, supports, rigid links, elements, unilateral
+elements, masses, damping) or a matrix-level model read from Matrix Market files, together with
+its units, loads (gravity, nodal loads with time functions, ground-motion records) and analysis
+settings. The format is documented in ``docs/model-file.md``; its JSON schema, from
+:func:`model_file_schema`, in ``docs/model-file.schema.json``.
+
+>>> spec = load_model_file("examples/liolios1990.toml")            # doctest: +SKIP
+>>> sol = unilateral.solve(spec.model, spec.load, dt=spec.analysis["dt"], t_end=0.5)   # doctest: +SKIP
+
+Every problem of a file raises :class:`ModelFileError` (a ``ValueError``) whose message names
+the file, the key path and the bad value, says what is wrong and what would be valid, e.g.
+``model.toml: elements[3].node_j = 17: no node 17 (nodes are 1..12)``.
+"""
+
+from .build import LoadHistory, ModelSpec, load_model_file
+from .errors import ModelFileError
+from .schema import model_file_schema, write_schema
+
+__all__ = ["LoadHistory", "ModelFileError", "ModelSpec", "load_model_file", "model_file_schema", "write_schema"]

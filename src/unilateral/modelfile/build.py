@@ -1,0 +1,350 @@
+"""Read a model file: TOML -> validated document -> cross checks -> Structure, Model and load.
+
+:func:`load_model_file` is the entry point. Every problem is reported as a
+:class:`~unilateral.modelfile.errors.ModelFileError` naming the key path; errors of the
+:class:`~unilateral.structure.Frame2D` builder and of the load readers are re-raised with the key
+path of the entry that caused them.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from collections.abc import Callable
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from pydantic import ValidationError
+
+from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, Ramp, Rectangular, Tabulated, Triangular,
+                     length_factor, read_record)
+from ..model import Model
+from ..structure import Frame2D, Structure
+from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
+                     translate, value_problem)
+from .matrices import dof_index, read_matrix_model, read_vector
+from .schema import (FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap,
+                     HalfSinePulse, ModelFile, Node, RampLoad, RectangularPulse, Soil, Spring, TableLoad,
+                     TriangularPulse, iter_fields)
+
+
+_TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
+
+
+@dataclass(frozen=True, eq=False)
+class ModelSpec:
+    """A model file read and built.
+
+    Attributes
+    ----------
+    structure : Structure or None
+        The frame (None for a matrix-level model).
+    model : Model
+        The reduced problem (``structure.to_model()`` for a frame).
+    load : LoadHistory
+        ``q(t) -> (n,)``, the total load in the model's force unit.
+    analysis : dict
+        ``dt, t_end, method, rule, lcp, initial, bilateral_reference, title``.
+    units : dict
+        ``length, force, time`` as declared and the derived ``mass``.
+    figure : dict or None
+        ``node, dof, label`` of the history drawn in the main figure.
+    source : Path
+        The model file.
+    document : ModelFile
+        The validated file.
+    """
+
+    structure: Structure | None
+    model: Model
+    load: LoadHistory
+    analysis: dict
+    units: dict
+    figure: dict | None
+    source: Path
+    document: ModelFile
+
+
+@dataclass(frozen=True, eq=False)
+class LoadHistory:
+    """The load ``q(t) = constant + sum_k f_k(t) vector_k`` (n,).
+
+    Attributes
+    ----------
+    constant : (n,) ndarray
+        Gravity.
+    terms : tuple of (vector (n,), callable f(t)) pairs
+        Nodal loads with their time functions; ground motions as ``(-M r, a_g)``.
+    """
+
+    constant: np.ndarray
+    terms: tuple[tuple[np.ndarray, Callable], ...]
+
+    def __call__(self, t) -> np.ndarray:
+        q = self.constant.copy()
+        for vector, f in self.terms:
+            q += f(t) * vector
+        return q
+
+
+def load_model_file(path) -> ModelSpec:
+    """Read, check and build the model file ``path`` (TOML; see ``docs/model-file.md``).
+
+    Raises
+    ------
+    ModelFileError
+        With one line ``<file>: <key path> = <value>: <problem> (<what is valid>)`` per problem.
+    """
+    source = Path(path)
+    try:
+        document = _read_document(source)
+        _check(document, source.parent)
+        if document.matrices is None:
+            structure = _build_structure(document)
+            with _at("structure"):
+                model = structure.to_model()
+        else:
+            structure = None
+            model = read_matrix_model(document.matrices, source.parent)
+        load = _build_load(document, source.parent, model, structure)
+    except Problems as exc:
+        raise ModelFileError(path, exc.problems) from None
+    units = document.units.model_dump()
+    units["mass"] = f"{units['force']} {units['time']}^2/{units['length']}"
+    return ModelSpec(structure=structure, model=model, load=load, analysis=document.analysis.model_dump(),
+                     units=units, figure=_figure(document), source=source, document=document)
+
+
+# ---------------------------------------------------------------------- reading
+def _read_document(source: Path) -> ModelFile:
+    try:
+        text = source.read_bytes().decode("utf-8-sig")
+    except FileNotFoundError:
+        raise Problems(["file not found"]) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise Problems([f"cannot read the file ({exc})"]) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        match = _TOML_POSITION.match(str(exc))
+        where = f"line {match[2]}, column {match[3]}: " if match else ""
+        raise Problems([f"{where}invalid TOML: {match[1] if match else exc}"]) from None
+    try:
+        return ModelFile.model_validate(data)
+    except ValidationError as exc:
+        raise Problems(translate(exc, data, ModelFile)) from None
+
+
+@contextmanager
+def _at(where: str):
+    """Re-raise a ``ValueError`` or ``TypeError`` of the library as a problem at ``where``."""
+    try:
+        yield
+    except (ValueError, TypeError) as exc:
+        raise Problems([f"{where}: {exc}"]) from None
+
+
+# ---------------------------------------------------------------------- cross checks
+def _check(document: ModelFile, folder: Path) -> None:
+    """Raise :class:`Problems` listing every inconsistency of a validated document."""
+    problems = (_mode_problems(document) + _duplicate_problems(document)
+                + _reference_problems(document, folder) + _record_problems(document))
+    if problems:
+        raise Problems(problems)
+
+
+def _mode_problems(document: ModelFile) -> list[str]:
+    """A frame and a matrix-level model take different sections and load keys."""
+    loads = document.loads
+    if document.matrices is None:
+        problems = [] if document.nodes else [missing_section(("nodes",), Node)]
+        problems += [value_problem(("loads", "nodal", k, "dof"), load.dof,
+                                   "DOF loads are for matrix-level models (give node with ux, uy, rz)")
+                     for k, load in enumerate(loads.nodal) if load.dof is not None]
+        for k, motion in enumerate(loads.ground_motion):
+            if motion.direction is None:
+                problems.append(f"{key_path(('loads', 'ground_motion', k, 'direction'))}: missing key "
+                                '(a frame needs direction = "ux" or "uy")')
+            if motion.influence is not None:
+                problems.append(value_problem(("loads", "ground_motion", k, "influence"), motion.influence,
+                                              "only for matrix-level models (a frame uses direction)"))
+        return problems
+    needs_frame = "not allowed with [matrices] (a matrix-level model has no frame)"
+    problems = [f"{name}: {needs_frame}" for name in FRAME_SECTIONS if getattr(document, name)]
+    if loads.gravity is not None:
+        problems.append("loads.gravity: needs a frame (give the weight of a matrix-level model as a "
+                        "constant [[loads.nodal]] load)")
+    if document.output.figure is not None:
+        problems.append("output.figure: needs a frame (a matrix-level model has no nodes)")
+    problems += [value_problem(("loads", "nodal", k, "node"), load.node,
+                               "a matrix-level model has no nodes (give dof and value)")
+                 for k, load in enumerate(loads.nodal) if load.node is not None]
+    for k, motion in enumerate(loads.ground_motion):
+        if motion.direction is not None:
+            problems.append(value_problem(("loads", "ground_motion", k, "direction"), motion.direction,
+                                          'a matrix-level model needs influence = "<file>.mtx" instead'))
+        elif motion.influence is None:
+            problems.append(f"{key_path(('loads', 'ground_motion', k, 'influence'))}: missing key "
+                            "(a matrix-level model needs the influence vector r)")
+    return problems
+
+
+def _duplicate_problems(document: ModelFile) -> list[str]:
+    problems = []
+    first_node = {}
+    for k, node in enumerate(document.nodes):
+        if node.id in first_node:
+            problems.append(value_problem(("nodes", k, "id"), node.id,
+                                          f"duplicate node id (also {key_path(first_node[node.id])})"))
+        first_node.setdefault(node.id, ("nodes", k, "id"))
+    first_name = {}
+    for section in ("elements", "unilateral"):
+        for k, element in enumerate(getattr(document, section)):
+            if element.name in first_name:
+                problems.append(value_problem((section, k, "name"), element.name,
+                                              f"duplicate element name (also {key_path(first_name[element.name])})"))
+            first_name.setdefault(element.name, (section, k, "name"))
+    return problems
+
+
+def _reference_problems(document: ModelFile, folder: Path) -> list[str]:
+    """Nodes that are not defined and files that do not exist."""
+    ids = [node.id for node in document.nodes]
+    known = set(ids)
+    problems = []
+    for parts, value, info in iter_fields(document):
+        if value is None:
+            continue
+        if NODE_REF in info.metadata and document.matrices is None and value not in known:
+            problems.append(value_problem(parts, value, f"no node {toml_value(value)} (nodes are {compact_ids(ids)})")
+                            + did_you_mean(value, ids))
+        if FILE_REF in info.metadata and not (folder / value).is_file():
+            problems.append(value_problem(parts, value, f"file not found (looked for {folder / value})"))
+    return problems
+
+
+def _record_problems(document: ModelFile) -> list[str]:
+    """An .AT2 record has its time step, a plain-text record needs its units."""
+    problems = []
+    for k, motion in enumerate(document.loads.ground_motion):
+        at2 = Path(motion.file).suffix.lower() == ".at2"
+        if at2 and motion.dt is not None:
+            problems.append(value_problem(("loads", "ground_motion", k, "dt"), motion.dt,
+                                          "only for plain-text records (an .AT2 file gives DT in its header)"))
+        if not at2 and motion.units is None:
+            problems.append(f"{key_path(('loads', 'ground_motion', k, 'units'))}: missing key (a plain-text "
+                            'record needs the units of its values, e.g. units = "g" or "cm/s2")')
+    return problems
+
+
+# ---------------------------------------------------------------------- the frame
+def _build_structure(document: ModelFile) -> Structure:
+    fr = Frame2D()
+    for k, node in enumerate(document.nodes):
+        with _at(key_path(("nodes", k))):
+            fr.node(node.id, node.x, node.y)
+    for k, support in enumerate(document.supports):
+        with _at(key_path(("supports", k))):
+            fr.support(support.node, ux=support.ux, uy=support.uy, rz=support.rz)
+    for k, link in enumerate(document.rigid_links):
+        with _at(key_path(("rigid_links", k))):
+            fr.rigid_link(link.master, link.slave)
+    for section in ("elements", "unilateral"):
+        for k, element in enumerate(getattr(document, section)):
+            with _at(key_path((section, k))):
+                _add_element(fr, element)
+    for k, mass in enumerate(document.masses):
+        with _at(key_path(("masses", k))):
+            fr.mass(mass.node, mass.m, J=mass.J)
+    rayleigh = document.damping.rayleigh if document.damping is not None else None
+    if rayleigh is not None:
+        with _at("damping.rayleigh"):
+            if rayleigh.zeta is not None:
+                fr.rayleigh_from_ratios(rayleigh.zeta, rayleigh.f1, rayleigh.f2)
+            else:
+                fr.rayleigh(rayleigh.a0 or 0.0, rayleigh.a1 or 0.0)
+    with _at("structure"):
+        return fr.build()
+
+
+def _add_element(fr: Frame2D, e) -> None:
+    match e:
+        case Beam():
+            fr.beam(e.name, e.node_i, e.node_j, e.E, e.A, e.I, axial_strain=e.axial_strain, curvature=e.curvature)
+        case Bar():
+            fr.bar(e.name, e.node_i, e.node_j, e.E, e.A, axial_strain=e.axial_strain)
+        case Spring():
+            fr.spring(e.name, e.node_i, e.k, j=e.node_j, direction=e.direction)
+        case Dashpot():
+            fr.dashpot(e.name, e.node_i, e.c, j=e.node_j, direction=e.direction)
+        case Soil():
+            fr.soil(e.name, e.node, e.k, c=e.c, direction=e.direction, gap=e.gap, capacity=e.capacity)
+        case Gap():
+            fr.gap(e.name, e.node_i, e.node_j, e.k, gap=e.gap, c=e.c, direction=e.direction)
+        case Cable():
+            fr.cable(e.name, e.node_i, e.node_j, e.E, e.A, slack=e.slack, capacity=e.capacity)
+
+
+# ---------------------------------------------------------------------- loads
+def _build_load(document: ModelFile, folder: Path, model: Model, structure: Structure | None) -> LoadHistory:
+    """Gravity, nodal loads times their time functions and ground motions ``-M r a_g(t)``."""
+    units = document.units
+    seconds = TIME_UNITS[units.time]
+    to_model = seconds ** 2 / length_factor(units.length)        # m/s^2 -> length/time^2
+    constant = np.zeros(model.n)
+    gravity = document.loads.gravity
+    if gravity is not None:
+        g = STANDARD_GRAVITY * to_model if gravity.g == "standard" else gravity.g
+        constant += structure.gravity(g, gravity.direction)
+    terms = []
+    for k, load in enumerate(document.loads.nodal):
+        parts = ("loads", "nodal", k)
+        if structure is not None:
+            with _at(key_path(parts)):
+                vector = structure.nodal_load(load.node, ux=load.ux or 0.0, uy=load.uy or 0.0, rz=load.rz or 0.0)
+        else:
+            vector = np.zeros(model.n)
+            vector[dof_index(model, (*parts, "dof"), load.dof)] = load.value
+        terms.append((vector, _time_function(load.time_function, (*parts, "time_function"), folder)))
+    for k, motion in enumerate(document.loads.ground_motion):
+        parts = ("loads", "ground_motion", k)
+        if structure is not None:
+            r = np.array([1.0 if dof == motion.direction else 0.0 for _, dof in structure.dofs.free])
+        else:
+            r = read_vector((*parts, "influence"), motion.influence, folder, model.n)
+        options = {key: getattr(motion, key) for key in ("units", "dt") if getattr(motion, key) is not None}
+        with _at(key_path((*parts, "file"))):
+            record = read_record(folder / motion.file, **options)
+        a_g = Tabulated(record.time / seconds, record.acceleration * (motion.scale * to_model))
+        terms.append((-np.asarray(model.M @ r).ravel(), a_g))
+    return LoadHistory(constant, tuple(terms))
+
+
+def _time_function(spec, parts, folder: Path):
+    """The :mod:`unilateral.loads` time function (peak 1) of a ``time_function`` table."""
+    with _at(key_path(parts)):
+        match spec:
+            case RectangularPulse():
+                return Rectangular(1.0, t_start=spec.t_start, t_end=spec.t_end)
+            case HalfSinePulse():
+                return HalfSine(1.0, t_start=spec.t_start, duration=spec.duration)
+            case TriangularPulse():
+                return Triangular(1.0, t_start=spec.t_start, t_peak=spec.t_peak, t_end=spec.t_end)
+            case ConstantLoad():
+                return Constant(1.0)
+            case RampLoad():
+                return Ramp(spec.t_ramp, 1.0)
+            case TableLoad():
+                return Tabulated.from_csv(folder / spec.file, time_column=spec.time_column,
+                                          value_column=spec.value_column, outside=spec.outside)
+
+
+def _figure(document: ModelFile) -> dict | None:
+    figure = document.output.figure
+    if figure is None:
+        return None
+    unit = "rad" if figure.dof == "rz" else document.units.length
+    label = figure.label or f"{figure.dof} of node {figure.node} ({unit})"
+    return {"node": figure.node, "dof": figure.dof, "label": label}

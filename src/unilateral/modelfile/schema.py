@@ -1,0 +1,473 @@
+"""The model-file format as pydantic models: one class per TOML table, validated strictly.
+
+Every table forbids unknown keys, takes TOML types as they are (no ``"1.0"`` for a number) and
+rejects ``inf`` and ``nan``. Numbers are in the units declared in ``[units]``; masses in
+``force time^2 / length``. Cross references (nodes that exist, unique names, files that exist)
+are checked after validation, in :mod:`unilateral.modelfile.build`.
+
+Fields that name a node carry the marker :data:`NODE_REF` in their metadata, fields that name a
+file :data:`FILE_REF`; :func:`iter_fields` walks a validated document for such checks.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Annotated, Any, ClassVar, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchema, model_validator
+from pydantic.fields import FieldInfo
+from pydantic_core import PydanticCustomError
+
+from ..lcp import LCP_SOLVERS
+from ..rules import RULES
+from ..solve import METHODS
+
+LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
+FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
+TIME_UNITS = {"s": 1.0, "ms": 1e-3}
+"""Time units and their factors to seconds."""
+
+
+class _Marker:
+    """Metadata marker of a field kind, found by :func:`iter_fields`."""
+
+    def __init__(self, kind: str):
+        self.kind = kind
+
+    def __repr__(self) -> str:
+        return f"<{self.kind} reference>"
+
+
+NODE_REF = _Marker("node")
+FILE_REF = _Marker("file")
+
+
+# ---------------------------------------------------------------------- value types
+def _node_id(value):
+    if isinstance(value, bool) or not isinstance(value, int | str) or value == "":
+        raise PydanticCustomError("node_id", "expected an integer or a non-empty string")
+    return value
+
+
+def _dof_ref(value):
+    if isinstance(value, bool) or not isinstance(value, int | str) or value == "" or (
+            isinstance(value, int) and value < 0):
+        raise PydanticCustomError("dof_ref", "expected a DOF name or a 0-based index >= 0")
+    return value
+
+
+def _vector(value):
+    ok = (isinstance(value, list) and len(value) == 2
+          and all(isinstance(x, int | float) and not isinstance(x, bool) for x in value))
+    if not ok or not all(abs(x) < float("inf") for x in value) or not any(value):
+        raise PydanticCustomError("vector", "expected a nonzero vector [dx, dy] of two numbers")
+    return (float(value[0]), float(value[1]))
+
+
+def _direction(value):
+    if isinstance(value, str):
+        if value not in ("ux", "uy", "rz"):
+            raise PydanticCustomError("direction", 'expected "ux", "uy", "rz" or a vector [dx, dy]')
+        return value
+    return _vector(value)
+
+
+def _gravity(value):
+    if value == "standard":
+        return value
+    if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value < float("inf"):
+        raise PydanticCustomError("gravity", 'expected a number > 0 or "standard"')
+    return float(value)
+
+
+_NUMBER_SCHEMA = {"type": "number"}
+NodeId = Annotated[int | str, PlainValidator(_node_id),
+                   WithJsonSchema({"type": ["integer", "string"], "minLength": 1})]
+NodeRef = Annotated[NodeId, NODE_REF]
+FileRef = Annotated[str, Field(min_length=1), FILE_REF]
+DofRef = Annotated[int | str, PlainValidator(_dof_ref),
+                   WithJsonSchema({"type": ["integer", "string"], "minimum": 0, "minLength": 1})]
+Vector = Annotated[tuple[float, float], PlainValidator(_vector),
+                   WithJsonSchema({"type": "array", "items": _NUMBER_SCHEMA, "minItems": 2, "maxItems": 2})]
+Direction = Annotated[str | tuple[float, float], PlainValidator(_direction), WithJsonSchema({"anyOf": [
+    {"enum": ["ux", "uy", "rz"]}, {"type": "array", "items": _NUMBER_SCHEMA, "minItems": 2, "maxItems": 2}]})]
+GravityValue = Annotated[float | str, PlainValidator(_gravity),
+                    WithJsonSchema({"anyOf": [{"type": "number", "exclusiveMinimum": 0}, {"const": "standard"}]})]
+Name = Annotated[str, Field(min_length=1, description="Unique element name (used in the results).")]
+Positive = Annotated[float, Field(gt=0)]
+NonNegative = Annotated[float, Field(ge=0)]
+
+
+class Table(BaseModel):
+    """Base of the TOML tables: strict types, no unknown keys, finite numbers."""
+
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+
+
+# ---------------------------------------------------------------------- units and geometry
+class Units(Table):
+    """[units]: the units of every number in the file (mass is force time^2 / length)."""
+
+    EXAMPLE: ClassVar[str] = '[units] length = "m", force = "kN", time = "s"'
+    length: Literal[LENGTH_UNITS] = Field(title="length unit")
+    force: Literal[FORCE_UNITS] = Field(title="force unit")
+    time: Literal[tuple(TIME_UNITS)] = Field(title="time unit")
+
+
+class Node(Table):
+    """[[nodes]]: a node and its coordinates [length]."""
+
+    EXAMPLE: ClassVar[str] = "[[nodes]] id = 1, x = 0.0, y = 0.0; or give [matrices]"
+    id: NodeId
+    x: float
+    y: float
+
+
+class Support(Table):
+    """[[supports]]: restrained DOFs of a node (true = restrained)."""
+
+    node: NodeRef
+    ux: bool = True
+    uy: bool = True
+    rz: bool = False
+
+
+class RigidLink(Table):
+    """[[rigid_links]]: node ``slave`` follows the rigid-body motion of node ``master``."""
+
+    master: NodeRef
+    slave: NodeRef
+
+
+class Mass(Table):
+    """[[masses]]: lumped mass m on ux and uy [force time^2/length], rotational inertia J on rz
+    [force time^2 length]."""
+
+    node: NodeRef
+    m: NonNegative
+    J: NonNegative = 0.0
+
+
+# ---------------------------------------------------------------------- elements
+class Beam(Table):
+    """Euler-Bernoulli beam-column from node_i to node_j."""
+
+    type: Literal["beam"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef
+    E: Positive = Field(description="Young's modulus [force/length^2].")
+    A: Positive = Field(description="Cross-section area [length^2].")
+    I: Positive = Field(description="Second moment of area [length^4].")  # noqa: E741
+    axial_strain: float = Field(0.0, description="Imposed (e.g. thermal) axial strain.")
+    curvature: float = Field(0.0, description="Imposed curvature [1/length].")
+
+
+class Bar(Table):
+    """Axial bar (truss member) from node_i to node_j."""
+
+    type: Literal["bar"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef
+    E: Positive = Field(description="Young's modulus [force/length^2].")
+    A: Positive = Field(description="Cross-section area [length^2].")
+    axial_strain: float = Field(0.0, description="Imposed (e.g. thermal) axial strain.")
+
+
+class Spring(Table):
+    """Linear spring from node_i to the ground (no node_j) or to node_j."""
+
+    type: Literal["spring"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef | None = None
+    k: Positive = Field(description="Stiffness [force/length] ([force length] along rz).")
+    direction: Direction = "uy"
+
+
+class Dashpot(Table):
+    """Linear dashpot, attached (acts in tension too), from node_i to the ground or to node_j."""
+
+    type: Literal["dashpot"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef | None = None
+    c: Positive = Field(description="Viscosity [force time/length].")
+    direction: Direction = "uy"
+
+
+Element = Annotated[Union[Beam, Bar, Spring, Dashpot], Field(discriminator="type", title="element type")]
+
+
+class Soil(Table):
+    """Tensionless soil under a node: spring k and dashpot c in parallel, acting only in contact."""
+
+    type: Literal["soil"]
+    name: Name
+    node: NodeRef
+    k: Positive = Field(description="Stiffness [force/length].")
+    c: NonNegative = Field(0.0, description="Viscosity of the dashpot in parallel [force time/length].")
+    direction: Direction = Field("uy", description="Direction in which the node separates from the soil.")
+    gap: float = Field(0.0, description="Initial gap [length]; negative: an initial penetration.")
+    capacity: NonNegative = Field(0.0, description="Tension carried before separating [force].")
+
+
+class Gap(Table):
+    """Pounding link: a compression-only contact spring between node_i and node_j."""
+
+    type: Literal["gap"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef
+    k: Positive = Field(description="Contact stiffness [force/length].")
+    gap: float = Field(0.0, description="Clearance that must close before contact [length].")
+    c: NonNegative = Field(0.0, description="Contact viscosity [force time/length].")
+    direction: Direction | None = Field(None, description="Default: from node_i towards node_j.")
+
+
+class Cable(Table):
+    """Tension-only cable from node_i to node_j that goes slack in compression."""
+
+    type: Literal["cable"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef
+    E: Positive = Field(description="Young's modulus [force/length^2].")
+    A: Positive = Field(description="Cross-section area [length^2].")
+    slack: float = Field(0.0, description="Slack length [length]; negative: pretension.")
+    capacity: NonNegative = Field(0.0, description="Compression carried before going slack [force].")
+
+
+Unilateral = Annotated[Union[Soil, Gap, Cable], Field(discriminator="type", title="unilateral element type")]
+
+
+class Rayleigh(Table):
+    """Rayleigh damping C = a0 M + a1 K: either zeta, f1 and f2 [1/time], or a0 [1/time] and/or a1
+    [time] (a missing coefficient is 0). K holds the unilateral springs as if bonded, so a1 K
+    damps them in tension too; prefer a1 = 0 with stiff contacts."""
+
+    zeta: NonNegative | None = None
+    f1: Positive | None = None
+    f2: Positive | None = None
+    a0: NonNegative | None = None
+    a1: NonNegative | None = None
+
+    @model_validator(mode="after")
+    def _one_form(self):
+        ratios = [x is not None for x in (self.zeta, self.f1, self.f2)]
+        coefficients = [x is not None for x in (self.a0, self.a1)]
+        if not (all(ratios) and not any(coefficients) or any(coefficients) and not any(ratios)):
+            raise PydanticCustomError("rayleigh", "give either zeta, f1 and f2, or a0 and/or a1")
+        return self
+
+
+class Damping(Table):
+    """[damping]: structural damping (Kelvin dashpots of soil and gaps are given with them)."""
+
+    rayleigh: Rayleigh | None = None
+
+
+# ---------------------------------------------------------------------- loads
+class RectangularPulse(Table):
+    """1 for t_start < t <= t_end, else 0."""
+
+    type: Literal["rectangular"]
+    t_start: float = 0.0
+    t_end: float
+
+
+class HalfSinePulse(Table):
+    """sin(pi (t - t_start) / duration) for t_start < t < t_start + duration, else 0."""
+
+    type: Literal["half_sine"]
+    t_start: float = 0.0
+    duration: Positive
+
+
+class TriangularPulse(Table):
+    """0 at t_start, 1 at t_peak, 0 at t_end, linear in between, 0 outside."""
+
+    type: Literal["triangular"]
+    t_start: float = 0.0
+    t_peak: float
+    t_end: float
+
+
+class ConstantLoad(Table):
+    """1 at all times, t = 0 included (a static load)."""
+
+    type: Literal["constant"]
+
+
+class RampLoad(Table):
+    """Linear from 0 at t = 0 to 1 at t_ramp, then 1."""
+
+    type: Literal["ramp"]
+    t_ramp: Positive
+
+
+class TableLoad(Table):
+    """Piecewise-linear table of times and factors read from a text (CSV) file."""
+
+    type: Literal["table"]
+    file: FileRef
+    time_column: int = Field(0, ge=0)
+    value_column: int = Field(1, ge=0)
+    outside: Literal["zero", "hold"] = Field("zero", title="value outside the table")
+
+
+TimeFunction = Annotated[Union[RectangularPulse, HalfSinePulse, TriangularPulse, ConstantLoad, RampLoad, TableLoad],
+                         Field(discriminator="type", title="time function type")]
+
+
+class Gravity(Table):
+    """[loads.gravity]: gravity on the masses, constant in time."""
+
+    g: GravityValue = Field(description='Acceleration [length/time^2], or "standard" (9.80665 m/s^2).')
+    direction: Vector = (0.0, -1.0)
+
+
+class NodalLoad(Table):
+    """[[loads.nodal]]: a load times a time function, at a node (frames) or a DOF (matrices)."""
+
+    node: NodeRef | None = None
+    ux: float | None = Field(None, description="Force along x [force].")
+    uy: float | None = Field(None, description="Force along y [force].")
+    rz: float | None = Field(None, description="Moment, counter-clockwise [force length].")
+    dof: DofRef | None = Field(None, description="Matrix-level models: DOF name or 0-based index.")
+    value: float | None = Field(None, description="Matrix-level models: the load on dof.")
+    time_function: TimeFunction = ConstantLoad(type="constant")
+
+    @model_validator(mode="after")
+    def _node_or_dof(self):
+        at_node = self.node is not None or any(x is not None for x in (self.ux, self.uy, self.rz))
+        at_dof = self.dof is not None or self.value is not None
+        if at_node == at_dof:
+            raise PydanticCustomError("nodal_load", "give either node with ux, uy, rz, or dof with value")
+        if at_node and self.node is None:
+            raise PydanticCustomError("nodal_load", "ux, uy, rz need the node they act on")
+        if at_dof and (self.dof is None or self.value is None):
+            raise PydanticCustomError("nodal_load", "a DOF load needs both dof and value")
+        return self
+
+
+class GroundMotion(Table):
+    """[[loads.ground_motion]]: an acceleration record acting as the load -M r a_g(t)."""
+
+    file: FileRef = Field(description="PEER .AT2 or plain-text record, relative to the model file.")
+    direction: Literal["ux", "uy"] | None = Field(None, title="ground motion direction",
+                                                  description="Frames: the direction of the ground motion.")
+    influence: FileRef | None = Field(None, description="Matrix-level models: Matrix Market file of r (n x 1).")
+    scale: float = Field(1.0, description="Factor on the record.")
+    units: str | None = Field(None, description="Units of a plain-text record, e.g. \"g\" or \"cm/s2\".")
+    dt: Positive | None = Field(None, description="Time step of a one-column text record [s].")
+
+
+class Loads(Table):
+    """[loads]: gravity, nodal loads and ground motions, added up."""
+
+    gravity: Gravity | None = None
+    nodal: list[NodalLoad] = []
+    ground_motion: list[GroundMotion] = []
+
+
+# ---------------------------------------------------------------------- analysis and output
+class Analysis(Table):
+    """[analysis]: time stepping and solver settings."""
+
+    EXAMPLE: ClassVar[str] = "[analysis] dt = 0.001, t_end = 1.0"
+    dt: Positive = Field(description="Time step [time].")
+    t_end: Positive = Field(description="End time [time].")
+    method: Literal[METHODS] = Field("cq", title="method")
+    rule: Literal[tuple(RULES)] = Field("bdf2", title="rule")
+    lcp: Literal[tuple(sorted(LCP_SOLVERS))] = Field("bpp", title="LCP solver")
+    initial: Literal["static", "rest"] = Field("static", title="initial state")
+    bilateral_reference: bool = Field(True, description="Also run with every constraint bilateral.")
+    title: str = ""
+
+
+class Figure(Table):
+    """The displacement history drawn in the main figure."""
+
+    node: NodeRef
+    dof: Literal["ux", "uy", "rz"] = Field("uy", title="DOF")
+    label: str | None = None
+
+
+class Output(Table):
+    """[output]: what to draw."""
+
+    figure: Figure | None = None
+
+
+class Matrices(Table):
+    """[matrices]: a matrix-level model, M u'' + C u' + K u = q + F v, psi = F^T u - H v - g."""
+
+    format: Literal["matrix-market"] = Field("matrix-market", title="matrix format")
+    M: FileRef
+    K: FileRef
+    F: FileRef
+    H: FileRef
+    C: FileRef | None = None
+    F_v: FileRef | None = None
+    H_v: FileRef | None = None
+    g: FileRef | None = None
+    dofs: FileRef | None = Field(None, description="Text file with one DOF name per line.")
+    constraints: list[Annotated[str, Field(min_length=1)]] | None = None
+
+
+class ModelFile(Table):
+    """A unilateral model file: a 2-D frame (nodes, elements, ...) or matrices, loads, analysis."""
+
+    units: Units
+    nodes: list[Node] = []
+    supports: list[Support] = []
+    rigid_links: list[RigidLink] = []
+    elements: list[Element] = []
+    unilateral: list[Unilateral] = []
+    masses: list[Mass] = []
+    damping: Damping | None = None
+    matrices: Matrices | None = None
+    loads: Loads = Loads()
+    analysis: Analysis
+    output: Output = Output()
+
+
+FRAME_SECTIONS = ("nodes", "supports", "rigid_links", "elements", "unilateral", "masses", "damping")
+
+
+# ---------------------------------------------------------------------- helpers
+def iter_fields(table: BaseModel, parts: tuple = ()) -> Iterator[tuple[tuple, Any, FieldInfo]]:
+    """Every field of a validated document, depth first.
+
+    Yields
+    ------
+    parts : tuple of str and int
+        The key path, e.g. ``("elements", 3, "node_j")``.
+    value : the field's value
+    info : FieldInfo
+        Its metadata holds :data:`NODE_REF` or :data:`FILE_REF` for references.
+    """
+    for name, info in type(table).model_fields.items():
+        value = getattr(table, name)
+        here = (*parts, name)
+        yield here, value, info
+        items = enumerate(value) if isinstance(value, list) else [(None, value)]
+        for index, item in items:
+            if isinstance(item, BaseModel):
+                yield from iter_fields(item, here if index is None else (*here, index))
+
+
+def model_file_schema() -> dict:
+    """JSON schema (draft 2020-12) of the model file, a TOML document read as JSON."""
+    return {"$schema": "https://json-schema.org/draft/2020-12/schema", **ModelFile.model_json_schema()}
+
+
+def write_schema(path) -> Path:
+    """Write :func:`model_file_schema` as indented JSON to ``path``; return the path."""
+    path = Path(path)
+    path.write_text(json.dumps(model_file_schema(), indent=2) + "\n", encoding="utf-8")
+    return path
