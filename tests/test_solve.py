@@ -236,3 +236,28 @@ def test_compiled_march_equals_python_march(kelvin):
     assert ul.solve(model, load, dt=DT, t_end=0.1).stats["engine"] == "compiled"
     with pytest.raises(ValueError, match="engine'\\]='compiled' needs history='naive' and lcp='bpp'"):
         ul.solve(model, load, dt=DT, t_end=0.1, lcp="lemke", cq_options={"engine": "compiled"})
+
+
+@pytest.mark.parametrize("kelvin", [False, True])
+@pytest.mark.parametrize("rule", ["bdf1", "bdf2", "trapezoidal"])
+def test_modal_recursion_equals_direct_stepping(solutions, kelvin, rule):
+    """method="modal" (exact pole-residue recursion, every pole) is the same CLCP as "cq"."""
+    direct = solutions[kelvin, rule, "direct"]
+    model = rocking_model(kelvin=kelvin)
+    load = rocking_pulses if not kelvin else rocking_load()
+    modal = ul.solve(model, load, dt=DT, t_end=T_END, method="modal", rule=rule)
+    assert modal.success and modal.stats["history"] == "modal"
+    assert rel(modal.v, direct.v) <= 1e-8
+    assert rel(modal.psi, direct.psi) <= 1e-8
+    assert rel(modal.u, direct.u) <= 1e-8
+
+
+def test_modal_compiled_equals_python():
+    model = rocking_model()
+    runs = {e: ul.solve(model, rocking_load(), dt=DT, t_end=0.6, method="modal",
+                        modal_options={"engine": e}) for e in ("compiled", "python")}
+    assert runs["compiled"].stats["engine"] == "compiled" and runs["python"].stats["engine"] == "python"
+    np.testing.assert_allclose(runs["compiled"].v, runs["python"].v, rtol=0, atol=1e-14)
+    assert rel(runs["compiled"].psi, runs["python"].psi) <= 1e-12
+    with pytest.raises(ValueError, match=r"modal_options has unknown keys \['order'\]"):
+        ul.solve(model, rocking_load(), dt=DT, t_end=0.01, method="modal", modal_options={"order": 1})

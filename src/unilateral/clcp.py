@@ -99,59 +99,77 @@ def direct_outputs(stepper, N, v_b, psi0):
     return du, dud, v, psi, StepLog(m, v_b > 0)
 
 
-def march_direct(stepper, N, v_b, psi0, solver=None, *, dt, bilateral=False, dv=None, callback=None):
+def march_direct(stepper, N, v_b, psi0, solver, *, dt, bilateral=False, callback=None):
     """March the full model: per step a free prediction, an LCP on ``W0``, a correction.
 
     Parameters
     ----------
-    stepper : StructureStepper
+    stepper : StructureStepper (condensed)
     N : int, number of steps
     v_b : (m,) base deformations
     psi0 : (m,) initial reactions
-    solver : LCPSolver or None
+    solver : LCPSolver
     dt : float
     bilateral : bool
-        Hold every constraint (``dv = 0``): a linear sweep giving the bilateral response.
-    dv : (N+1, m), optional
-        Prescribed increments instead of LCPs: recovers u for a CLCP solution.
+        Hold every constraint (``dv = 0``): see :func:`sweep_direct`.
     callback : callable ``callback(k, N)``, optional
 
     Returns
     -------
     du, dudot : (K+1, n) ; v, psi : (K+1, m) ; log : StepLog
     """
+    if bilateral:
+        return sweep_direct(stepper, N, v_b, psi0, callback=callback)
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
-    zero = np.zeros(stepper.model.m)
     W0 = stepper.W0
     base = W0 @ v_b
     for k in range(1, N + 1):
         _, psi_free = stepper.predict()
-        if dv is not None:
-            dvk = dv[k]
-        elif bilateral:
-            dvk = zero
-        else:
-            res = solver.solve(W0, -(psi_free + base), active=log.active)
-            if not log.record(k, k * dt, res):
-                return du[:k], dud[:k], v[:k], psi[:k], log
-            dvk = res.v - v_b
+        res = solver.solve(W0, -(psi_free + base), active=log.active)
+        if not log.record(k, k * dt, res):
+            return du[:k], dud[:k], v[:k], psi[:k], log
+        dvk = res.v - v_b
         du[k], dud[k] = stepper.correct(dvk)
-        v[k] = v_b + dvk
+        v[k] = res.v
         psi[k] = psi_free - W0 @ dvk
         if callback is not None:
             callback(k, N)
     return du, dud, v, psi, log
 
 
-def march_cq_compiled(W, psi_affine, v_b, *, dt, max_iter, tol):
-    """:func:`march_cq` with the naive history and block principal pivoting, compiled.
+def sweep_direct(stepper, N, v_b, psi0, dv=None, *, callback=None):
+    """A linear sweep of the full model with prescribed increments ``dv`` (zero by default).
+
+    With ``dv = 0`` it gives the bilateral response ``psiL``; with the increments of a CLCP
+    solution it recovers the displacements. Same returns as :func:`march_direct`.
+    """
+    du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
+    zero = np.zeros(stepper.model.m)
+    for k in range(1, N + 1):
+        dvk = zero if dv is None else dv[k]
+        du[k], psi[k] = stepper.step_with(dvk)
+        dud[k] = stepper.correct(dvk, du=du[k])[1]
+        v[k] = v_b + dvk
+        if callback is not None:
+            callback(k, N)
+    return du, dud, v, psi, log
+
+
+def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol):
+    """:func:`march_cq` with block principal pivoting, compiled (:mod:`unilateral.compiled`).
+
+    Parameters
+    ----------
+    kind : "naive" (``args = (W, psi_affine)``) or "recursive"
+        (``args = (W0, coef, gain, out, inp, psi_affine)``, see :func:`compiled.march_recursive`)
 
     Returns the same ``(v, psi, log)`` as :func:`march_cq`.
     """
-    from .compiled import march_naive
+    from . import compiled
 
-    v, psi, stats, failed = march_naive(W, psi_affine, v_b, max_iter, tol)
-    log = StepLog(psi_affine.shape[1], v_b > 0)
+    march = compiled.march_naive if kind == "naive" else compiled.march_recursive
+    v, psi, stats, failed = march(*args, v_b, max_iter, tol)
+    log = StepLog(v_b.shape[0], v_b > 0)
     log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
     log.contact_changes, log.max_error = int(stats[2]), float(stats[3])
     if failed:

@@ -124,6 +124,24 @@ def lcp_error(v, w, q):
 
 
 @njit(cache=True)
+def _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
+    """Store the LCP result of step n and update the statistics; False if the step failed."""
+    if it < 0 or err > tol:
+        return False
+    stats[0] += it
+    stats[1] = max(stats[1], it)
+    stats[3] = max(stats[3], err)
+    for a in range(vn.shape[0]):
+        if active[a] != previous[a]:
+            stats[2] += 1
+        previous[a] = active[a]
+        v[n, a] = vn[a]
+        psi[n, a] = -wn[a]
+        dv[n, a] = vn[a] - v_b[a]
+    return True
+
+
+@njit(cache=True)
 def march_naive(W, psi_affine, v_b, max_iter, tol):
     """The CLCP march with direct summation of the history; see :func:`clcp.march_cq`.
 
@@ -142,22 +160,15 @@ def march_naive(W, psi_affine, v_b, max_iter, tol):
     failed_step : int, 0 if every step succeeded, else the step whose LCP failed
     """
     N1, m = psi_affine.shape
-    v = np.zeros((N1, m))
-    psi = np.zeros((N1, m))
-    dv = np.zeros((N1, m))
+    v, psi, dv = np.zeros((N1, m)), np.zeros((N1, m)), np.zeros((N1, m))
     v[0] = v_b
     psi[0] = psi_affine[0]
     W0 = W[0]
     base = W0 @ v_b
     active = v_b > 0.0
     previous = active.copy()
-    q = np.empty(m)
-    vn = np.empty(m)
-    wn = np.empty(m)
-    idx = np.empty(m, dtype=np.int64)
-    S = np.empty((m, m))
-    rhs = np.empty(m)
-    x = np.empty(m)
+    q, vn, wn = np.empty(m), np.empty(m), np.empty(m)
+    idx, S, rhs, x = np.empty(m, dtype=np.int64), np.empty((m, m)), np.empty(m), np.empty(m)
     stats = np.zeros(4)
     first = -1                              # first step with a nonzero increment
     for n in range(1, N1):
@@ -173,21 +184,69 @@ def march_naive(W, psi_affine, v_b, max_iter, tol):
                         t += Wj[a, b] * d[b]
                     q[a] += t
         it = bpp(W0, q, active, vn, wn, max_iter, idx, S, rhs, x)
-        err = lcp_error(vn, wn, q)
-        if it < 0 or err > tol:
+        if not _record(n, it, lcp_error(vn, wn, q), tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
             return v[:n], psi[:n], stats, n
-        stats[0] += it
-        stats[1] = max(stats[1], it)
-        stats[3] = max(stats[3], err)
-        nonzero = False
+        if first < 0:
+            for a in range(m):
+                if dv[n, a] != 0.0:
+                    first = n
+    return v, psi, stats, 0
+
+
+@njit(cache=True)
+def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
+    """The CLCP march with the exact recursive history of a pole-residue kernel.
+
+    The history is ``Re(free @ out)`` with ``free = sum_i coef_i state_i`` of the scalar filters
+    (channels c) of :class:`~unilateral.modal_recursion.RecursiveHistory`; the filters are then
+    advanced with the input ``inp @ dv_n``. O(c m) work per step, independent of n and N.
+
+    Parameters
+    ----------
+    W0 : (m, m) symmetric positive definite
+    coef : (2q, c) complex, rows ``-alpha_i/alpha_0`` and ``beta_i/alpha_0`` interleaved
+    gain : (c,) complex, ``beta_0/alpha_0``
+    out, inp : (c, m) complex output and input factors
+    psi_affine : (N+1, m);  v_b : (m,);  max_iter : int;  tol : float
+
+    Returns
+    -------
+    As :func:`march_naive`.
+    """
+    N1, m = psi_affine.shape
+    rows, c = coef.shape
+    v, psi, dv = np.zeros((N1, m)), np.zeros((N1, m)), np.zeros((N1, m))
+    v[0] = v_b
+    psi[0] = psi_affine[0]
+    base = W0 @ v_b
+    active = v_b > 0.0
+    previous = active.copy()
+    q, vn, wn = np.empty(m), np.empty(m), np.empty(m)
+    idx, S, rhs, x = np.empty(m, dtype=np.int64), np.empty((m, m)), np.empty(m), np.empty(m)
+    stats = np.zeros(4)
+    state = np.zeros((rows, c), dtype=np.complex128)
+    free = np.empty(c, dtype=np.complex128)
+    for n in range(1, N1):
+        for k in range(c):
+            t = 0j
+            for i in range(rows):
+                t += coef[i, k] * state[i, k]
+            free[k] = t
         for a in range(m):
-            if active[a] != previous[a]:
-                stats[2] += 1
-            previous[a] = active[a]
-            v[n, a] = vn[a]
-            psi[n, a] = -wn[a]
-            dv[n, a] = vn[a] - v_b[a]
-            nonzero = nonzero or dv[n, a] != 0.0
-        if first < 0 and nonzero:
-            first = n
+            t = 0.0
+            for k in range(c):
+                t += (free[k] * out[k, a]).real
+            q[a] = t - psi_affine[n, a] - base[a]
+        it = bpp(W0, q, active, vn, wn, max_iter, idx, S, rhs, x)
+        if not _record(n, it, lcp_error(vn, wn, q), tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
+            return v[:n], psi[:n], stats, n
+        for i in range(rows - 1, 1, -1):
+            for k in range(c):
+                state[i, k] = state[i - 2, k]
+        for k in range(c):
+            u = 0j
+            for a in range(m):
+                u += inp[k, a] * dv[n, a]
+            state[0, k] = free[k] + gain[k] * u
+            state[1, k] = u
     return v, psi, stats, 0

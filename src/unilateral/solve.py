@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _validate as V
 from .active_set import march_direct_active_set
-from .clcp import march_cq, march_cq_compiled, march_direct
+from .clcp import march_cq, march_cq_compiled, march_direct, sweep_direct
 from .cq import cq_weights
 from .history import NaiveHistory
 from .history_fft import FFTBlockedHistory
@@ -18,12 +18,13 @@ from .kernel_model import KernelModel
 from .kernels import MatrixKernel
 from .lcp import BlockPrincipalPivoting, get_lcp_solver
 from .linalg import transpose_times
+from .modal import PoleResidueKernel
 from .model import Model
 from .result import Solution
 from .rules import get_rule
 from .stepping import StructureStepper
 
-METHODS = ("cq", "direct")
+METHODS = ("cq", "modal", "direct")
 HISTORIES = {"naive": NaiveHistory, "fft": FFTBlockedHistory}
 ENGINES = ("auto", "compiled", "python")
 #: method="direct" solves the LCP in the full sparse space (active-set pivoting with cached
@@ -34,7 +35,8 @@ FFT_HISTORY_MIN_STEPS = 256
 
 
 def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="static",
-          lcp="bpp", lcp_options=None, bilateral=False, cq_options=None, callback=None) -> Solution:
+          lcp="bpp", lcp_options=None, bilateral=False, cq_options=None, modal_options=None,
+          callback=None) -> Solution:
     """Dynamic response of a structure with unilateral constraints.
 
     Parameters
@@ -47,10 +49,12 @@ def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="sta
         Time step, > 0.
     t_end : float
         End time, >= dt.
-    method : {"cq", "direct"}
+    method : {"cq", "modal", "direct"}
         ``"cq"``: the convolutional LCP of Liolios (1990), eq. (27), with convolution-quadrature
-        weights and one LCP per step. ``"direct"``: the full model stepped with the same rule and
-        one LCP per step on the condensed matrix (also Newmark and HHT).
+        weights of ``Lambda(s)`` and one LCP per step. ``"modal"``: the same CLCP with the
+        history evaluated recursively from the poles and residues of ``Lambda(s)`` (the paper's
+        "recursive evaluation of convolution integrals"), O(r m) per step. ``"direct"``: the full
+        model stepped with the same rule and one LCP per step (also Newmark and HHT).
     rule : str or Rule
         ``"bdf1"``, ``"bdf2"`` (default), ``"trapezoidal"``; with ``method="direct"`` also
         ``"newmark"`` and ``"hht"``, or a :class:`~unilateral.rules.Newmark` instance.
@@ -66,6 +70,10 @@ def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="sta
     bilateral : bool
         Hold every constraint at its initial state (``v = v(0)``, e.g. the static one): the
         paper's "without uplift" case. A gap that is open statically stays open by as much.
+    modal_options : dict, optional
+        For ``method="modal"``: ``modes`` (None: every pole, exact; an int: that many lowest
+        modes plus the static correction, for large models with classical damping) and
+        ``engine`` as for ``cq_options``.
     cq_options : dict, optional
         ``L`` and ``rho`` of the FFT that computes the weights (see :func:`cq_weights`);
         ``history``: ``"naive"`` (direct summation, O(N^2 m^2)) or ``"fft"`` (FFT-blocked,
@@ -90,10 +98,12 @@ def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="sta
         raise TypeError(f"model must be a unilateral.Model or KernelModel, got {V.describe(model)}")
     if isinstance(model, KernelModel) and method != "cq":
         raise ValueError(f"method={method!r} needs matrices; a KernelModel is solved with method='cq'")
-    rule = get_rule(rule, cq=method == "cq")
+    rule = get_rule(rule, cq=method != "direct")
     solver = get_lcp_solver(lcp, **(lcp_options or {}))
     if cq_options is not None and method != "cq":
         raise ValueError(f"cq_options apply to method='cq' only (method={method!r})")
+    if modal_options is not None and method != "modal":
+        raise ValueError(f"modal_options apply to method='modal' only (method={method!r})")
     stats = {"method": method, "rule": rule.name, "lcp_solver": solver.name, "steps": N,
              "dt": dt, "m": model.m}
     timer.lap("setup")
@@ -102,12 +112,13 @@ def solve(model, load=None, *, dt, t_end, method="cq", rule="bdf2", initial="sta
             raise ValueError("load is not used by a KernelModel: its psiL carries the loading; pass load=None")
         return _solve_kernel(model, N, dt, rule, initial, solver, bilateral, cq_options or {},
                              callback, stats, timer)
+    options = (cq_options if method == "cq" else modal_options) or {}
     return _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral,
-                         cq_options or {}, callback, stats, timer)
+                         options, callback, stats, timer)
 
 
 # ---------------------------------------------------------------------- matrix models
-def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, cq_options,
+def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, options,
                   callback, stats, timer):
     stats["n"] = model.n
     q = _load_function(model, load, N, dt)
@@ -122,7 +133,7 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
     HFu = transpose_times(model.F, u_b) - model.H @ v_b
     load_inc = lambda k: q(k) + F_vb - K_ub
     offset = lambda k: HFu - model.g(k * dt)
-    make_stepper = lambda: StructureStepper(model, rule, dt, load_inc, offset, init.udot)
+    make_stepper = lambda: StructureStepper(model, rule, dt, load_inc, offset, init.udot, condensed=False)
     timer.lap("initial")
 
     psiL = None
@@ -137,17 +148,20 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
                                      callback=callback)
         timer.lap("steps")
     else:
-        _, _, _, psiL, _ = march_direct(make_stepper(), N, v_b, init.psi, None, dt=dt,
-                                        bilateral=True)
+        _, _, _, psiL, _ = sweep_direct(make_stepper(), N, v_b, init.psi)
         timer.lap("bilateral")
-        weight_options, march = _split_cq_options(cq_options)
-        W = cq_weights(MatrixKernel(model), N, dt, rule, **weight_options)
-        timer.lap("weights")
-        v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback, march, stats)
+        if method == "cq":
+            weight_options, march = _split_cq_options(options)
+            W = cq_weights(MatrixKernel(model), N, dt, rule, **weight_options)
+            timer.lap("weights")
+            v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback, march, stats)
+        else:
+            v, psi, log = _march_modal(model, N, dt, rule, psiL, v_b, solver, bilateral, callback,
+                                       options, stats, timer)
         timer.lap("steps")
         K = v.shape[0] - 1
         dv = v - v_b
-        du, dud, _, _, _ = march_direct(make_stepper(), K, v_b, init.psi, None, dt=dt, dv=dv)
+        du, dud, _, _, _ = sweep_direct(make_stepper(), K, v_b, init.psi, dv)
         timer.lap("recover")
     K = v.shape[0] - 1
     return _finish(model, t[: K + 1], v, psi, None if psiL is None else psiL[: K + 1],
@@ -237,6 +251,31 @@ def _split_cq_options(cq_options):
     return options, march
 
 
+def _march_modal(model, N, dt, rule, psi_affine, v_b, solver, bilateral, callback, options, stats,
+                 timer):
+    options = dict(options)
+    modes = options.pop("modes", None)
+    engine = V.choice("modal_options['engine']", options.pop("engine", "auto"), ENGINES)
+    if options:
+        raise ValueError(f"modal_options has unknown keys {sorted(options)}; valid keys: 'modes', 'engine'")
+    kernel = PoleResidueKernel.from_model(model, modes=modes)
+    stats["modal"] = {key: value for key, value in kernel.info.items()
+                      if isinstance(value, (int, float, str))}
+    W0 = kernel.W0(dt, rule)
+    history = kernel.history(N, dt, rule)
+    timer.lap("poles")
+    compiled_ok = isinstance(solver, BlockPrincipalPivoting) and not bilateral
+    if engine == "compiled" and not compiled_ok:
+        raise ValueError("modal_options['engine']='compiled' needs lcp='bpp'")
+    stats["history"] = history.name
+    if engine == "compiled" or (engine == "auto" and compiled_ok and callback is None):
+        stats["engine"] = "compiled"
+        return march_cq_compiled("recursive", (W0, *history.arrays(), psi_affine), v_b, dt=dt,
+                                 tol=solver.tol, max_iter=solver.max_iter or 10 * model.m + 10)
+    stats["engine"] = "python"
+    return march_cq(W0, history, psi_affine, v_b, solver, dt=dt, bilateral=bilateral, callback=callback)
+
+
 def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, march, stats):
     W = W.copy()
     W[0] = 0.5 * (W[0] + W[0].T)
@@ -250,7 +289,7 @@ def _march_weights(W, psi_affine, v_b, solver, dt, bilateral, callback, march, s
     stats["history"] = history
     if engine == "compiled" or (engine == "auto" and compiled_ok and callback is None):
         stats["engine"] = "compiled"
-        return march_cq_compiled(W, psi_affine, v_b, dt=dt, tol=solver.tol,
+        return march_cq_compiled("naive", (W, psi_affine), v_b, dt=dt, tol=solver.tol,
                                  max_iter=solver.max_iter or 10 * W.shape[1] + 10)
     stats["engine"] = "python"
     return march_cq(W[0], HISTORIES[history](W), psi_affine, v_b, solver, dt=dt, bilateral=bilateral,

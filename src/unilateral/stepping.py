@@ -114,6 +114,14 @@ class StructureStepper:
         self._pending = (k, f, h1, h2)
         return rhs, psi
 
+    def step_with(self, dv):
+        """Next step with a prescribed increment ``dv`` (m,): return ``(du, psi)`` (no LCP)."""
+        rhs, c = self.free_terms()
+        if dv.any():
+            rhs = rhs + (1.0 - self.alpha) * (self.Fp @ dv)
+        du = self.lu.solve(rhs)
+        return du, c + transpose_times(self.Fp, du) - self.Hs @ dv
+
     def correct(self, dv, du=None):
         """Complete the step with the unilateral increment ``dv`` (m,); return ``(du, du')``.
 
