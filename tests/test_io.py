@@ -18,7 +18,7 @@ ARRAYS = ("t", "v", "psi", "psiL", "u", "udot")
 @pytest.fixture(scope="module")
 def runs():
     """The seed's example with (unilateral) and without (bilateral) uplift."""
-    kw = dict(dt=2e-3, t_end=0.6)
+    kw = dict(dt=2e-3, t_end=0.6, method="cq")
     return {"unilateral": ul.solve(rocking_model(), rocking_load(), **kw),
             "bilateral": ul.solve(rocking_model(), rocking_load(), bilateral=True, **kw)}
 
@@ -143,7 +143,7 @@ def test_cases_share_one_dataset(tmp_path, runs):
 
 
 def test_cases_need_a_common_time_axis(runs):
-    short = ul.solve(rocking_model(), rocking_load(), dt=2e-3, t_end=0.3)
+    short = ul.solve(rocking_model(), rocking_load(), dt=2e-3, t_end=0.3, method="cq")
     with pytest.raises(ValueError, match="common time axis"):
         uio.to_dataset({"long": runs["unilateral"], "short": short})
 

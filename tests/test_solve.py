@@ -146,8 +146,8 @@ def test_convergence_order(rule):
 def test_kernel_model_equals_matrix_model():
     """A user's Lambda(s) and psiL give the same CLCP solution as the matrices."""
     model = rocking_model()
-    full = ul.solve(model, rocking_pulses, dt=DT, t_end=0.6)
-    bil = ul.solve(model, rocking_pulses, dt=DT, t_end=0.6, bilateral=True)
+    full = ul.solve(model, rocking_pulses, dt=DT, t_end=0.6, method="cq")
+    bil = ul.solve(model, rocking_pulses, dt=DT, t_end=0.6, bilateral=True, method="cq")
     kern = ul.MatrixKernel(model)
     km = ul.KernelModel(lambda s: kern(s), bil.psiL, vectorized=True)
     got = ul.solve(km, dt=DT, t_end=0.6)
@@ -232,8 +232,8 @@ def test_compiled_march_equals_python_march(kelvin):
     np.testing.assert_allclose(runs["compiled"].v, runs["python"].v, rtol=0, atol=1e-14)
     assert rel(runs["compiled"].psi, runs["python"].psi) <= 1e-12
     assert runs["compiled"].stats["contact_changes"] == runs["python"].stats["contact_changes"]
-    # the default picks the compiled loop for the default LCP solver and a short run
-    assert ul.solve(model, load, dt=DT, t_end=0.1).stats["engine"] == "compiled"
+    # cq picks the compiled loop for the default LCP solver and a short run
+    assert ul.solve(model, load, dt=DT, t_end=0.1, method="cq").stats["engine"] == "compiled"
     with pytest.raises(ValueError, match="engine'\\]='compiled' needs history='naive' and lcp='bpp'"):
         ul.solve(model, load, dt=DT, t_end=0.1, lcp="lemke", cq_options={"engine": "compiled"})
 
@@ -261,3 +261,12 @@ def test_modal_compiled_equals_python():
     assert rel(runs["compiled"].psi, runs["python"].psi) <= 1e-12
     with pytest.raises(ValueError, match=r"modal_options has unknown keys \['order'\]"):
         ul.solve(model, rocking_load(), dt=DT, t_end=0.01, method="modal", modal_options={"order": 1})
+
+
+def test_auto_method_is_reported_with_its_reason():
+    auto = ul.solve(rocking_model(), rocking_load(), dt=DT, t_end=0.2)
+    assert auto.stats["method"] == "direct" and "fastest" in auto.stats["method_reason"]
+    direct = ul.solve(rocking_model(), rocking_load(), dt=DT, t_end=0.2, method="direct")
+    np.testing.assert_array_equal(auto.v, direct.v)
+    km = ul.KernelModel(ul.MatrixKernel(rocking_model()), np.zeros((101, 3)) - 1.0)
+    assert ul.solve(km, dt=DT, t_end=0.2).stats["method"] == "cq"

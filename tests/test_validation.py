@@ -10,7 +10,7 @@ ONE = dict(M=[[1.0]], K=[[100.0]], F=[[100.0]], H=[[100.0]])
 
 
 def run(model=None, load=None, **kw):
-    args = dict(dt=0.01, t_end=0.1)
+    args = dict(dt=0.01, t_end=0.1, method="cq")
     args.update(kw)
     return ul.solve(model or rocking_model(), rocking_load() if load is None else load, **args)
 
@@ -48,7 +48,7 @@ def test_natural_form_errors():
     (dict(t_end=0.001), r"t_end=0.001 must be >= dt=0.01"),
     (dict(rule="rk4"), r"rule='rk4' is not valid; valid names: 'bdf1', 'bdf2', 'trapezoidal'"),
     (dict(rule="hht"), r"rule='hht' has no convolution-quadrature form.*method='direct'"),
-    (dict(method="explicit"), r"method='explicit' is not valid; valid names: 'cq', 'direct'"),
+    (dict(method="explicit"), r"method='explicit' is not valid; valid names: 'auto', 'cq', 'direct', 'modal'"),
     (dict(lcp="simplex"), r"lcp='simplex' is not a known LCP solver; valid names: .*'bpp'.*'lemke'"),
     (dict(initial="moving"), r"initial='moving' is not valid; valid names: 'rest', 'static'"),
     (dict(initial={"x0": 1}), r"initial has unknown keys \['x0'\]"),

@@ -30,7 +30,9 @@ def main():
 def _analysis_options(function):
     options = [
         click.option("--method", type=click.Choice(METHODS), default=None,
-                     help="cq: the paper's convolutional LCP (default); direct: full-model time stepping."),
+                     help="auto: the fastest correct method; cq: the paper's convolutional LCP; "
+                          "modal: the same with a recursive history; direct: full-model time stepping. "
+                          "Default: cq for examples, the model file's [analysis] method for run."),
         click.option("--rule", type=click.Choice(sorted(RULES)), default=None,
                      help="Time discretisation (default bdf2; newmark and hht need --method direct)."),
         click.option("--dt", type=float, default=None, help="Time step [time unit of the model]."),

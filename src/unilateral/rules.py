@@ -126,10 +126,11 @@ class BDF(Rule):
 
     def history(self, state, dt):
         ys, yds = state
-        a = self._a
-        h1 = sum(a[k] * ys[k - 1] for k in range(1, len(a))) / dt
-        h2 = a[0] / dt * h1 + sum(a[k] * yds[k - 1] for k in range(1, len(a))) / dt
-        return h1, h2
+        if self.order == 1:
+            h1 = ys[0] / dt
+            return h1, (h1 + yds[0]) / dt
+        h1 = (2.0 * ys[0] - 0.5 * ys[1]) / dt
+        return h1, (1.5 * h1 + 2.0 * yds[0] - 0.5 * yds[1]) / dt
 
     def advance(self, state, y, yd, ydd):
         ys, yds = state

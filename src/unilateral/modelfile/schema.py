@@ -381,7 +381,7 @@ class Analysis(Table):
     EXAMPLE: ClassVar[str] = "[analysis] dt = 0.001, t_end = 1.0"
     dt: Positive = Field(description="Time step [time].")
     t_end: Positive = Field(description="End time [time].")
-    method: Literal[METHODS] = Field("cq", title="method")
+    method: Literal[METHODS] = Field("auto", title="method")
     rule: Literal[tuple(RULES)] = Field("bdf2", title="rule")
     lcp: Literal[tuple(sorted(LCP_SOLVERS))] = Field("bpp", title="LCP solver")
     initial: Literal["static", "rest"] = Field("static", title="initial state")
