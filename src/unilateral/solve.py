@@ -23,6 +23,7 @@ from .model import Model
 from .result import Solution
 from .rules import get_rule
 from .stepping import StructureStepper
+from .time_kernel import TimeKernelModel, solve_time_kernel
 
 METHODS = ("auto", "cq", "modal", "direct")
 HISTORIES = {"naive": NaiveHistory, "fft": FFTBlockedHistory}
@@ -41,7 +42,9 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
 
     Parameters
     ----------
-    model : Model or KernelModel
+    model : Model, KernelModel or TimeKernelModel
+        A :class:`~unilateral.time_kernel.TimeKernelModel` (time-domain kernel, e.g. by
+        numerical Laplace inversion) is solved by :func:`~unilateral.time_kernel.solve_time_kernel`.
     load : callable ``q(t) -> (n,)`` or array (N+1, n), optional
         Total applied load (gravity included) at ``t_k = k dt``; ``N = round(t_end / dt)``.
         Not used by a :class:`KernelModel` (its ``psiL`` carries the loading).
@@ -99,8 +102,18 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         raise ValueError(f"t_end={t_end!r} must be >= dt={dt!r}")
     N = int(round(t_end / dt))
     method = V.choice("method", method, METHODS)
+    if isinstance(model, TimeKernelModel):
+        if method != "auto" or load is not None or cq_options or modal_options or rule != "bdf2":
+            raise ValueError(
+                "a TimeKernelModel is solved by product integration of its time-domain kernel: "
+                "pass only dt, t_end, initial, lcp, lcp_options, bilateral (method='auto', load=None)"
+            )
+        return solve_time_kernel(model, dt=dt, t_end=t_end, initial=initial, lcp=lcp,
+                                 lcp_options=lcp_options, bilateral=bilateral, callback=callback)
     if not isinstance(model, (Model, KernelModel)):
-        raise TypeError(f"model must be a unilateral.Model or KernelModel, got {V.describe(model)}")
+        raise TypeError(
+            f"model must be a unilateral.Model, KernelModel or TimeKernelModel, got {V.describe(model)}"
+        )
     requested = method
     if method == "auto":
         method, reason = _choose_method(model, cq_options, modal_options)
