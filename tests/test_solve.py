@@ -270,3 +270,14 @@ def test_auto_method_is_reported_with_its_reason():
     np.testing.assert_array_equal(auto.v, direct.v)
     km = ul.KernelModel(ul.MatrixKernel(rocking_model()), np.zeros((101, 3)) - 1.0)
     assert ul.solve(km, dt=DT, t_end=0.2).stats["method"] == "cq"
+
+
+def test_bpp_feasibility_is_measured_in_the_units_of_v():
+    """Regression: W0 entries of 1e10 (stiff column, Kelvin dashpots at a fine step) once let a
+    slightly negative v pass as feasible; clipping it then left an LCP error of 2e-5."""
+    from unilateral.structure.examples import liolios1990
+
+    st, load, _ = liolios1990()
+    sol = ul.solve(st.to_model(), load, dt=0.5 / 8000, t_end=0.15, method="direct")
+    assert sol.success, sol.message
+    assert sol.stats["max_lcp_error"] < 1e-12

@@ -61,9 +61,13 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x):
     """
     m = q.shape[0]
     scale = 1.0
+    w_max = 1e-300
     for i in range(m):
         scale = max(scale, abs(q[i]))
-    eps = 1e-13 * scale
+        for j in range(m):
+            w_max = max(w_max, abs(W[i, j]))
+    eps = 1e-13 * scale             # in the units of w
+    eps_v = eps / w_max             # the same in the units of v
     best = m + 1
     tries = _BLOCK_TRIES
     for it in range(1, max_iter + 1):
@@ -87,7 +91,7 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x):
         count = 0
         last = -1
         for i in range(m):
-            if (active[i] and v[i] < -eps) or (not active[i] and w[i] < -eps):
+            if (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps):
                 count += 1
                 last = i
         if count == 0:
@@ -106,7 +110,7 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x):
             active[last] = not active[last]
             continue
         for i in range(m):
-            if (active[i] and v[i] < -eps) or (not active[i] and w[i] < -eps):
+            if (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps):
                 active[i] = not active[i]
     return -max_iter
 

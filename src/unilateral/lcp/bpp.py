@@ -32,8 +32,9 @@ class BlockPrincipalPivoting(LCPSolver):
     Parameters
     ----------
     tol : float, default 1e-10
-        Success threshold on the LCP error; components above
-        ``-tol (1 + ||q||) / (2 sqrt(m))`` count as feasible.
+        Success threshold on the LCP error; components of ``w`` above
+        ``-tol (1 + ||q||) / (2 sqrt(m))`` count as feasible, and of ``v`` above that divided
+        by the largest ``|W_ij|`` (the same threshold in the units of ``v``).
     max_iter : int, optional
         Limit on linear solves; default ``100 + 20 m``.
     max_nonimproving : int, default 3
@@ -55,14 +56,17 @@ class BlockPrincipalPivoting(LCPSolver):
     def _solve(self, W, q, active):
         m = q.size
         F = np.zeros(m, dtype=bool) if active is None else active.copy()
-        feasibility = -0.5 * self.tol * (1.0 + math.sqrt(q @ q)) / math.sqrt(m)
+        # Thresholds in the units of w and of v: clipping a v component within its threshold
+        # changes w by at most |W|_max times it, i.e. by at most the w threshold.
+        w_feasibility = -0.5 * self.tol * (1.0 + math.sqrt(q @ q)) / math.sqrt(m)
+        v_feasibility = w_feasibility / max(float(np.max(np.abs(W))), np.finfo(float).tiny)
         best, budget = m + 1, self.max_nonimproving
         systems = PrincipalSystems(W, q)
         max_iter = self.iteration_limit(m)
         for solves in range(1, max_iter + 1):
             v = systems.solve(F)
             w = W @ v + q
-            infeasible = np.where(F, v, w) < feasibility
+            infeasible = np.where(F, v < v_feasibility, w < w_feasibility)
             count = int(np.count_nonzero(infeasible))
             if count == 0:
                 return SolverOutcome(v, F, solves, True,

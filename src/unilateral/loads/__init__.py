@@ -4,6 +4,7 @@
   plain-text records (accelerations in m/s^2).
 - :mod:`~unilateral.loads.pulses`: load time functions ``f(t)`` (rectangular, triangular and
   half-sine pulses, constant, ramp, tabulated).
+- :mod:`~unilateral.loads.synthetic`: synthetic accelerograms (Kanai-Tajimi filtered noise).
 - :mod:`~unilateral.loads.units`: factors converting acceleration, length and force units to SI.
 """
 
@@ -17,6 +18,7 @@ from unilateral.loads.records import (
     read_table,
     read_text_record,
 )
+from unilateral.loads.synthetic import synthetic_accelerogram
 from unilateral.loads.units import STANDARD_GRAVITY, acceleration_factor, force_factor, length_factor
 
 __all__ = [
@@ -38,4 +40,5 @@ __all__ = [
     "read_record",
     "read_table",
     "read_text_record",
+    "synthetic_accelerogram",
 ]

@@ -1,0 +1,15 @@
+"""Benchmark suite: every method of :func:`unilateral.solve` on problems small to large.
+
+``python -m unilateral.bench [--quick]`` runs the problems of :mod:`~unilateral.bench.problems`
+with ``method="cq"`` (naive and FFT-blocked history), ``"modal"`` (where :func:`unilateral.solve`
+offers it) and ``"direct"``, each in its own subprocess (:mod:`~unilateral.bench.suite`), prints
+a table of time per step, peak memory and error against a converged reference, writes the
+results as JSON and draws the scaling figure (:mod:`~unilateral.bench.report`).
+"""
+
+from .problems import PROBLEMS, Problem, build
+from .report import format_table, save_scaling_figure, scaling_figure
+from .suite import METHODS, Limits, ScalingConfig, run_one, run_scaling, run_suite
+
+__all__ = ["METHODS", "PROBLEMS", "Limits", "Problem", "ScalingConfig", "build", "format_table",
+           "run_one", "run_scaling", "run_suite", "save_scaling_figure", "scaling_figure"]
