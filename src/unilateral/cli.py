@@ -120,6 +120,20 @@ def plot(results, out):
         click.echo(path)
 
 
+@main.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True,
+                                "help_option_names": []})
+@click.pass_context
+def bench(ctx):
+    """Run the benchmark suite (options: see `unilateral bench --help`; `--quick` for CI).
+
+    Times every method on the paper's example, a tower under an earthquake record and beams on a
+    tensionless Winkler foundation; prints a table and writes JSON and a scaling figure.
+    """
+    from .bench.__main__ import main as bench_main
+
+    sys.exit(bench_main(ctx.args))
+
+
 # ---------------------------------------------------------------------- helpers
 def _settings(defaults: dict, **given) -> dict:
     out = {key: defaults.get(key) for key in ("dt", "t_end", "method", "rule", "lcp", "initial")}
