@@ -118,8 +118,8 @@ def march_direct(stepper, N, v_b, psi0, solver, *, dt, bilateral=False, callback
     -------
     du, dudot : (K+1, n) ; v, psi : (K+1, m) ; log : StepLog
     """
-    if bilateral:
-        return sweep_direct(stepper, N, v_b, psi0, callback=callback)
+    if bilateral:                           # the same (Python) operations as the LCP march
+        return sweep_direct(stepper, N, v_b, psi0, callback=callback, compiled=False)
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
     W0 = stepper.W0
     base = W0 @ v_b
@@ -137,14 +137,26 @@ def march_direct(stepper, N, v_b, psi0, solver, *, dt, bilateral=False, callback
     return du, dud, v, psi, log
 
 
-def sweep_direct(stepper, N, v_b, psi0, dv=None, *, callback=None):
+def sweep_direct(stepper, N, v_b, psi0, dv=None, *, callback=None, compiled=True):
     """A linear sweep of the full model with prescribed increments ``dv`` (zero by default).
 
     With ``dv = 0`` it gives the bilateral response ``psiL``; with the increments of a CLCP
-    solution it recovers the displacements. Same returns as :func:`march_direct`.
+    solution it recovers the displacements. Small dense models are swept by compiled code
+    (:func:`unilateral.compiled.sweep`, the same operations) unless ``compiled`` is False or a
+    ``callback`` is given. Same returns as :func:`march_direct`.
     """
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
-    zero = np.zeros(stepper.model.m)
+    m = stepper.model.m
+    arrays = stepper.sweep_arrays(N) if compiled and callback is None else None
+    if arrays is not None:                  # compiled: the same operations, in machine code
+        from .compiled import sweep
+
+        increments = np.zeros((N + 1, m)) if dv is None else np.ascontiguousarray(dv[: N + 1], dtype=float)
+        du, dud, psi_all = sweep(*arrays[:-3], arrays[-3], arrays[-2], increments, arrays[-1])
+        psi[1:] = psi_all[1:]
+        v[1:] = v_b + increments[1:]
+        return du, dud, v, psi, log
+    zero = np.zeros(m)
     for k in range(1, N + 1):
         dvk = zero if dv is None else dv[k]
         du[k], psi[k] = stepper.step_with(dvk)

@@ -254,3 +254,113 @@ def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
             state[0, k] = free[k] + gain[k] * u
             state[1, k] = u
     return v, psi, stats, 0
+
+
+@njit(cache=True)
+def _lu_solve(lu, piv, b, x):
+    """Solve with LAPACK-style LU factors (``scipy.linalg.lu_factor``) into ``x``."""
+    n = b.shape[0]
+    for i in range(n):
+        x[i] = b[i]
+    for i in range(n):                      # row interchanges
+        p = piv[i]
+        if p != i:
+            t = x[i]
+            x[i] = x[p]
+            x[p] = t
+    for i in range(n):                      # unit lower triangle
+        t = x[i]
+        for j in range(i):
+            t -= lu[i, j] * x[j]
+        x[i] = t
+    for i in range(n - 1, -1, -1):          # upper triangle
+        t = x[i]
+        for j in range(i + 1, n):
+            t -= lu[i, j] * x[j]
+        x[i] = t / lu[i, i]
+
+
+@njit(cache=True)
+def _history(kind, dt, y0, y1, yd0, yd1, ydd0, h1, h2):
+    """``h1, h2`` of the rule (0: BDF1, 1: BDF2, 2: trapezoidal) from its state, in place."""
+    for i in range(y0.shape[0]):
+        if kind == 0:
+            h1[i] = y0[i] / dt
+            h2[i] = (h1[i] + yd0[i]) / dt
+        elif kind == 1:
+            h1[i] = (2.0 * y0[i] - 0.5 * y1[i]) / dt
+            h2[i] = (1.5 * h1[i] + 2.0 * yd0[i] - 0.5 * yd1[i]) / dt
+        else:
+            h1[i] = 2.0 / dt * y0[i] + yd0[i]
+            h2[i] = 4.0 / (dt * dt) * y0[i] + 4.0 / dt * yd0[i] + ydd0[i]
+
+
+@njit(cache=True)
+def _advance(y0, y1, yd0, yd1, ydd0, y, yd, ydd):
+    """Shift the state by one step: (y0, yd0, ydd0) <- new, (y1, yd1) <- old (y0, yd0)."""
+    for i in range(y0.shape[0]):
+        y1[i] = y0[i]
+        yd1[i] = yd0[i]
+        y0[i] = y[i]
+        yd0[i] = yd[i]
+        ydd0[i] = ydd[i]
+
+
+@njit(cache=True)
+def sweep(kind, dt, c1, c0, lu, piv, M, C, Fp, F_v, Hs, H_v, viscous, f, offset, dv, start):
+    """A linear sweep of a small dense model (see :func:`clcp.sweep_direct`), compiled.
+
+    The rules with a convolution-quadrature form only (``alpha = 0``): ``kind`` 0 BDF1, 1 BDF2,
+    2 trapezoidal (Newmark 1/2, 1/4). It performs exactly the operations of
+    :class:`~unilateral.stepping.StructureStepper` (``free_terms``, ``step_with``, ``correct``).
+
+    Parameters
+    ----------
+    lu, piv : LU factors of ``D_eff``;  M, C : (n, n);  Fp, F_v : (n, m);  Hs, H_v : (m, m)
+    viscous : bool, Kelvin terms present;  f : (N+1, n) load increments;  offset : (N+1, m)
+    dv : (N+1, m) prescribed increments;  start : (5, n) the u-state ``y0, y1, yd0, yd1, ydd0``
+
+    Returns
+    -------
+    du, dud : (N+1, n);  psi : (N+1, m) (row 0 left to the caller)
+    """
+    N1, n = f.shape
+    m = offset.shape[1]
+    du, dud, psi = np.zeros((N1, n)), np.zeros((N1, n)), np.zeros((N1, m))
+    y0, y1, yd0, yd1, ydd0 = start[0].copy(), start[1].copy(), start[2].copy(), start[3].copy(), start[4].copy()
+    v0, v1, vd0, vd1, vdd0 = np.zeros(m), np.zeros(m), np.zeros(m), np.zeros(m), np.zeros(m)
+    h1, h2, k1, k2 = np.empty(n), np.empty(n), np.zeros(m), np.zeros(m)
+    rhs, x, ud, a = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    vd, vdd = np.empty(m), np.empty(m)
+    dud[0] = yd0
+    for k in range(1, N1):
+        _history(kind, dt, y0, y1, yd0, yd1, ydd0, h1, h2)
+        if viscous:
+            _history(kind, dt, v0, v1, vd0, vd1, vdd0, k1, k2)
+        for i in range(n):
+            t = f[k, i]
+            for j in range(n):
+                t += M[i, j] * h2[j] + C[i, j] * h1[j]
+            for b in range(m):
+                t += Fp[i, b] * dv[k, b] - F_v[i, b] * k1[b]
+            rhs[i] = t
+        _lu_solve(lu, piv, rhs, x)
+        for b in range(m):
+            t = offset[k, b]
+            for i in range(n):
+                t += Fp[i, b] * x[i] - F_v[i, b] * h1[i]
+            for c in range(m):
+                t += H_v[b, c] * k1[c] - Hs[b, c] * dv[k, c]
+            psi[k, b] = t
+        for i in range(n):
+            ud[i] = c1 * x[i] - h1[i]
+            a[i] = c0 * x[i] - h2[i]
+            du[k, i] = x[i]
+            dud[k, i] = ud[i]
+        _advance(y0, y1, yd0, yd1, ydd0, x, ud, a)
+        if viscous:
+            for b in range(m):
+                vd[b] = c1 * dv[k, b] - k1[b]
+                vdd[b] = c0 * dv[k, b] - k2[b]
+            _advance(v0, v1, vd0, vd1, vdd0, dv[k], vd, vdd)
+    return du, dud, psi

@@ -48,6 +48,11 @@ class Factorization:
                 f"{what} is singular or nearly so (pivot ratio {diag.min() / diag.max():.2e})"
             )
 
+    @property
+    def dense_factors(self):
+        """``(lu, piv)`` of a dense factorisation (LAPACK convention), or None if sparse."""
+        return None if self.sparse else self._lu
+
     def solve(self, b: np.ndarray) -> np.ndarray:
         """Solve ``A x = b`` for ``b`` of shape (n,) or (n, k)."""
         if self.sparse:

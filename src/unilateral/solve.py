@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import time
 from functools import partial
 
@@ -21,8 +22,8 @@ from .linalg import transpose_times
 from .modal import PoleResidueKernel
 from .model import Model
 from .result import Solution
-from .rules import get_rule
-from .stepping import StructureStepper
+from .rules import CQ_RULES, get_rule
+from .stepping import DENSE_STEPPING_MAX_N, StructureStepper
 from .time_kernel import TimeKernelModel, solve_time_kernel
 
 METHODS = ("auto", "cq", "modal", "direct")
@@ -55,10 +56,10 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
     method : {"auto", "cq", "modal", "direct"}
         ``"auto"`` (default): the fastest correct method for the model at hand, reported in
         ``stats["method"]`` with the reason in ``stats["method_reason"]``: ``"cq"`` for a
-        :class:`KernelModel` (the only route without matrices), ``"direct"`` for matrix models
-        (measured fastest end to end: one linear sweep per step against two for "cq" and
-        "modal", whose own march is faster but needs the bilateral response and the recovery
-        of ``u``). ``"cq"``: the convolutional LCP of Liolios (1990), eq. (27), with convolution-quadrature
+        :class:`KernelModel` (the only route without matrices); ``"modal"`` for small models
+        (n, m <= 64) with a CQ rule and the default LCP solver, everything compiled; ``"direct"``
+        otherwise (large sparse models: full-space active-set LCP), and as the fallback if the
+        pole decomposition of a model is refused (e.g. a defective pole). ``"cq"``: the convolutional LCP of Liolios (1990), eq. (27), with convolution-quadrature
         weights of ``Lambda(s)`` and one LCP per step. ``"modal"``: the same CLCP with the
         history evaluated recursively from the poles and residues of ``Lambda(s)`` (the paper's
         "recursive evaluation of convolution integrals"), O(r m) per step. ``"direct"``: the full
@@ -116,7 +117,7 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         )
     requested = method
     if method == "auto":
-        method, reason = _choose_method(model, cq_options, modal_options)
+        method, reason = _choose_method(model, rule, lcp, cq_options, modal_options)
     if isinstance(model, KernelModel) and method != "cq":
         raise ValueError(f"method={method!r} needs matrices; a KernelModel is solved with method='cq'")
     rule = get_rule(rule, cq=method != "direct")
@@ -140,16 +141,21 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
                          options, callback, stats, timer)
 
 
-def _choose_method(model, cq_options, modal_options):
-    """The method of ``method="auto"`` and why."""
+def _choose_method(model, rule, lcp, cq_options, modal_options):
+    """The method of ``method="auto"`` and why (measured in the benchmark suite)."""
     if isinstance(model, KernelModel):
         return "cq", "a KernelModel is solved by convolution quadrature of its Lambda(s)"
     if cq_options is not None:
         return "cq", "cq_options were given"
     if modal_options is not None:
         return "modal", "modal_options were given"
+    small = model.n <= DENSE_STEPPING_MAX_N and model.m <= FULL_SPACE_MIN_M
+    cq_rule = isinstance(rule, str) and rule.lower() in CQ_RULES
+    if small and cq_rule and lcp == "bpp" and model.m:
+        return "modal", ("small model: the compiled CLCP march with the exact recursive history "
+                         "and compiled linear sweeps is the fastest end to end")
     space = "full-space active-set LCP" if model.sparse and model.m > FULL_SPACE_MIN_M else "condensed LCP"
-    return "direct", f"matrix model: direct stepping ({space}) is the fastest end to end"
+    return "direct", f"direct stepping ({space}) is the fastest end to end for this model"
 
 
 # ---------------------------------------------------------------------- matrix models
@@ -166,8 +172,9 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
     K_ub = model.K @ u_b
     F_vb = model.F @ v_b
     HFu = transpose_times(model.F, u_b) - model.H @ v_b
-    load_inc = lambda k: q(k) + F_vb - K_ub
-    offset = lambda k: HFu - model.g(k * dt)
+    # cached: the bilateral sweep and the recovery of u both evaluate every step's load
+    load_inc = functools.cache(lambda k: q(k) + F_vb - K_ub)
+    offset = functools.cache(lambda k: HFu - model.g(k * dt))
     make_stepper = lambda: StructureStepper(model, rule, dt, load_inc, offset, init.udot, condensed=False)
     timer.lap("initial")
 
@@ -191,8 +198,13 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
             timer.lap("weights")
             v, psi, log = _march_weights(W, psiL, v_b, solver, dt, bilateral, callback, march, stats)
         else:
-            v, psi, log = _march_modal(model, N, dt, rule, psiL, v_b, solver, bilateral, callback,
-                                       options, stats, timer)
+            marched = _march_modal(model, N, dt, rule, psiL, v_b, solver, bilateral, callback,
+                                   options, stats, timer)
+            if marched is None:             # method="auto" fell back to direct stepping
+                stats["method"] = "direct"
+                return _solve_matrix(model, load, N, dt, "direct", rule, initial, solver, bilateral,
+                                     {}, callback, stats, timer)
+            v, psi, log = marched
         timer.lap("steps")
         K = v.shape[0] - 1
         dv = v - v_b
@@ -293,7 +305,13 @@ def _march_modal(model, N, dt, rule, psi_affine, v_b, solver, bilateral, callbac
     engine = V.choice("modal_options['engine']", options.pop("engine", "auto"), ENGINES)
     if options:
         raise ValueError(f"modal_options has unknown keys {sorted(options)}; valid keys: 'modes', 'engine'")
-    kernel = PoleResidueKernel.from_model(model, modes=modes)
+    try:
+        kernel = PoleResidueKernel.from_model(model, modes=modes)
+    except ValueError as exc:
+        if stats.get("method_reason") is None:
+            raise
+        stats["method_reason"] += f"; modal refused ({exc}), direct used instead"
+        return None
     stats["modal"] = {key: value for key, value in kernel.info.items()
                       if isinstance(value, (int, float, str))}
     W0 = kernel.W0(dt, rule)

@@ -114,6 +114,37 @@ class StructureStepper:
         self._pending = (k, f, h1, h2)
         return rhs, psi
 
+    def sweep_arrays(self, N):
+        """Arguments of :func:`unilateral.compiled.sweep` for N steps, or None if it does not apply.
+
+        It applies to small dense models stepped by a rule with a convolution-quadrature form
+        (BDF1, BDF2, trapezoidal) from a fresh stepper. The loads and offsets of all steps are
+        evaluated here, in Python.
+        """
+        kinds = {"bdf1": 0, "bdf2": 1, "trapezoidal": 2}
+        lu_piv = self.lu.dense_factors
+        if self.rule.name not in kinds or self.alpha or lu_piv is None or self.k != 0:
+            return None
+        n, m = self.model.n, self.model.m
+        zeros_nm, zeros_mm = np.zeros((n, m)), np.zeros((m, m))
+        c1, c0 = self.rule.coefficients(self.dt)
+        state = self.state
+        if self.rule.name == "trapezoidal":
+            y0, yd0, ydd0 = state
+            y1, yd1 = np.zeros(n), np.zeros(n)
+        else:
+            (y0, *ys), (yd0, *yds) = state
+            y1, yd1 = (ys[0], yds[0]) if ys else (np.zeros(n), np.zeros(n))
+            ydd0 = np.zeros(n)
+        start = np.array([y0, y1, yd0, yd1, ydd0], dtype=float)
+        f = np.array([self.load(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
+        offset = np.array([self.offset(k) for k in range(N + 1)], dtype=float).reshape(N + 1, m)
+        dense_or = lambda A, zero: zero if A is None else np.ascontiguousarray(dense(A), dtype=float)
+        return (kinds[self.rule.name], self.dt, c1, c0, *lu_piv, dense_or(self.M, None),
+                dense_or(self.C, None), dense_or(self.Fp, None), dense_or(self.F_v, zeros_nm),
+                np.ascontiguousarray(self.Hs, dtype=float), dense_or(self.model.H_v, zeros_mm),
+                self.vstate is not None, f, offset, start)
+
     def step_with(self, dv):
         """Next step with a prescribed increment ``dv`` (m,): return ``(du, psi)`` (no LCP)."""
         rhs, c = self.free_terms()
