@@ -128,6 +128,24 @@ def lcp_error(v, w, q):
 
 
 @njit(cache=True)
+def _outputs(W0, psi_affine, v_b):
+    """Histories of a march initialised at step 0, its statistics, the contact set, ``W0 v_b``."""
+    N1, m = psi_affine.shape
+    v, psi, dv = np.zeros((N1, m)), np.zeros((N1, m)), np.zeros((N1, m))
+    v[0] = v_b
+    psi[0] = psi_affine[0]
+    active = v_b > 0.0
+    return v, psi, dv, np.zeros(4), active, active.copy(), W0 @ v_b
+
+
+@njit(cache=True)
+def _workspace(m):
+    """Per-step arrays: q, v, w and the pivoting solver's workspace."""
+    return (np.empty(m), np.empty(m), np.empty(m), np.empty(m, dtype=np.int64), np.empty((m, m)),
+            np.empty(m), np.empty(m))
+
+
+@njit(cache=True)
 def _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
     """Store the LCP result of step n and update the statistics; False if the step failed."""
     if it < 0 or err > tol:
@@ -164,16 +182,9 @@ def march_naive(W, psi_affine, v_b, max_iter, tol):
     failed_step : int, 0 if every step succeeded, else the step whose LCP failed
     """
     N1, m = psi_affine.shape
-    v, psi, dv = np.zeros((N1, m)), np.zeros((N1, m)), np.zeros((N1, m))
-    v[0] = v_b
-    psi[0] = psi_affine[0]
     W0 = W[0]
-    base = W0 @ v_b
-    active = v_b > 0.0
-    previous = active.copy()
-    q, vn, wn = np.empty(m), np.empty(m), np.empty(m)
-    idx, S, rhs, x = np.empty(m, dtype=np.int64), np.empty((m, m)), np.empty(m), np.empty(m)
-    stats = np.zeros(4)
+    v, psi, dv, stats, active, previous, base = _outputs(W0, psi_affine, v_b)
+    q, vn, wn, idx, S, rhs, x = _workspace(m)
     first = -1                              # first step with a nonzero increment
     for n in range(1, N1):
         for a in range(m):
@@ -219,15 +230,8 @@ def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
     """
     N1, m = psi_affine.shape
     rows, c = coef.shape
-    v, psi, dv = np.zeros((N1, m)), np.zeros((N1, m)), np.zeros((N1, m))
-    v[0] = v_b
-    psi[0] = psi_affine[0]
-    base = W0 @ v_b
-    active = v_b > 0.0
-    previous = active.copy()
-    q, vn, wn = np.empty(m), np.empty(m), np.empty(m)
-    idx, S, rhs, x = np.empty(m, dtype=np.int64), np.empty((m, m)), np.empty(m), np.empty(m)
-    stats = np.zeros(4)
+    v, psi, dv, stats, active, previous, base = _outputs(W0, psi_affine, v_b)
+    q, vn, wn, idx, S, rhs, x = _workspace(m)
     state = np.zeros((rows, c), dtype=np.complex128)
     free = np.empty(c, dtype=np.complex128)
     for n in range(1, N1):
