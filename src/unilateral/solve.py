@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import functools
 import time
-from functools import partial
 
 import numpy as np
 
@@ -172,9 +171,12 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
     K_ub = model.K @ u_b
     F_vb = model.F @ v_b
     HFu = transpose_times(model.F, u_b) - model.H @ v_b
-    # cached: the bilateral sweep and the recovery of u both evaluate every step's load
-    load_inc = functools.cache(lambda k: q(k) + F_vb - K_ub)
-    offset = functools.cache(lambda k: HFu - model.g(k * dt))
+    load_inc = lambda k: q(k) + F_vb - K_ub
+    offset = lambda k: HFu - model.g(k * dt)
+    if method != "direct" and model.n <= DENSE_STEPPING_MAX_N:
+        # the bilateral sweep and the recovery of u both evaluate every step's load (cheap to
+        # keep for small models, whose compiled sweeps need all of them anyway)
+        load_inc, offset = functools.cache(load_inc), functools.cache(offset)
     make_stepper = lambda: StructureStepper(model, rule, dt, load_inc, offset, init.udot, condensed=False)
     timer.lap("initial")
 
@@ -185,7 +187,7 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
         stats["lcp_space"] = "full" if full_space else "condensed"
         stepper = StructureStepper(model, rule, dt, load_inc, offset, init.udot, condensed=not full_space)
         timer.lap("factorize")
-        march = march_direct_active_set if full_space else partial(march_direct, solver=solver)
+        march = march_direct_active_set if full_space else functools.partial(march_direct, solver=solver)
         du, dud, v, psi, log = march(stepper, N, v_b, init.psi, dt=dt, bilateral=bilateral,
                                      callback=callback)
         timer.lap("steps")
