@@ -129,3 +129,30 @@ def test_tabulated_from_csv_errors():
         Tabulated.from_csv(DATA / "load_table.csv", value_column=2)
     with pytest.raises(FileNotFoundError):
         Tabulated.from_csv(DATA / "no_such_file.csv")
+
+
+# ---------------------------------------------------------------------- LoadHistory
+def test_load_history_sample_equals_calls():
+    from unilateral.loads import GroundMotion, LoadHistory
+    record = GroundMotion(0.01, np.sin(np.linspace(0.0, 3.0, 31)))
+    q = LoadHistory([1.0, -2.0, 0.5], [([0.0, 1.0, 0.0], FUNCTIONS[0]), ([1.0, 0.0, -1.0], record),
+                                       ([0.5, 0.5, 0.5], FUNCTIONS[2])])
+    t = np.linspace(-0.1, 0.5, 61)
+    sampled = q.sample(t)
+    assert sampled.shape == (61, 3)
+    np.testing.assert_allclose(sampled, np.array([q(s) for s in t]), rtol=1e-15, atol=1e-15)
+    assert q.n == 3 and np.any(sampled[:, 0] != sampled[0, 0])
+
+
+def test_load_history_errors():
+    from unilateral.loads import LoadHistory
+    with pytest.raises(ValueError, match=r"terms\[0\] vector must have shape \(2,\), got shape \(3,\)"):
+        LoadHistory([0.0, 0.0], [([1.0, 2.0, 3.0], Constant(1.0))])
+    with pytest.raises(TypeError, match=r"terms\[1\] must be a pair \(vector, f\) with f callable"):
+        LoadHistory([0.0], [([1.0], Constant(1.0)), ([1.0], 2.0)])
+    with pytest.raises(ValueError, match=r"constant contains nan"):
+        LoadHistory([np.nan])
+    scalar_only = LoadHistory([0.0], [([1.0], lambda t: 2.0)])
+    assert scalar_only(0.5) == 2.0
+    with pytest.raises(ValueError, match=r"terms\[0\]: f\(t\) of 3 times returned shape \(\).*accept arrays"):
+        scalar_only.sample(np.zeros(3))

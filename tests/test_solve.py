@@ -317,3 +317,18 @@ def test_bpp_feasibility_is_measured_in_the_units_of_v():
     sol = ul.solve(st.to_model(), load, dt=0.5 / 8000, t_end=0.15, method="direct")
     assert sol.success, sol.message
     assert sol.stats["max_lcp_error"] < 1e-12
+
+
+@pytest.mark.parametrize("method", ["cq", "modal", "direct"])
+def test_load_history_sampled_at_once_equals_a_plain_callable(method):
+    from unilateral.loads import LoadHistory, Rectangular
+    from unilateral.structure import liolios1990
+    structure, _, _ = liolios1990()
+    q = LoadHistory(structure.gravity(10.0), [(structure.nodal_load(1, ux=200.0), Rectangular(1.0, t_end=0.1))])
+    model = structure.to_model()
+    args = dict(dt=2e-3, t_end=0.4, method=method)
+    sampled, called = ul.solve(model, q, **args), ul.solve(model, lambda t: q(t), **args)
+    assert sampled.success and called.success and sampled.stats["contact_changes"] > 2
+    for name in ("u", "v", "psi"):
+        scale = np.abs(getattr(called, name)).max()
+        np.testing.assert_allclose(getattr(sampled, name), getattr(called, name), rtol=0, atol=1e-12 * scale)

@@ -80,3 +80,10 @@ def test_no_static_equilibrium_is_a_failure_with_a_message():
     sol = ul.solve(model, lambda t: np.array([+10.0]), dt=0.01, t_end=0.1)   # gravity upwards
     assert not sol.success
     assert "no static equilibrium" in sol.message and "sign of gravity" in sol.message
+
+
+def test_load_history_errors_name_the_step():
+    from unilateral.loads import LoadHistory
+    bad = LoadHistory(np.zeros(5), [(np.ones(5), lambda t: np.where(t > 0.04, np.nan, 0.0))])
+    with pytest.raises(ValueError, match=r"load\(t\) returned a non-finite value at t=0.05 \(step 5\)"):
+        run(load=bad)

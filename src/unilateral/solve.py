@@ -171,12 +171,14 @@ def _solve_matrix(model, load, N, dt, method, rule, initial, solver, bilateral, 
     K_ub = model.K @ u_b
     F_vb = model.F @ v_b
     HFu = transpose_times(model.F, u_b) - model.H @ v_b
-    load_inc = lambda k: q(k) + F_vb - K_ub
-    offset = lambda k: HFu - model.g(k * dt)
     if method != "direct" and model.n <= DENSE_STEPPING_MAX_N:
-        # the bilateral sweep and the recovery of u both evaluate every step's load (cheap to
-        # keep for small models, whose compiled sweeps need all of them anyway)
-        load_inc, offset = functools.cache(load_inc), functools.cache(offset)
+        # small models: the compiled sweeps take every step's load and offset as arrays
+        load_inc = _load_table(model, load, q, N, dt) + (F_vb - K_ub)
+        g = model.g(0.0) if model.g_is_constant else np.array([model.g(k * dt) for k in range(N + 1)])
+        offset = np.tile(HFu, (N + 1, 1)) - g
+    else:
+        load_inc = lambda k: q(k) + F_vb - K_ub
+        offset = lambda k: HFu - model.g(k * dt)
     make_stepper = lambda: StructureStepper(model, rule, dt, load_inc, offset, init.udot, condensed=False)
     timer.lap("initial")
 
@@ -248,6 +250,26 @@ def _load_function(model, load, N, dt):
             f"load has {arr.shape[0]} rows but t_end/dt = {N} steps need {N + 1} (rows at t = k dt)"
         )
     return lambda k: arr[k] + imposed(k * dt)
+
+
+def _load_table(model, load, q, N, dt):
+    """``q(k)`` of every step, (N+1, n): sampled at once for an array load or one with ``sample(t)``."""
+    n = model.n
+    vectorised = model.q_imposed_is_constant and (
+        isinstance(load, np.ndarray) or (callable(getattr(load, "sample", None)) and callable(load)))
+    if not vectorised:
+        return np.array([q(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
+    if isinstance(load, np.ndarray):
+        Q = np.array(load[: N + 1], dtype=float)
+    else:
+        Q = np.asarray(load.sample(dt * np.arange(N + 1)), dtype=float)
+        if Q.shape != (N + 1, n):
+            raise ValueError(f"load.sample(t) must return shape ({N + 1}, {n}) for {N + 1} times, "
+                             f"got shape {Q.shape}")
+        bad = np.flatnonzero(~np.all(np.isfinite(Q), axis=1))
+        if bad.size:
+            raise ValueError(f"load(t) returned a non-finite value at t={bad[0] * dt} (step {bad[0]})")
+    return Q + model.q_imposed(0.0)
 
 
 # ---------------------------------------------------------------------- kernel models

@@ -36,16 +36,20 @@ class StructureStepper:
     model : Model
     rule : Rule
     dt : float
-    load : callable
-        ``load(k) -> (n,)``: the load increment ``f_k = q(t_k) + F v_b - K u_b`` at step k.
-    offset : callable
-        ``offset(k) -> (m,)``: ``F^T u_b - H v_b - g(t_k)``, the reaction of the base state.
+    load : callable or ndarray
+        ``load(k) -> (n,)``: the load increment ``f_k = q(t_k) + F v_b - K u_b`` at step k; or
+        the array (N+1, n) of all of them.
+    offset : callable or ndarray
+        ``offset(k) -> (m,)``: ``F^T u_b - H v_b - g(t_k)``, the reaction of the base state; or
+        the array (N+1, m) of all of them.
     udot0 : (n,) initial velocity increment (the given initial velocity; zero from statics).
     """
 
     def __init__(self, model, rule, dt, load, offset, udot0=None, *, condensed=True):
         self.model, self.rule, self.dt = model, rule, dt
-        self.load, self.offset = load, offset
+        self.tables = (load, offset) if isinstance(load, np.ndarray) else None
+        as_step = lambda f: f.__getitem__ if isinstance(f, np.ndarray) else f
+        self.load, self.offset = as_step(load), as_step(offset)
         c1, c0 = rule.coefficients(dt)
         self.c1, self.alpha = c1, rule.alpha
         a = 1.0 - self.alpha
@@ -66,7 +70,7 @@ class StructureStepper:
         self.C = C
         n, m = model.n, model.m
         ud0 = np.zeros(n) if udot0 is None else udot0
-        f0 = load(0)
+        f0 = self.load(0)
         rhs = f0 - C @ ud0
         a0 = _initial_acceleration(self.M, rhs) if np.any(rhs) else np.zeros(n)
         zero_n, zero_m = np.zeros(n), np.zeros(m)
@@ -119,7 +123,7 @@ class StructureStepper:
 
         It applies to small dense models stepped by a rule with a convolution-quadrature form
         (BDF1, BDF2, trapezoidal) from a fresh stepper. The loads and offsets of all steps are
-        evaluated here, in Python.
+        taken from the arrays given, or evaluated here step by step.
         """
         kinds = {"bdf1": 0, "bdf2": 1, "trapezoidal": 2}
         lu_piv = self.lu.dense_factors
@@ -137,8 +141,11 @@ class StructureStepper:
             y1, yd1 = (ys[0], yds[0]) if ys else (np.zeros(n), np.zeros(n))
             ydd0 = np.zeros(n)
         start = np.array([y0, y1, yd0, yd1, ydd0], dtype=float)
-        f = np.array([self.load(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
-        offset = np.array([self.offset(k) for k in range(N + 1)], dtype=float).reshape(N + 1, m)
+        if self.tables is not None:
+            f, offset = (np.ascontiguousarray(table[: N + 1]) for table in self.tables)
+        else:
+            f = np.array([self.load(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
+            offset = np.array([self.offset(k) for k in range(N + 1)], dtype=float).reshape(N + 1, m)
         dense_or = lambda A, zero: zero if A is None else np.ascontiguousarray(dense(A), dtype=float)
         return (kinds[self.rule.name], self.dt, c1, c0, *lu_piv, dense_or(self.M, None),
                 dense_or(self.C, None), dense_or(self.Fp, None), dense_or(self.F_v, zeros_nm),

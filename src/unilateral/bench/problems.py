@@ -25,6 +25,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..loads import LoadHistory
 from ..loads.synthetic import synthetic_accelerogram
 from ..structure import Frame2D, liolios1990, winkler_beam
 
@@ -150,9 +151,7 @@ def tower(steps: int) -> Problem:
     weight = structure.gravity(TOWER_GRAVITY)
     record = synthetic_accelerogram(TOWER_DURATION, pga=TOWER_PGA, seed=TOWER_SEED)
 
-    def load(t):
-        return weight + record(t) * inertia
-
+    load = LoadHistory(weight, [(inertia, record)])
     top = TOWER_STOREYS
     return Problem(structure.to_model(), load, TOWER_DURATION / steps, steps,
                    lambda sol: structure.node_displacement(sol, top, "ux"),

@@ -4,10 +4,13 @@
   plain-text records (accelerations in m/s^2).
 - :mod:`~unilateral.loads.pulses`: load time functions ``f(t)`` (rectangular, triangular and
   half-sine pulses, constant, ramp, tabulated).
+- :mod:`~unilateral.loads.combination`: :class:`LoadHistory`, a load ``q(t)`` made of patterns
+  and time functions, sampled at all steps at once.
 - :mod:`~unilateral.loads.synthetic`: synthetic accelerograms (Kanai-Tajimi filtered noise).
 - :mod:`~unilateral.loads.units`: factors converting acceleration, length and force units to SI.
 """
 
+from unilateral.loads.combination import LoadHistory
 from unilateral.loads.pulses import Constant, HalfSine, Ramp, Rectangular, Tabulated, TimeFunction, Triangular
 from unilateral.loads.records import (
     GroundMotion,
@@ -26,6 +29,7 @@ __all__ = [
     "Constant",
     "GroundMotion",
     "HalfSine",
+    "LoadHistory",
     "Ramp",
     "RecordFormatError",
     "Rectangular",

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import re
 import tomllib
-from collections.abc import Callable
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -18,8 +17,8 @@ from pathlib import Path
 import numpy as np
 from pydantic import ValidationError
 
-from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, Ramp, Rectangular, Tabulated, Triangular,
-                     length_factor, read_record)
+from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Rectangular, Tabulated,
+                     Triangular, length_factor, read_record)
 from ..model import Model
 from ..structure import Frame2D, Structure
 from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
@@ -65,28 +64,6 @@ class ModelSpec:
     figure: dict | None
     source: Path
     document: ModelFile
-
-
-@dataclass(frozen=True, eq=False)
-class LoadHistory:
-    """The load ``q(t) = constant + sum_k f_k(t) vector_k`` (n,).
-
-    Attributes
-    ----------
-    constant : (n,) ndarray
-        Gravity.
-    terms : tuple of (vector (n,), callable f(t)) pairs
-        Nodal loads with their time functions; ground motions as ``(-M r, a_g)``.
-    """
-
-    constant: np.ndarray
-    terms: tuple[tuple[np.ndarray, Callable], ...]
-
-    def __call__(self, t) -> np.ndarray:
-        q = self.constant.copy()
-        for vector, f in self.terms:
-            q += f(t) * vector
-        return q
 
 
 def load_model_file(path) -> ModelSpec:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..loads import Rectangular
+from ..loads import LoadHistory, Rectangular
 from .frame import Frame2D
 
 MASS = 40.0          # kN s^2/m
@@ -45,7 +45,8 @@ def liolios1990(kelvin=True):
     -------
     structure : Structure
         DOFs ``1.ux, 1.uy, 1.rz, 2.uy, 2.rz``.
-    load : callable ``q(t) -> (5,)``
+    load : LoadHistory
+        ``q(t) -> (5,)``, sampled at all steps at once by :func:`unilateral.solve`.
         Gravity ``g = 10`` m/s^2 downwards plus ``P = 200`` kN at node 1 towards +x for
         ``0 < t <= 0.1`` s (zero at ``t = 0``: the static state is under gravity alone).
     info : dict
@@ -70,10 +71,7 @@ def liolios1990(kelvin=True):
     structure = fr.build()
     weight = structure.gravity(GRAVITY)
     push = structure.nodal_load(1, ux=1.0)
-    pulse = Rectangular(PULSE, t_end=T_PULSE)
-
-    def load(t):
-        return weight + pulse(t) * push
+    load = LoadHistory(weight, [(push, Rectangular(PULSE, t_end=T_PULSE))])
 
     info = {
         "units": "kN, m, s",
@@ -125,11 +123,7 @@ def winkler_beam(n_elements=100, *, length=50.0, EI=2e6, EA=2e7, mass_per_length
     weight = structure.gravity(9.81)
     if load == "impact":
         node = n_elements // 4
-        push = structure.nodal_load(node, uy=-P)
-        pulse = HalfSine(1.0, duration=0.02)
-
-        def q(t):
-            return weight + pulse(t) * push
+        q = LoadHistory(weight, [(structure.nodal_load(node, uy=-P), HalfSine(1.0, duration=0.02))])
     else:
         node = n_elements // 2
         unit = [structure.nodal_load(i, uy=-P) for i in range(n_elements + 1)]
