@@ -7,9 +7,9 @@ step by step with one small LCP per time step.
 
 Entry points: :class:`Model` (matrices or the natural form), :class:`KernelModel` (a kernel
 ``Lambda(s)`` and ``psiL``), :class:`TimeKernelModel` (a time-domain kernel ``Lambda(t)``, e.g.
-by numerical Laplace inversion, :func:`invert_laplace`), and :func:`solve`. Structures are built
-with :class:`unilateral.structure.Frame2D` or read from model files
-(:func:`unilateral.modelfile.load_model_file`).
+by numerical Laplace inversion, :func:`invert_laplace`), and :func:`solve` (loads as callables,
+arrays or a :class:`LoadHistory`). Structures are built with :class:`unilateral.structure.Frame2D`
+or read from model files (:func:`unilateral.modelfile.load_model_file`).
 """
 
 from .cq import cq_weights
@@ -17,6 +17,7 @@ from .kernel_model import KernelModel
 from .kernels import CallableKernel, MatrixKernel
 from .laplace_inversion import invert_laplace
 from .lcp import LCP_SOLVERS, LCPResult, LCPSolver, get_lcp_solver, solve_lcp
+from .loads import LoadHistory
 from .model import Model, NaturalForm
 from .result import Solution
 from .rules import BDF, HHT, Newmark, get_rule
@@ -28,7 +29,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "BDF", "CallableKernel", "HHT", "KernelModel", "LCPResult", "LCPSolver", "LCP_SOLVERS",
-    "METHODS", "MatrixKernel", "Model", "NaturalForm", "Newmark", "PoleResidueKernel", "Solution",
-    "TimeKernel", "TimeKernelModel", "cq_weights", "get_lcp_solver", "get_rule", "invert_laplace",
-    "solve", "solve_lcp", "time_kernel_weights",
+    "LoadHistory", "METHODS", "MatrixKernel", "Model", "NaturalForm", "Newmark", "PoleResidueKernel",
+    "Solution", "TimeKernel", "TimeKernelModel", "cq_weights", "get_lcp_solver", "get_rule",
+    "invert_laplace", "solve", "solve_lcp", "time_kernel_weights",
 ]
