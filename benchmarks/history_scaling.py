@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from unilateral.history import NaiveHistory
-from unilateral.history_fft import DEFAULT_BASE_BLOCK, FFTBlockedHistory
+from unilateral.history.fft_blocked import DEFAULT_BASE_BLOCK, FFTBlockedHistory
 
 M = 3
 EXPONENTS = range(10, 17)

@@ -8,7 +8,7 @@ import scipy.linalg as sla
 
 import unilateral as ul
 
-# The seed's example (DESIGN section 5), in kN, m, s.
+# The paper's example (docs/theory.md, "The paper's example"), in kN, m, s.
 MASS = 40.0            # kN s^2/m
 K_SOIL = 200e3         # kN/m
 C_SOIL = 10e3          # kN s/m
@@ -20,7 +20,7 @@ GRAVITY = 10.0         # m/s^2
 
 
 def rocking_natural(kelvin=True, top_rotational_mass=0.0):
-    """The seed's example entered by hand in natural form (G, E, B, E_v, M, C).
+    """The paper's example entered by hand in natural form (G, E, B, E_v, M, C).
 
     ``kelvin=True``: the soil dashpots act in series with the contact (Kelvin elements, E_v).
     ``kelvin=False``: the same dashpots stay attached (they pull too), i.e. they are part of C.

@@ -31,7 +31,7 @@ def test_version():
     assert result.exit_code == 0 and "unilateral" in result.output
 
 
-def test_example_prints_and_writes_the_seed_values(example_run):
+def test_example_prints_and_writes_the_paper_values(example_run):
     out, output = example_run
     assert "-0.0006667" in output                        # static foundation displacement
     summary = json.loads((out / "summary.json").read_text())
@@ -39,7 +39,7 @@ def test_example_prints_and_writes_the_seed_values(example_run):
     np.testing.assert_allclose(summary["static"]["2.uy"], -0.667e-3, rtol=1e-3)
     fig = summary["extra"]["figure"]
     np.testing.assert_allclose(fig["static"], -0.667e-3, rtol=1e-3)
-    # with uplift node 3 rises many times higher than without (the seed's Fig. 2)
+    # with uplift node 3 rises many times higher than without (the paper's Fig. 2)
     assert fig["peak"]["with uplift"] > 5 * fig["peak"]["without uplift"] > 0
     for name in ("results.nc", "fig2.png", "fig2.pdf", "constraints.png", "force_deformation.png",
                  "displacements.csv", "constraints.csv", "bilateral_displacements.csv"):

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from unilateral.clcp import march_cq
+from unilateral.march.clcp import march_cq
 from unilateral.history import NaiveHistory
-from unilateral.history_fft import FFTBlockedHistory
+from unilateral.history import FFTBlockedHistory
 from unilateral.lcp import get_lcp_solver
 
 RTOL = 1e-10

@@ -17,7 +17,7 @@ ARRAYS = ("t", "v", "psi", "psiL", "u", "udot")
 
 @pytest.fixture(scope="module")
 def runs():
-    """The seed's example with (unilateral) and without (bilateral) uplift."""
+    """The paper's example with (unilateral) and without (bilateral) uplift."""
     kw = dict(dt=2e-3, t_end=0.6, method="cq")
     return {"unilateral": ul.solve(rocking_model(), rocking_load(), **kw),
             "bilateral": ul.solve(rocking_model(), rocking_load(), bilateral=True, **kw)}

@@ -9,12 +9,14 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 
 import unilateral as ul
-from unilateral.clcp import march_cq
-from unilateral.cq import cq_weights
+from unilateral.march.clcp import march_cq
+from unilateral.kernels import cq_weights
 from unilateral.history import NaiveHistory
 from unilateral.kernels import MatrixKernel
 from unilateral.lcp import get_lcp_solver
-from unilateral.modal import PoleResidueKernel, RecursiveHistory, modal_history
+from unilateral.history import RecursiveHistory
+from unilateral.kernels import PoleResidueKernel
+from unilateral.kernels.pole_residue import modal_history
 from unilateral.rules import get_rule
 
 from conftest import rocking_load, rocking_model, rocking_natural

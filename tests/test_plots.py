@@ -1,4 +1,4 @@
-"""unilateral.plots: figure structure, labels with units, atomic saving."""
+"""unilateral.figures: figure structure, labels with units, atomic saving."""
 
 import os
 
@@ -8,7 +8,7 @@ import pytest
 from matplotlib.figure import Figure
 
 import unilateral as ul
-from unilateral import plots
+from unilateral.figures import plots
 
 UNITS = {"length": "m", "force": "kN", "time": "s"}
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"

@@ -290,9 +290,9 @@ def test_auto_falls_back_to_direct_when_the_poles_are_refused():
 def test_compiled_sweep_equals_python_sweep(kelvin, rule):
     """The compiled linear sweep performs the stepper's operations: equal to round-off, also
     from a moving initial state and with prescribed increments."""
-    from unilateral.clcp import sweep_direct
+    from unilateral.march.direct import sweep_direct
     from unilateral.initial import given_state
-    from unilateral.stepping import StructureStepper
+    from unilateral.march.stepper import StructureStepper
 
     model, load, dt, N = rocking_model(kelvin=kelvin), rocking_load(), 1e-3, 400
     init = given_state(model, {"u0": np.full(5, 1e-4), "udot0": np.linspace(-0.01, 0.02, 5)})

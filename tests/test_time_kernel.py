@@ -7,8 +7,9 @@ import scipy.linalg as sla
 
 import unilateral as ul
 from conftest import bouncing_exact, rocking_load, rocking_model
-from unilateral.laplace_inversion import invert_laplace
-from unilateral.time_kernel import TimeKernel, TimeKernelModel, solve_time_kernel, time_kernel_weights
+from unilateral.kernels import invert_laplace
+from unilateral.kernels import TimeKernel, TimeKernelModel, time_kernel_weights
+from unilateral.methods import solve_time_kernel
 
 METHODS = ["dehoog", "durbin"]
 OMEGA = 2 * np.pi

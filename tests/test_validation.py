@@ -46,7 +46,7 @@ def test_natural_form_errors():
     (dict(dt=0.0), "dt must be a positive finite number, got 0.0"),
     (dict(dt=-0.1), "dt must be a positive finite number, got -0.1"),
     (dict(t_end=0.001), r"t_end=0.001 must be >= dt=0.01"),
-    (dict(rule="rk4"), r"rule='rk4' is not valid; valid names: 'bdf1', 'bdf2', 'trapezoidal'"),
+    (dict(rule="rk4"), r"rule='rk4' is not valid; valid names: 'bdf1', 'bdf2', 'hht', 'newmark', 'trapezoidal'"),
     (dict(rule="hht"), r"rule='hht' has no convolution-quadrature form.*method='direct'"),
     (dict(method="explicit"), r"method='explicit' is not valid; valid names: 'auto', 'cq', 'direct', 'modal'"),
     (dict(lcp="simplex"), r"lcp='simplex' is not a known LCP solver; valid names: .*'bpp'.*'lemke'"),

@@ -12,18 +12,15 @@ arrays or a :class:`LoadHistory`). Structures are built with :class:`unilateral.
 or read from model files (:func:`unilateral.modelfile.load_model_file`).
 """
 
-from .cq import cq_weights
-from .kernel_model import KernelModel
-from .kernels import CallableKernel, MatrixKernel
-from .laplace_inversion import invert_laplace
+from .kernels import (CallableKernel, KernelModel, MatrixKernel, PoleResidueKernel, TimeKernel,
+                      TimeKernelModel, cq_weights, invert_laplace, time_kernel_weights)
 from .lcp import LCP_SOLVERS, LCPResult, LCPSolver, get_lcp_solver, solve_lcp
 from .loads import LoadHistory
+from .methods import METHODS, solve_time_kernel
 from .model import Model, NaturalForm
 from .result import Solution
 from .rules import BDF, HHT, Newmark, get_rule
-from .modal import PoleResidueKernel
-from .solve import METHODS, solve
-from .time_kernel import TimeKernel, TimeKernelModel, time_kernel_weights
+from .solve import solve
 
 __version__ = "0.1.0"
 
@@ -31,5 +28,5 @@ __all__ = [
     "BDF", "CallableKernel", "HHT", "KernelModel", "LCPResult", "LCPSolver", "LCP_SOLVERS",
     "LoadHistory", "METHODS", "MatrixKernel", "Model", "NaturalForm", "Newmark", "PoleResidueKernel",
     "Solution", "TimeKernel", "TimeKernelModel", "cq_weights", "get_lcp_solver", "get_rule",
-    "invert_laplace", "solve", "solve_lcp", "time_kernel_weights",
+    "invert_laplace", "solve", "solve_lcp", "solve_time_kernel", "time_kernel_weights",
 ]

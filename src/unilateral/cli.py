@@ -10,7 +10,7 @@ import click
 
 from . import __version__
 from .rules import RULES
-from .solve import METHODS
+from .methods import MATRIX_METHOD_NAMES
 
 EXAMPLES = ("liolios1990",)
 UNITS_KN = {"length": "m", "force": "kN", "time": "s"}
@@ -29,7 +29,7 @@ def main():
 
 def _analysis_options(function):
     options = [
-        click.option("--method", type=click.Choice(METHODS), default=None,
+        click.option("--method", type=click.Choice(MATRIX_METHOD_NAMES), default=None,
                      help="auto: the fastest correct method; cq: the paper's convolutional LCP; "
                           "modal: the same with a recursive history; direct: full-model time stepping. "
                           "Default: cq for examples, the model file's [analysis] method for run."),
@@ -52,7 +52,7 @@ def _analysis_options(function):
 def example(name, method, rule, dt, t_end, lcp, out):
     """Run a built-in example, with and without uplift, and write results and figures.
 
-    liolios1990: the seed paper's example (a mass on a column on a rigid foundation resting on
+    liolios1990: the paper's example (a mass on a column on a rigid foundation resting on
     three tensionless spring-dashpot soil elements, gravity and a horizontal pulse). Writes
     results.nc, CSV tables, summary.json and the paper's Fig. 2 to OUT (default ./liolios1990).
     """
@@ -64,7 +64,7 @@ def example(name, method, rule, dt, t_end, lcp, out):
     fig = info["figure2"]
     _run(structure.to_model(), load, settings, out or Path(name), structure=structure,
          units=UNITS_KN, figure=fig, title="Liolios (1990), Fig. 2: vertical displacement of node 3",
-         meta={"example": name, "model": "Liolios (1990) section 5, reconstruction of DESIGN.md"},
+         meta={"example": name, "model": "Liolios (1990) section 5, reconstruction in docs/theory.md"},
          bilateral_reference=True, unilateral=True,
          labels={"unilateral": "with uplift", "bilateral": "without uplift"})
 
@@ -97,7 +97,7 @@ def run(model_file, method, rule, dt, t_end, lcp, out, bilateral):
 def plot(results, out):
     """Draw the figures of a results.nc written by `run` or `example`."""
     from .io import from_dataset, load_netcdf
-    from .plots import plot_constraints, plot_displacement, save_figure
+    from .figures import plot_constraints, plot_displacement, save_figure
 
     ds = load_netcdf(results)
     out = out or results.parent

@@ -8,7 +8,7 @@
 parts that Kelvin elements (``E(s) = E + s E_v``) add to ``F(s) = F + s F_v`` and
 ``H(s) = H + s H_v``; without Kelvin elements they are absent. In the Laplace domain
 ``D(s) = K + s C + s^2 M`` and the influence matrix is ``Lambda(s) = H(s) - F(s)^T D(s)^-1 F(s)``
-(the seed prints a plus sign in eq. 23; the minus follows from eqs. 18-19).
+(the paper prints a plus sign in eq. 23; the minus follows from eqs. 18-19).
 """
 
 from __future__ import annotations

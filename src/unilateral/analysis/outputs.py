@@ -8,7 +8,7 @@ Outputs in the output directory, each written atomically (a failed run leaves wh
 ``displacements.csv``      the unilateral case, one column per DOF (``bilateral_...`` likewise)
 ``constraints.csv``        uplift ``v`` and reaction ``psi`` per unilateral element
 ``summary.json``           the key figures (static state, peaks, LCP error, run time)
-``fig2.png/.pdf``          the main history (the seed's Fig. 2: node 3, with and without uplift)
+``fig2.png/.pdf``          the main history (the paper's Fig. 2: node 3, with and without uplift)
 ``constraints.png/.pdf``   uplift and contact force of each unilateral element
 ``force_deformation...``   the force-deformation path of each unilateral element
 =========================  ================================================================
@@ -21,9 +21,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .io import format_summary, save_csv, save_netcdf, summary, to_dataset, write_json_atomic
-from .plots import plot_constraints, plot_displacement, plot_force_deformation, save_figure
-from .solve import solve
+from ..io import format_summary, save_csv, save_netcdf, summary, to_dataset, write_json_atomic
+from ..figures import plot_constraints, plot_displacement, plot_force_deformation, save_figure
+from ..solve import solve
 
 COMPONENTS = ("ux", "uy", "rz")
 

@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
-from ..plots import PAGE_WIDTH, _figure, _styled, save_figure
+from ..figures.plots import PAGE_WIDTH, _figure, _styled, save_figure
 from .suite import METHODS
 
 COLUMNS = (("problem", 12), ("method", 10), ("N", 7), ("n", 5), ("m", 5), ("us/step", 9),

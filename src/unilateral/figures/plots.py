@@ -19,8 +19,8 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
-from .io.atomic import atomic_write
-from .result import Solution
+from ..io.atomic import atomic_write
+from ..result import Solution
 
 PAGE_WIDTH = 6.3            # inches
 MAX_PANELS = 6
@@ -49,7 +49,7 @@ def _styled(function):
 def plot_displacement(solutions: dict[str, tuple[np.ndarray, np.ndarray]], *, ylabel: str,
                       title: str | None = None, static: float | None = None,
                       units: dict | None = None) -> Figure:
-    """Displacement histories of several analyses on one axes (the seed's Fig. 2).
+    """Displacement histories of several analyses on one axes (the paper's Fig. 2).
 
     Parameters
     ----------

@@ -19,7 +19,7 @@ trapezoidal    2 - 2 zeta           1 + zeta
 =============  ===================  =========
 
 :class:`RecursiveHistory` evaluates ``h_n = sum_{j=1..n} W_j dv_{n-j}`` of a
-:class:`~unilateral.modal.PoleResidueKernel` with these recursions: ``O(r m + m^2)`` work per step
+:class:`~unilateral.kernels.PoleResidueKernel` with these recursions: ``O(r m + m^2)`` work per step
 for ``r`` stored poles, against ``O(n m^2)`` for direct summation.
 """
 
@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .rules import get_rule
+from ..rules import get_rule
 
 _POLYNOMIALS = {
     "bdf1": ((1.0, -1.0), (1.0,)),

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _validate as V
+from .. import _validate as V
 
 
 def cq_weights(kernel, N: int, dt: float, rule, *, L: int | None = None,

@@ -1,16 +1,19 @@
-"""A CLCP given directly by its kernel, without matrices (the Laplace-domain route).
+"""CLCPs given directly by their kernel, without matrices.
 
-``psi(t) = psiL(t) - (Lambda * v)(t)`` (eq. 26) needs only ``Lambda(s)`` and the bilateral
-response ``psiL(t)``: for example the impedance of an unbounded soil computed elsewhere, or a
-structure analysed by another program.
+``psi(t) = psiL(t) - (Lambda * v)(t)`` (eq. 26) needs only the kernel and the bilateral response
+``psiL(t)``: for example the impedance of an unbounded soil computed elsewhere, or a structure
+analysed by another program. :class:`KernelModel` holds a Laplace-domain ``Lambda(s)``,
+:class:`TimeKernelModel` a time-domain :class:`~unilateral.kernels.time_domain.TimeKernel`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from . import _validate as V
-from .kernels import CallableKernel, Kernel
+from .. import _validate as V
+from ..model import _names
+from .base import CallableKernel, Kernel
+from .time_domain import TimeKernel
 
 
 class KernelModel:
@@ -81,3 +84,32 @@ class KernelModel:
 
     def __repr__(self) -> str:
         return f"KernelModel(m={self.m})"
+
+
+class TimeKernelModel:
+    """Unilateral problem defined by a time-domain kernel and ``psiL``.
+
+    Parameters
+    ----------
+    kernel : TimeKernel
+    psiL : callable ``psiL(t) -> (m,)`` or array (N+1, m)
+        Constraint reactions of the structure with every constraint bilateral, as for
+        :class:`~unilateral.kernels.KernelModel` (samples at ``t_k = k dt``).
+    constraint_names : sequence of m str, optional
+    """
+
+    def __init__(self, kernel, psiL, constraint_names=None):
+        if not isinstance(kernel, TimeKernel):
+            raise TypeError(f"kernel must be a TimeKernel, got {V.describe(kernel)}")
+        self.kernel = kernel
+        self.m = kernel.m
+        if not callable(psiL):
+            psiL = V.as_matrix("psiL", psiL, (None, self.m))
+        self.psiL = psiL
+        self.constraint_names = _names("constraint_names", constraint_names, self.m, "c")
+
+    # the sampling of psiL (callable or array) is the kernel model's
+    psiL_samples = KernelModel.psiL_samples
+
+    def __repr__(self) -> str:
+        return f"TimeKernelModel(m={self.m}, {self.kernel!r})"

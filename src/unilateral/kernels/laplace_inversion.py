@@ -65,7 +65,7 @@ import math
 
 import numpy as np
 
-from . import _validate as V
+from .. import _validate as V
 
 METHODS = ("dehoog", "durbin")
 _COMMON = {"tol": 1e-12, "scale": 2.0, "ratio": 4.0, "omega_max": None}

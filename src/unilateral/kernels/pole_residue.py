@@ -7,15 +7,15 @@ For a matrix model ``Lambda(s) = H(s) - F(s)^T D(s)^-1 F(s)`` is rational:
 with poles ``p_k`` (the eigenvalues of the structure with every constraint bilateral; a multiple
 pole is listed once per eigenvector), rank-one residues kept as factors ``b_k, c_k`` (m,), and a
 polynomial part from the Kelvin dashpots (``P1``) and the instantaneous stiffness (``P0``).
-Under convolution quadrature each pole is a scalar recursion (:mod:`unilateral.modal_recursion`),
+Under convolution quadrature each pole is a scalar recursion (:mod:`unilateral.history.recursive`),
 so the history sum of the CLCP costs ``O(r m)`` per step instead of ``O(n m^2)``, and equals the
 CQ history to round-off.
 
 Two constructions (:meth:`PoleResidueKernel.from_model`):
 
-* all poles, exactly, from the state-space form of a dense model (:mod:`unilateral.modal_dense`);
+* all poles, exactly, from the state-space form of a dense model (:mod:`unilateral.kernels.poles_dense`);
 * the lowest modes of a classically damped (possibly sparse, large) model plus the static
-  correction of the truncated modes (:mod:`unilateral.modal_truncated`).
+  correction of the truncated modes (:mod:`unilateral.kernels.poles_truncated`).
 """
 
 from __future__ import annotations
@@ -24,12 +24,13 @@ import time
 
 import numpy as np
 
-from .kernels import Kernel, MatrixKernel
-from .modal_dense import DENSE_MAX_N, check_points, dense_poles
-from .modal_recursion import (LinearRecursion, RecursiveHistory, pole_coefficients,
+from .base import Kernel
+from .matrix import MatrixKernel
+from .poles_dense import DENSE_MAX_N, check_points, dense_poles
+from ..history.recursive import (LinearRecursion, RecursiveHistory, pole_coefficients,
                               rate_coefficients)
-from .modal_truncated import truncated_poles
-from .rules import get_rule
+from .poles_truncated import truncated_poles
+from ..rules import get_rule
 
 __all__ = ["DENSE_MAX_N", "PoleResidueKernel", "RecursiveHistory", "modal_history"]
 
@@ -205,7 +206,7 @@ class PoleResidueKernel(Kernel):
 
 
 def modal_history(model, N: int, dt: float, rule, *, modes: int | None = None):
-    """``(W0, history)`` of a matrix model for :func:`unilateral.clcp.march_cq`.
+    """``(W0, history)`` of a matrix model for :func:`unilateral.march.clcp.march_cq`.
 
     Parameters
     ----------

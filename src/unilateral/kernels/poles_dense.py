@@ -37,7 +37,7 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
-from .linalg import dense
+from ..linalg import dense
 
 #: Largest model handled by the dense path (an eigendecomposition of up to 2n states, O(n^3)).
 DENSE_MAX_N = 2000
@@ -60,7 +60,7 @@ def dense_poles(model) -> dict:
     Returns
     -------
     dict with ``poles`` (r,), ``B``, ``Cf`` (r, m), ``Lambda0``, ``P1`` (m, m) and ``info``: the
-    keyword arguments of :class:`~unilateral.modal.PoleResidueKernel`.
+    keyword arguments of :class:`~unilateral.kernels.PoleResidueKernel`.
     """
     n, m = model.n, model.m
     if n > DENSE_MAX_N:

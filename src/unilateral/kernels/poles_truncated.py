@@ -23,7 +23,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .linalg import Factorization, dense, transpose_times
+from ..linalg import Factorization, dense, transpose_times
 
 #: Modes with ``|c^2/4 - w^2| < (CRITICAL_TOL w)^2`` are (nearly) critically damped: a double pole.
 CRITICAL_TOL = 1e-7
@@ -40,7 +40,7 @@ def truncated_poles(model, modes: int, tol: float) -> dict:
 
     Returns
     -------
-    dict: the keyword arguments of :class:`~unilateral.modal.PoleResidueKernel`.
+    dict: the keyword arguments of :class:`~unilateral.kernels.PoleResidueKernel`.
     """
     if model.F_v is not None and np.any(dense(model.F_v)):
         raise ValueError("the truncated modal kernel does not support Kelvin constraints (F_v): "

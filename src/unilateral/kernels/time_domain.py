@@ -1,4 +1,4 @@
-"""The CLCP with a time-domain kernel ``Lambda(t)`` (the seed's alternative route, section 4).
+"""The CLCP with a time-domain kernel ``Lambda(t)`` (the paper's alternative route, section 4).
 
 ``psi(t) = psiL(t) - (Lambda * v)(t)`` with
 
@@ -11,14 +11,14 @@ Laplace inversion cannot represent the two singular parts, so they are split off
 
 The convolution is discretised by product integration on the grid ``t_k = k dt``
 (:func:`time_kernel_weights`), giving weights ``W_j`` of the same form as the
-convolution-quadrature weights of :func:`~unilateral.cq.cq_weights`, and the CLCP is marched by
-:func:`~unilateral.clcp.march_cq`, one LCP per step (:func:`solve_time_kernel`).
+convolution-quadrature weights of :func:`~unilateral.kernels.cq_weights`, and the CLCP is marched by
+:func:`~unilateral.march.clcp.march_cq`, one LCP per step (:func:`solve_time_kernel`).
 
 Compared with convolution quadrature, which needs ``Lambda(s)`` only on a circle and is exact
 for the equivalent time stepping, this route needs ``Lambda_r`` sampled accurately at the grid
 (numerical inversion, to ~1e-10 relative for structural kernels) and is second order only where
 ``Lambda_r`` is smooth on the scale ``dt``. It fails where the kernel has dynamics between the
-frequencies the grid resolves and ~100 / dt: e.g. the seed's example with Kelvin soil elements
+frequencies the grid resolves and ~100 / dt: e.g. the paper's example with Kelvin soil elements
 (dashpots in series with the contacts under a massless foundation and an axially rigid column)
 has relaxation times from ~1e-3 s down to ~1e-7 s, no asymptote ``Lambda_inf + s Lambda_rate``
 holds at ``|s| ~ 10 pi / dt`` for any practical dt, :meth:`TimeKernel.from_laplace` warns
@@ -32,16 +32,11 @@ import warnings
 
 import numpy as np
 
-from . import _validate as V
-from .clcp import march_cq
-from .initial import InitialState, static_lcp
-from .kernel_model import KernelModel
-from .kernels import CallableKernel, Kernel
+from .. import _validate as V
+from .base import CallableKernel, Kernel
 from .laplace_inversion import METHODS as INVERSION_METHODS
 from .laplace_inversion import invert_laplace
-from .lcp import get_lcp_solver
-from .model import _names
-from .rules import BDF
+from ..rules import BDF
 
 #: The asymptote ``Lambda_inf + s Lambda_rate`` is fitted at ``s = i y`` with
 #: ``y = ASYMPTOTE_FACTOR (pi / dt) 2^j``, j = 0..3: above every frequency the grid resolves.
@@ -160,7 +155,7 @@ class TimeKernel:
         vectorized : bool
             ``Lambda`` accepts an array of s (ignored for a Kernel).
         inversion_options : dict, optional
-            Options of :func:`~unilateral.laplace_inversion.invert_laplace`.
+            Options of :func:`~unilateral.kernels.invert_laplace`.
 
         Returns
         -------
@@ -284,7 +279,7 @@ def time_kernel_weights(kernel, N, dt, *, quadrature="trapezoidal", rate="bdf2")
     ``W_0 = Lambda_inf + dt/2 Lambda_r(0)``, ``W_j = dt Lambda_r(t_j)``. The trapezoidal rule for
     ``integral_0^t_n Lambda_r(tau) v(t_n - tau) dtau`` also halves the end term ``j = n``, which
     multiplies ``v_0``; the library marches increments about the initial state, ``dv_0 = 0``
-    (:func:`~unilateral.clcp.march_cq`), so the end correction vanishes and the weights form a
+    (:func:`~unilateral.march.clcp.march_cq`), so the end correction vanishes and the weights form a
     convolution. ``quadrature="rectangle"`` drops the ``dt/2 Lambda_r(0)`` term: first order
     (a reference for the convergence tests).
 
@@ -316,110 +311,6 @@ def time_kernel_weights(kernel, N, dt, *, quadrature="trapezoidal", rate="bdf2")
     if kernel.Lambda_rate is not None:
         W += (BDF(int(rate[-1])).delta_coefficients(N) / dt)[:, None, None] * kernel.Lambda_rate[None]
     return W
-
-
-class TimeKernelModel:
-    """Unilateral problem defined by a time-domain kernel and ``psiL``.
-
-    Parameters
-    ----------
-    kernel : TimeKernel
-    psiL : callable ``psiL(t) -> (m,)`` or array (N+1, m)
-        Constraint reactions of the structure with every constraint bilateral, as for
-        :class:`~unilateral.kernel_model.KernelModel` (samples at ``t_k = k dt``).
-    constraint_names : sequence of m str, optional
-    """
-
-    def __init__(self, kernel, psiL, constraint_names=None):
-        if not isinstance(kernel, TimeKernel):
-            raise TypeError(f"kernel must be a TimeKernel, got {V.describe(kernel)}")
-        self.kernel = kernel
-        self.m = kernel.m
-        if not callable(psiL):
-            psiL = V.as_matrix("psiL", psiL, (None, self.m))
-        self.psiL = psiL
-        self.constraint_names = _names("constraint_names", constraint_names, self.m, "c")
-
-    # the sampling of psiL (callable or array) is the kernel model's
-    psiL_samples = KernelModel.psiL_samples
-
-    def __repr__(self) -> str:
-        return f"TimeKernelModel(m={self.m}, {self.kernel!r})"
-
-
-def solve_time_kernel(model, *, dt, t_end, initial="static", lcp="bpp", lcp_options=None,
-                      bilateral=False, quadrature="trapezoidal", rate="bdf2", history=None,
-                      callback=None):
-    """Solve the CLCP of a :class:`TimeKernelModel` step by step.
-
-    Parameters
-    ----------
-    model : TimeKernelModel
-    dt, t_end : float
-        Time step and end time; ``N = round(t_end / dt)`` steps.
-    initial : {"static", "rest"}
-        ``"static"``: start from the static unilateral state under ``psiL(0)``, the LCP with
-        the static kernel ``kernel.Lambda0`` (``Lambda(s=0)``; set by
-        :meth:`TimeKernel.from_laplace`, otherwise to be given to :class:`TimeKernel`), held
-        since ``t = -inf``. ``"rest"``: ``v(0) = 0``.
-    lcp : str or LCPSolver ; lcp_options : dict, optional
-        As for :func:`unilateral.solve`.
-    bilateral : bool
-        Hold every constraint at its initial state.
-    quadrature, rate : str
-        See :func:`time_kernel_weights`.
-    history : {"naive", "fft"}, optional
-        Summation of the history term; default ``"fft"`` above 256 steps.
-    callback : callable ``callback(k, N)``, optional
-
-    Returns
-    -------
-    Solution
-        ``u`` and ``udot`` are None; ``stats`` has ``method = "time-kernel"``, the LCP statistics
-        and ``time`` per phase (``setup``, ``weights``, ``initial``, ``steps``).
-    """
-    # imported here: unilateral.solve may import this module
-    from .solve import FFT_HISTORY_MIN_STEPS, HISTORIES, _failed_at_start, _finish, _Timer
-
-    timer = _Timer()
-    if not isinstance(model, TimeKernelModel):
-        raise TypeError(f"model must be a TimeKernelModel, got {V.describe(model)}")
-    dt = V.positive_float("dt", dt)
-    t_end = V.positive_float("t_end", t_end)
-    if t_end < dt * (1 - 1e-12):
-        raise ValueError(f"t_end={t_end!r} must be >= dt={dt!r}")
-    N = int(round(t_end / dt))
-    initial = V.choice("initial", initial, ("static", "rest"))
-    quadrature = V.choice("quadrature", quadrature, QUADRATURES)
-    rate = V.choice("rate", rate, RATE_RULES)
-    history = V.choice("history", history or ("fft" if N > FFT_HISTORY_MIN_STEPS else "naive"), HISTORIES)
-    solver = get_lcp_solver(lcp, **(lcp_options or {}))
-    stats = {"method": "time-kernel", "quadrature": quadrature, "rate": rate, "lcp_solver": solver.name,
-             "history": history, "steps": N, "dt": dt, "m": model.m}
-    psiL = model.psiL_samples(N, dt)
-    timer.lap("setup")
-    W = time_kernel_weights(model.kernel, N, dt, quadrature=quadrature, rate=rate)
-    W[0] = 0.5 * (W[0] + W[0].T)
-    timer.lap("weights")
-    if initial == "static":
-        Lambda0 = model.kernel.Lambda0
-        if Lambda0 is None:
-            raise ValueError(
-                "initial='static' needs the static kernel Lambda(0): pass Lambda0 to TimeKernel "
-                "(TimeKernel.from_laplace sets it), or use initial='rest'"
-            )
-        v_b, stats["static_lcp_iterations"], message = static_lcp(Lambda0, psiL[0], solver)
-        if message:
-            return _failed_at_start(model, InitialState(v=v_b, psi=psiL[0], message=message), stats, timer)
-        psi_affine = psiL - Lambda0 @ v_b      # v held at v_b since -infinity
-    else:
-        v_b, psi_affine = np.zeros(model.m), psiL
-    timer.lap("initial")
-    v, psi, log = march_cq(W[0], HISTORIES[history](W), psi_affine, v_b, solver, dt=dt,
-                           bilateral=bilateral, callback=callback)
-    timer.lap("steps")
-    return _finish(model, dt * np.arange(v.shape[0]), v, psi, psiL[: v.shape[0]], None, None, log,
-                   stats, timer)
 
 
 def _square(name, value, m):

@@ -1,6 +1,6 @@
 """Direct stepping of large sparse models with the LCP solved in the full space.
 
-The condensed LCP of :func:`~unilateral.clcp.march_direct` has a dense ``m x m`` matrix ``W0``:
+The condensed LCP of :func:`~unilateral.march.direct.march_direct` has a dense ``m x m`` matrix ``W0``:
 for a beam on a tensionless Winkler foundation with a thousand springs every change of the
 contact set costs O(m^3). Here each step is solved by block principal pivoting on the *sparse*
 equations instead. With the rule's ``D_eff du = r + a Fp (v - v_b)`` and
@@ -23,8 +23,8 @@ from collections import OrderedDict
 import numpy as np
 import scipy.sparse as sp
 
-from .clcp import direct_outputs
-from .linalg import Factorization
+from .direct import direct_outputs
+from ..linalg import Factorization
 
 #: Factorisations kept (least recently used first out).
 CACHE_SIZE = 16
@@ -32,7 +32,7 @@ _BLOCK_TRIES = 3
 
 
 class ActiveSetSolver:
-    """Per-step LCP of a :class:`~unilateral.stepping.StructureStepper` in the full space.
+    """Per-step LCP of a :class:`~unilateral.march.stepper.StructureStepper` in the full space.
 
     Parameters
     ----------
@@ -113,7 +113,7 @@ class ActiveSetSolver:
 
 def march_direct_active_set(stepper, N, v_b, psi0, *, dt, bilateral=False, callback=None,
                             max_iter=50):
-    """:func:`~unilateral.clcp.march_direct` for large sparse models (same returns)."""
+    """:func:`~unilateral.march.direct.march_direct` for large sparse models (same returns)."""
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
     solver = ActiveSetSolver(stepper, v_b, max_iter)
     active = v_b > 0

@@ -1,6 +1,6 @@
 """Compiled inner loops (numba): the per-step LCP and the CLCP march.
 
-The Python march (:mod:`unilateral.clcp`) calls an LCP solver object per step; its overhead
+The Python march (:mod:`unilateral.march.clcp`) calls an LCP solver object per step; its overhead
 (tens of microseconds) dominates for the small ``m`` of most structures. These loops run the
 whole march in machine code with a block principal pivoting solver specialised for the
 symmetric positive definite ``W0`` of the CLCP, warm-started from the previous step's active set.
@@ -213,7 +213,7 @@ def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
     """The CLCP march with the exact recursive history of a pole-residue kernel.
 
     The history is ``Re(free @ out)`` with ``free = sum_i coef_i state_i`` of the scalar filters
-    (channels c) of :class:`~unilateral.modal_recursion.RecursiveHistory`; the filters are then
+    (channels c) of :class:`~unilateral.history.RecursiveHistory`; the filters are then
     advanced with the input ``inp @ dv_n``. O(c m) work per step, independent of n and N.
 
     Parameters
@@ -316,7 +316,7 @@ def sweep(kind, dt, c1, c0, lu, piv, M, C, Fp, F_v, Hs, H_v, viscous, f, offset,
 
     The rules with a convolution-quadrature form only (``alpha = 0``): ``kind`` 0 BDF1, 1 BDF2,
     2 trapezoidal (Newmark 1/2, 1/4). It performs exactly the operations of
-    :class:`~unilateral.stepping.StructureStepper` (``free_terms``, ``step_with``, ``correct``).
+    :class:`~unilateral.march.stepper.StructureStepper` (``free_terms``, ``step_with``, ``correct``).
 
     Parameters
     ----------

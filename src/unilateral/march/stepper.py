@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from .linalg import Factorization, SingularMatrixError, dense, transpose_times
+from ..linalg import Factorization, SingularMatrixError, dense, transpose_times
 
 #: Models with at most this many DOFs are stepped with dense arrays.
 DENSE_STEPPING_MAX_N = 64
@@ -119,7 +119,7 @@ class StructureStepper:
         return rhs, psi
 
     def sweep_arrays(self, N):
-        """Arguments of :func:`unilateral.compiled.sweep` for N steps, or None if it does not apply.
+        """Arguments of :func:`unilateral.march.compiled.sweep` for N steps, or None if it does not apply.
 
         It applies to small dense models stepped by a rule with a convolution-quadrature form
         (BDF1, BDF2, trapezoidal) from a fresh stepper. The loads and offsets of all steps are

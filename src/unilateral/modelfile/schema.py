@@ -22,7 +22,7 @@ from pydantic_core import PydanticCustomError
 
 from ..lcp import LCP_SOLVERS
 from ..rules import RULES
-from ..solve import METHODS
+from ..methods import MATRIX_METHOD_NAMES
 
 LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
@@ -381,7 +381,7 @@ class Analysis(Table):
     EXAMPLE: ClassVar[str] = "[analysis] dt = 0.001, t_end = 1.0"
     dt: Positive = Field(description="Time step [time].")
     t_end: Positive = Field(description="End time [time].")
-    method: Literal[METHODS] = Field("auto", title="method")
+    method: Literal[MATRIX_METHOD_NAMES] = Field("auto", title="method")
     rule: Literal[tuple(RULES)] = Field("bdf2", title="rule")
     lcp: Literal[tuple(sorted(LCP_SOLVERS))] = Field("bpp", title="LCP solver")
     initial: Literal["static", "rest"] = Field("static", title="initial state")

@@ -6,7 +6,7 @@ and :meth:`Frame2D.build` assembles them (sparse) into a :class:`Structure`: the
 ``G, E, B, A, r, theta`` (and ``E_v`` of Kelvin elements), ``M``, ``C`` and the :class:`DofMap`.
 :meth:`Structure.to_model` gives the :class:`unilateral.Model` for :func:`unilateral.solve`.
 
-:func:`liolios1990` builds the seed paper's numerical example.
+:func:`liolios1990` builds the paper's numerical example.
 """
 
 from .dofs import DofMap

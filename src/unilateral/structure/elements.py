@@ -96,7 +96,7 @@ def chord(where: str, i: Hashable, xi: np.ndarray, j: Hashable, xj: np.ndarray):
     return L, d / L
 
 
-def beam(name, i, xi, j, xj, E, A, I, axial_strain=0.0, curvature=0.0) -> Element:
+def beam(name, i, xi, j, xj, *, E, A, I, axial_strain=0.0, curvature=0.0) -> Element:
     """Euler-Bernoulli beam-column ``i -> j``.
 
     Parameters
@@ -119,13 +119,13 @@ def beam(name, i, xi, j, xj, E, A, I, axial_strain=0.0, curvature=0.0) -> Elemen
     return Element(name, "beam", dofs, a, stiffness, theta)
 
 
-def bar(name, i, xi, j, xj, E, A, axial_strain=0.0) -> Element:
+def bar(name, i, xi, j, xj, *, E, A, axial_strain=0.0) -> Element:
     """Axial bar ``i -> j``: strain = elongation, stiffness ``EA/L``; ``axial_strain`` imposed."""
     L, dofs, a = _axial("bar", name, i, xi, j, xj)
     return Element(name, "bar", dofs, a, np.array([[E * A / L]]), np.array([axial_strain * L]))
 
 
-def cable(name, i, xi, j, xj, E, A, slack=0.0, capacity=0.0) -> Element:
+def cable(name, i, xi, j, xj, *, E, A, slack=0.0, capacity=0.0) -> Element:
     """Tension-only cable ``i -> j``: a bar with ``b = -1`` (``v`` = slack shortening),
     ``theta = slack`` and ``r = capacity`` (the compression it carries before going slack)."""
     L, dofs, a = _axial("cable", name, i, xi, j, xj)

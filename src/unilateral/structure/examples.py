@@ -1,6 +1,6 @@
 """The numerical example of Liolios (1990), built with :class:`~unilateral.structure.Frame2D`.
 
-The seed's Fig. 1 is lost; this is the reconstruction adopted in DESIGN.md, section 5 (kN, m, s):
+The paper's Fig. 1 is lost; this is the reconstruction adopted in docs/theory.md ("The paper's example") (kN, m, s):
 a mass M on top of a column of height 10 m, standing on a rigid massless foundation 10 m wide
 that rests on three tensionless soil elements (spring k and dashpot c in parallel, acting only in
 contact) under its edges and centre. Gravity first, then a horizontal rectangular pulse rocks the
@@ -27,7 +27,7 @@ T_PULSE = 0.1        # s
 
 
 def liolios1990(kelvin=True):
-    """Build the seed's example: the structure, its load and a description.
+    """Build the paper's example: the structure, its load and a description.
 
     Nodes: 1 top of the column (0, 10) carrying the mass (both translations); 2 foundation centre
     (0, 0), restrained horizontally; 3 and 4 foundation edges (-5, 0) and (+5, 0), rigidly linked
@@ -37,7 +37,7 @@ def liolios1990(kelvin=True):
     Parameters
     ----------
     kelvin : bool
-        True (the seed's model): the soil dashpots ``c = 10e3`` kN s/m are in parallel with the
+        True (the paper's model): the soil dashpots ``c = 10e3`` kN s/m are in parallel with the
         springs and act only in contact (Kelvin elements). False: the dashpots stay attached to
         the foundation (they pull too) and go into ``C``.
 
@@ -51,7 +51,7 @@ def liolios1990(kelvin=True):
         ``0 < t <= 0.1`` s (zero at ``t = 0``: the static state is under gravity alone).
     info : dict
         ``units``; ``static_displacement`` ``-M g / (3 k)`` of the foundation (m);
-        ``figure2``: the node, DOF and label of the quantity of the seed's Fig. 2 (the
+        ``figure2``: the node, DOF and label of the quantity of the paper's Fig. 2 (the
         vertical displacement of node 3, for :meth:`Structure.node_displacement`).
     """
     fr = Frame2D()

@@ -1,6 +1,6 @@
 """A 2-D frame builder: nodes, supports, elements and masses -> the natural form and a Model.
 
-Example (the seed's foundation, see :func:`unilateral.structure.examples.liolios1990`)::
+Example (the paper's foundation, see :func:`unilateral.structure.examples.liolios1990`)::
 
     fr = Frame2D()
     fr.node(1, 0.0, 10.0); fr.node(2, 0.0, 0.0); fr.node(3, -5.0, 0.0)
@@ -154,16 +154,16 @@ class Frame2D:
         where = self._label("beam", name)
         self._two_nodes(where, i, j)
         E, A, I = (_real(where, arg, value, ">0") for arg, value in (("E", E), ("A", A), ("I", I)))
-        self._add(el.beam(name, i, self._coords[i], j, self._coords[j], E, A, I,
-                          _real(where, "axial_strain", axial_strain),
-                          _real(where, "curvature", curvature)))
+        self._add(el.beam(name, i, self._coords[i], j, self._coords[j], E=E, A=A, I=I,
+                          axial_strain=_real(where, "axial_strain", axial_strain),
+                          curvature=_real(where, "curvature", curvature)))
 
     def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
         """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
         where = self._label("bar", name)
         self._two_nodes(where, i, j)
-        self._add(el.bar(name, i, self._coords[i], j, self._coords[j], _real(where, "E", E, ">0"),
-                         _real(where, "A", A, ">0"), _real(where, "axial_strain", axial_strain)))
+        self._add(el.bar(name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
+                         A=_real(where, "A", A, ">0"), axial_strain=_real(where, "axial_strain", axial_strain)))
 
     def spring(self, name, i, k, *, j=None, direction="uy") -> None:
         """Linear spring ``k`` from node ``i`` to the ground (``j=None``) or to node ``j``.
@@ -198,7 +198,7 @@ class Frame2D:
         """
         where = self._label("soil", name)
         self._node(where, "node", node)
-        self._add(self._contact("soil", where, name, None, node, k, c, direction, gap, capacity))
+        self._add(self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap, capacity=capacity))
 
     def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None) -> None:
         """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
@@ -213,7 +213,7 @@ class Frame2D:
         self._two_nodes(where, i, j)
         if direction is None:
             _, direction = el.chord(where, i, self._coords[i], j, self._coords[j])
-        self._add(self._contact("gap", where, name, i, j, k, c, direction, gap, 0.0))
+        self._add(self._contact("gap", where, name, i, j, k=k, c=c, direction=direction, gap=gap, capacity=0.0))
 
     def cable(self, name, i, j, E, A, *, slack=0.0, capacity=0.0) -> None:
         """Tension-only cable (bar) from node ``i`` to node ``j`` that goes slack in compression.
@@ -225,9 +225,9 @@ class Frame2D:
         """
         where = self._label("cable", name)
         self._two_nodes(where, i, j)
-        self._add(el.cable(name, i, self._coords[i], j, self._coords[j], _real(where, "E", E, ">0"),
-                           _real(where, "A", A, ">0"), _real(where, "slack", slack),
-                           _real(where, "capacity", capacity, ">=0")))
+        self._add(el.cable(name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
+                           A=_real(where, "A", A, ">0"), slack=_real(where, "slack", slack),
+                           capacity=_real(where, "capacity", capacity, ">=0")))
 
     # ------------------------------------------------------------------ build
     def build(self) -> Structure:
@@ -328,7 +328,7 @@ class Frame2D:
         ends = (None, i) if j is None else (i, j)
         return el.directional(name, kind, *ends, terms, k)
 
-    def _contact(self, kind, where, name, i, j, k, c, direction, gap, capacity) -> el.Element:
+    def _contact(self, kind, where, name, i, j, *, k, c, direction, gap, capacity) -> el.Element:
         return el.directional(
             name, kind, i, j, el.direction_terms(where, direction), _real(where, "k", k, ">0"),
             c=_real(where, "c", c, ">=0"), theta=-_real(where, "gap", gap), b=1.0,

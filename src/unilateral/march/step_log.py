@@ -1,0 +1,34 @@
+"""LCP statistics of a march, step by step, and its first failure."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+class StepLog:
+    """LCP statistics over a march, and the first failure."""
+
+    def __init__(self, m: int, active0: np.ndarray):
+        self.iterations = 0
+        self.max_iterations = 0
+        self.max_error = 0.0
+        self.contact_changes = 0
+        self.active = active0.copy()
+        self.failure = ""
+
+    def record(self, k: int, t: float, res) -> bool:
+        """Account for the LCP of step k; return False (and keep a message) on failure."""
+        self.iterations += res.iterations
+        self.max_iterations = max(self.max_iterations, res.iterations)
+        self.max_error = max(self.max_error, res.error)
+        active = res.v > 0
+        self.contact_changes += int(np.count_nonzero(active != self.active))
+        self.active = active
+        if not res.success:
+            self.failure = f"the LCP of step {k} (t = {t:.6g}) failed: {res.message}"
+            return False
+        return True
+
+    def stats(self) -> dict:
+        return {"lcp_iterations": self.iterations, "lcp_max_iterations": self.max_iterations,
+                "max_lcp_error": self.max_error, "contact_changes": self.contact_changes}

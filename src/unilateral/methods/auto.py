@@ -1,0 +1,48 @@
+"""``method="auto"``: the policy that picks the fastest correct method, and says why."""
+
+from __future__ import annotations
+
+from ..kernels import KernelModel, TimeKernelModel
+from ..lcp import BlockPrincipalPivoting
+from ..march.stepper import DENSE_STEPPING_MAX_N
+from .cq import CQ
+from .direct import FULL_SPACE_MIN_M, Direct
+from .modal import Modal, PolesRefused
+from .time_kernel import TimeKernelMethod
+
+
+def choose_method(model, rule, solver, options):
+    """The method of ``method="auto"`` and the reason (measured in the benchmark suite).
+
+    Parameters
+    ----------
+    model : Model, KernelModel or TimeKernelModel
+    rule : Rule
+    solver : LCPSolver
+    options : dict of method name -> options given (``cq_options`` and the like)
+
+    Returns
+    -------
+    method : Method (an instance) ; reason : str
+    """
+    if isinstance(model, TimeKernelModel):
+        return TimeKernelMethod(), "a TimeKernelModel is solved by product integration of its Lambda(t)"
+    if isinstance(model, KernelModel):
+        return CQ(**options.get("cq", {})), "a KernelModel is solved by convolution quadrature of its Lambda(s)"
+    if "cq" in options:
+        return CQ(**options["cq"]), "cq_options were given"
+    if "modal" in options:
+        return Modal(**options["modal"]), "modal_options were given"
+    small = model.n <= DENSE_STEPPING_MAX_N and model.m <= FULL_SPACE_MIN_M
+    if small and rule.supports_cq and isinstance(solver, BlockPrincipalPivoting) and model.m:
+        return Modal(), ("small model: the compiled CLCP march with the exact recursive history "
+                         "and compiled linear sweeps is the fastest end to end")
+    space = "full-space active-set LCP" if model.sparse and model.m > FULL_SPACE_MIN_M else "condensed LCP"
+    return Direct(), f"direct stepping ({space}) is the fastest end to end for this model"
+
+
+def fallback(exc):
+    """The method and reason to use when the auto choice was refused by ``exc``, or None."""
+    if isinstance(exc, PolesRefused):
+        return Direct(), f"modal refused ({exc}), direct used instead"
+    return None

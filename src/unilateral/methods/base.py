@@ -1,0 +1,73 @@
+"""The interface of a solution method: :class:`Method`."""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from typing import ClassVar
+
+from ..model import Model
+
+
+class Method(ABC):
+    """A way of solving the unilateral problem on a time grid.
+
+    Subclasses set :attr:`name`, :attr:`models` and :attr:`options` and implement :meth:`solve`.
+    An instance carries the method's own options (e.g. the history of ``cq``); everything else
+    comes in the :class:`~unilateral.discretization.Discretization` and the
+    :class:`~unilateral.run_context.RunContext`.
+
+    Parameters
+    ----------
+    **options
+        The method's options, by the names in :attr:`options`; anything else is refused.
+    """
+
+    #: Registry name (``solve(..., method=name)``).
+    name: ClassVar[str] = ""
+    #: Model classes the method solves.
+    models: ClassVar[tuple[type, ...]] = (Model,)
+    #: Option names accepted by the constructor.
+    options: ClassVar[tuple[str, ...]] = ()
+    #: Only rules with a convolution-quadrature form (BDF1, BDF2, trapezoidal).
+    cq_rules_only: ClassVar[bool] = True
+
+    def __init__(self, **options):
+        unknown = sorted(set(options) - set(self.options))
+        if unknown:
+            valid = ", ".join(repr(k) for k in self.options) or "none"
+            raise ValueError(f"{self.option_name} has unknown keys {unknown}; valid keys: {valid}")
+        self.config = dict(options)
+
+    @property
+    def option_name(self) -> str:
+        """How the options are called in messages (``cq_options`` and the like)."""
+        return f"{self.name.replace('-', '_')}_options"
+
+    def check(self, model, rule) -> None:
+        """Raise ``ValueError``/``TypeError`` if this method cannot solve ``model`` with ``rule``."""
+        if not isinstance(model, self.models):
+            kinds = " or ".join(cls.__name__ for cls in self.models)
+            hint = ("; it needs matrices: a KernelModel is solved with method='cq'"
+                    if type(model).__name__ == "KernelModel" else "")
+            raise ValueError(f"method={self.name!r} solves a {kinds}, not a {type(model).__name__}{hint}")
+        if self.cq_rules_only and not rule.supports_cq:
+            raise ValueError(
+                f"rule={rule.name!r} has no convolution-quadrature form; valid for method={self.name!r}: "
+                "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")
+
+    @abstractmethod
+    def solve(self, model, load, initial, disc, run):
+        """Solve ``model`` under ``load`` from ``initial`` on ``disc``; return a Solution.
+
+        Parameters
+        ----------
+        model : the problem (a class of :attr:`models`)
+        load : callable ``q(t) -> (n,)``, array (N+1, n), LoadHistory or None
+        initial : "static", "rest" or dict of ``u0``, ``udot0``, ``v0``
+        disc : Discretization
+        run : RunContext
+        """
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self.config.items())
+        return f"{type(self).__name__}({args})"

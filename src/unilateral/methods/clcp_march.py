@@ -1,0 +1,49 @@
+"""Choosing how a CLCP with stored weights is marched: the history and the engine."""
+
+from __future__ import annotations
+
+from .. import _validate as V
+from ..history import HISTORIES
+from ..lcp import BlockPrincipalPivoting
+from ..march.clcp import march_cq, march_cq_compiled
+
+ENGINES = ("auto", "compiled", "python")
+#: Above this many steps the history of stored weights is summed by the FFT-blocked algorithm.
+FFT_HISTORY_MIN_STEPS = 256
+
+
+def compiled_applies(run) -> bool:
+    """The compiled marches use block principal pivoting and step every constraint."""
+    return isinstance(run.solver, BlockPrincipalPivoting) and not run.bilateral
+
+
+def use_compiled(engine, compiled_ok, run, *, option, needs) -> bool:
+    """Whether to run compiled: ``engine`` asked for it (and it applies), or ``auto`` and it applies."""
+    if engine == "compiled" and not compiled_ok:
+        raise ValueError(f"{option}['engine']='compiled' needs {needs}")
+    return engine == "compiled" or (engine == "auto" and compiled_ok and run.callback is None)
+
+
+def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto", option="cq_options"):
+    """March the CLCP with stored weights ``W (N+1, m, m)``; return ``(v, psi, log)``.
+
+    ``history``: ``"naive"`` or ``"fft"`` (default: FFT-blocked above
+    :data:`FFT_HISTORY_MIN_STEPS` steps); ``engine``: ``"auto"``, ``"compiled"`` (naive history
+    and block principal pivoting only) or ``"python"``.
+    """
+    W = W.copy()
+    W[0] = 0.5 * (W[0] + W[0].T)
+    N = W.shape[0] - 1
+    history = V.choice(f"{option}['history']", history or ("fft" if N > FFT_HISTORY_MIN_STEPS else "naive"),
+                       HISTORIES)
+    engine = V.choice(f"{option}['engine']", engine, ENGINES)
+    run.stats["history"] = history
+    solver = run.solver
+    if use_compiled(engine, history == "naive" and compiled_applies(run), run, option=option,
+                    needs="history='naive' and lcp='bpp'"):
+        run.stats["engine"] = "compiled"
+        return march_cq_compiled("naive", (W, psi_affine), v_b, dt=disc.dt, tol=solver.tol,
+                                 max_iter=solver.max_iter or 10 * W.shape[1] + 10)
+    run.stats["engine"] = "python"
+    return march_cq(W[0], HISTORIES[history](W), psi_affine, v_b, solver, dt=disc.dt,
+                    bilateral=run.bilateral, callback=run.callback)

@@ -1,0 +1,84 @@
+"""``method="cq"``: the paper's CLCP with convolution-quadrature weights of ``Lambda(s)``."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _validate as V
+from ..initial import InitialState, static_lcp
+from ..kernels import KernelModel, MatrixKernel, cq_weights
+from ..model import Model
+from .base import Method
+from .clcp_march import march_weights
+from .common import clcp_on_matrix_model, failed_at_start, finish
+
+
+class CQ(Method):
+    """The convolutional LCP of Liolios (1990), eq. (27), with convolution-quadrature weights.
+
+    The weights of ``Lambda(s)`` (a :class:`~unilateral.kernels.MatrixKernel` of a
+    :class:`~unilateral.model.Model`, or the kernel of a :class:`~unilateral.kernels.KernelModel`)
+    are computed by FFT on a circle (:func:`~unilateral.kernels.cq_weights`); the history is summed
+    directly or FFT-blocked; one LCP per step.
+
+    Options
+    -------
+    L, rho : FFT size and circle radius of the weights (see :func:`~unilateral.kernels.cq_weights`)
+    history : ``"naive"`` (O(N^2 m^2)) or ``"fft"`` (O(m^2 N log^2 N), the default above 256 steps)
+    engine : ``"auto"`` (compiled where it applies: naive history and ``lcp="bpp"``),
+        ``"compiled"`` or ``"python"``
+    """
+
+    name = "cq"
+    models = (Model, KernelModel)
+    options = ("L", "rho", "history", "engine")
+
+    def solve(self, model, load, initial, disc, run):
+        weight_options = {k: self.config[k] for k in ("L", "rho") if k in self.config}
+        march = {k: self.config[k] for k in ("history", "engine") if k in self.config}
+        if isinstance(model, KernelModel):
+            if load is not None:
+                raise ValueError("load is not used by a KernelModel: its psiL carries the loading; pass load=None")
+            return self._solve_kernel_model(model, initial, disc, run, weight_options, march)
+        run.stats["n"] = model.n
+
+        def clcp(psiL, v_b):
+            W = cq_weights(MatrixKernel(model), disc.N, disc.dt, disc.rule, **weight_options)
+            run.timer.lap("weights")
+            return march_weights(W, psiL, v_b, disc, run, **march)
+
+        return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
+
+    def _solve_kernel_model(self, model, initial, disc, run, weight_options, march):
+        N = disc.N
+        psiL = model.psiL_samples(N, disc.dt)
+        run.timer.lap("setup")
+        W = cq_weights(model.kernel, N, disc.dt, disc.rule, **weight_options)
+        W = np.real_if_close(W) if np.iscomplexobj(W) else W
+        run.timer.lap("weights")
+        if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
+            Lambda0 = model.Lambda_real(0.0)
+            v_b, iters, message = static_lcp(Lambda0, psiL[0], run.solver)
+            run.stats["static_lcp_iterations"] = iters
+            if message:
+                return failed_at_start(model, InitialState(v=v_b, psi=psiL[0], message=message), run)
+            # psi_n = psiL_n - Lambda(0) v_b for a v held at its static value since -infinity.
+            psi_affine = psiL - Lambda0 @ v_b
+        else:
+            if isinstance(initial, dict):
+                unknown = set(initial) - {"v0"}
+                if unknown:
+                    raise ValueError(f"initial for a KernelModel takes only 'v0'; got keys {sorted(unknown)}")
+                v_b = V.as_vector("initial['v0']", initial.get("v0", 0.0), model.m)
+                if np.any(v_b < 0):
+                    raise ValueError(f"initial['v0'] must be >= 0, got {v_b}")
+            elif isinstance(initial, str):
+                v_b = np.zeros(model.m)
+            else:
+                raise TypeError(f"initial must be 'static', 'rest' or dict(v0=...), got {V.describe(initial)}")
+            # v jumps to v_b at t = 0: its convolution is the CQ step response sum_{j<=n} W_j v_b.
+            psi_affine = psiL - np.cumsum(W, axis=0) @ v_b
+        v, psi, log = march_weights(W, psi_affine, v_b, disc, run, **march)
+        run.timer.lap("steps")
+        K = v.shape[0] - 1
+        return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, psiL=psiL[: K + 1])
