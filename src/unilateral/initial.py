@@ -82,8 +82,19 @@ def static_state(model, q0, solver) -> InitialState:
                         lcp_iterations=iters, message=message)
 
 
-def given_state(model, initial: dict) -> InitialState:
-    """Initial conditions ``u0``, ``udot0``, ``v0`` (eqs. 10-12); missing entries are zero."""
+def given_state(model, initial: dict, solver=None) -> InitialState:
+    """Initial conditions ``u0``, ``udot0``, ``v0`` (eqs. 10-12); missing ``u0``, ``udot0`` are zero.
+
+    Without ``v0`` the unilateral unknowns consistent with ``u0`` are computed: with ``u`` held,
+    ``psi = c - H v`` (``c = F^T u0 + F_v^T udot0 - g(0)``) and complementarity make an LCP in
+    ``v`` with the positive definite ``H`` (one solution). A given ``v0`` must be consistent:
+    no constraint in tension (``psi > 0``) and none open (``v > 0``) while carrying a force.
+
+    Raises
+    ------
+    ValueError
+        Naming the first inconsistent constraint, its ``psi`` and ``v``, and what to do.
+    """
     unknown = set(initial) - {"u0", "udot0", "v0"}
     if unknown:
         raise ValueError(
@@ -92,11 +103,37 @@ def given_state(model, initial: dict) -> InitialState:
     n, m = model.n, model.m
     u0 = V.as_vector("initial['u0']", initial.get("u0", 0.0), n)
     udot0 = V.as_vector("initial['udot0']", initial.get("udot0", 0.0), n)
-    v0 = V.as_vector("initial['v0']", initial.get("v0", 0.0), m)
-    if np.any(v0 < 0):
-        i = int(np.argmax(v0 < 0))
-        raise ValueError(f"initial['v0'] must be >= 0; v0[{i}] = {float(v0[i])!r}")
-    psi0 = transpose_times(model.F, u0) - model.H @ v0 - model.g(0.0)
+    c = transpose_times(model.F, u0) - model.g(0.0)
     if model.F_v is not None:
-        psi0 = psi0 + transpose_times(model.F_v, udot0)
+        c = c + transpose_times(model.F_v, udot0)
+    if "v0" in initial:
+        v0 = V.as_vector("initial['v0']", initial["v0"], m)
+        if np.any(v0 < 0):
+            i = int(np.argmax(v0 < 0))
+            raise ValueError(f"initial['v0'] must be >= 0; v0[{i}] = {float(v0[i])!r}")
+    else:
+        v0, _, message = static_lcp(model.H, c, solver or get_lcp_solver("bpp"))
+        if message:
+            raise ValueError("no unilateral unknowns v0 are consistent with initial['u0']: " + message)
+    psi0 = c - model.H @ v0
+    _check_consistent(model, v0, psi0, scale=1.0 + float(np.max(np.abs(c), initial=0.0)))
     return InitialState(v=v0, psi=psi0, u=u0, udot=udot0)
+
+
+def _check_consistent(model, v0, psi0, *, scale, rtol=1e-9):
+    """Raise if ``(v0, psi0)`` violates ``psi <= 0``, or ``psi = 0`` where ``v > 0``."""
+    names = model.constraint_names
+    tension = psi0 > rtol * scale
+    if np.any(tension):
+        i = int(np.argmax(psi0))
+        raise ValueError(
+            f"the initial state puts constraint {names[i]!r} in tension: psi = {psi0[i]:.6g} > 0 with "
+            f"v0 = {v0[i]:.6g}; a unilateral constraint cannot pull. Give the opening consistent with "
+            "u0 in initial['v0'], or leave v0 out to have it computed")
+    open_loaded = (v0 > 0) & (psi0 < -rtol * scale)
+    if np.any(open_loaded):
+        i = int(np.flatnonzero(open_loaded)[0])
+        raise ValueError(
+            f"the initial state has constraint {names[i]!r} open (v0 = {v0[i]:.6g} > 0) while it carries "
+            f"psi = {psi0[i]:.6g} < 0; an open constraint carries no force. Fix initial['v0'] or leave "
+            "it out to have it computed")

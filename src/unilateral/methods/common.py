@@ -64,9 +64,9 @@ def initial_state(model, q, initial, solver) -> InitialState:
     if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
         return static_state(model, q(0), solver)
     if isinstance(initial, str):                              # "rest"
-        return given_state(model, {})
+        return given_state(model, {}, solver)
     if isinstance(initial, dict):
-        return given_state(model, initial)
+        return given_state(model, initial, solver)
     raise TypeError(f"initial must be 'static', 'rest' or a dict of u0, udot0, v0; got {V.describe(initial)}")
 
 
