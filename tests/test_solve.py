@@ -320,14 +320,22 @@ def test_bpp_feasibility_is_measured_in_the_units_of_v():
 
 
 @pytest.mark.parametrize("method", ["cq", "modal", "direct"])
-def test_load_history_sampled_at_once_equals_a_plain_callable(method):
+def test_load_history_equals_its_grid_samples_given_as_an_array(method):
+    """A LoadHistory is sampled by hat averages (one-sided at t = 0) and the static state is taken
+    under q(0-): the same as its grid samples passed as an array from that static state."""
+    from unilateral.initial import static_state
+    from unilateral.lcp import get_lcp_solver
     from unilateral.loads import LoadHistory, Rectangular
     from unilateral.structure import liolios1990
     structure, _, _ = liolios1990()
     q = LoadHistory(structure.gravity(10.0), [(structure.nodal_load(1, ux=200.0), Rectangular(1.0, t_end=0.1))])
     model = structure.to_model()
     args = dict(dt=2e-3, t_end=0.4, method=method)
-    sampled, called = ul.solve(model, q, **args), ul.solve(model, lambda t: q(t), **args)
+    Q, q0 = q.grid_samples(2e-3, 200)
+    assert np.array_equal(q0, q(0.0)) and np.array_equal(Q[0], q(1e-3))      # q(0-) and q(0+)
+    init = static_state(model, q0, get_lcp_solver("bpp"))
+    sampled = ul.solve(model, q, **args)
+    called = ul.solve(model, Q, initial={"u0": init.u, "v0": init.v}, **args)
     assert sampled.success and called.success and sampled.stats["contact_changes"] > 2
     for name in ("u", "v", "psi"):
         scale = np.abs(getattr(called, name)).max()

@@ -30,6 +30,7 @@ def as_matrix(name: str, value, shape: tuple[int | None, int | None], *, allow_s
     """
     if value is None:
         raise TypeError(f"{name} is required (got None); pass an array of shape {_shape_text(shape)}")
+    _refuse_complex(name, value)
     if sp.issparse(value):
         value = sp.csr_matrix(value, dtype=float) if allow_sparse else value.toarray().astype(float)
     else:
@@ -52,6 +53,7 @@ def as_matrix(name: str, value, shape: tuple[int | None, int | None], *, allow_s
 
 def as_vector(name: str, value, size: int | None) -> np.ndarray:
     """Return ``value`` as a finite float vector of the given size (a scalar is broadcast)."""
+    _refuse_complex(name, value)
     try:
         arr = np.array(value, dtype=float)
     except (TypeError, ValueError):
@@ -62,6 +64,18 @@ def as_vector(name: str, value, size: int | None) -> np.ndarray:
         raise ValueError(f"{name} must have shape ({size},), got shape {arr.shape}")
     check_finite(name, arr)
     return arr
+
+
+def _refuse_complex(name: str, value) -> None:
+    """Complex input would lose its imaginary part silently in a conversion to float."""
+    dtype = getattr(value, "dtype", None)
+    if dtype is None and not isinstance(value, (str, bytes)):
+        try:
+            dtype = np.asarray(value).dtype
+        except (TypeError, ValueError):
+            return
+    if dtype is not None and np.issubdtype(dtype, np.complexfloating):
+        raise TypeError(f"{name} must be real; got a complex array ({describe(value)})")
 
 
 def check_finite(name: str, data) -> None:
@@ -104,6 +118,9 @@ def check_psd(name: str, A: np.ndarray, *, strict=False) -> None:
 
 
 def positive_float(name: str, value) -> float:
+    """``value`` as a float > 0 and finite; strings and booleans are refused, not converted."""
+    if isinstance(value, (str, bytes, bool)) or value is None:
+        raise TypeError(f"{name} must be a positive number, got {describe(value)}")
     try:
         x = float(value)
     except (TypeError, ValueError):

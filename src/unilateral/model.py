@@ -117,6 +117,8 @@ class Model:
             V.check_psd("H_v", self.H_v)
         _check_diagonal_nonnegative("M", self.M)
         _check_diagonal_nonnegative("K", self.K, strict=True)
+        _check_definite("K", self.K, strict=True)
+        _check_definite("M", self.M, strict=False)
         self.g, self.g_is_constant = V.time_function("g", g, m)
         self.q_imposed, self.q_imposed_is_constant = V.time_function("q_imposed", q_imposed, n)
         self.dof_names = _names("dof_names", dof_names, n, "u")
@@ -284,7 +286,52 @@ def _names(arg, names, size, prefix):
     names = [str(x) for x in names]
     if len(names) != size:
         raise ValueError(f"{arg} must have {size} entries, got {len(names)}")
+    seen = set()
+    for name in names:
+        if name in seen:
+            raise ValueError(f"{arg} has the name {name!r} twice; names must be unique")
+        seen.add(name)
     return names
+
+
+#: Dense matrices up to this size are checked for definiteness by their eigenvalues.
+DEFINITENESS_DENSE_MAX_N = 2000
+
+
+def _check_definite(name, A, *, strict):
+    """Raise if the symmetric ``A`` is indefinite (``strict``: also if singular).
+
+    Dense matrices up to :data:`DEFINITENESS_DENSE_MAX_N`: the smallest eigenvalue. Sparse ones: the
+    inertia of ``P A P^T = L D L^T`` from a symmetric-mode sparse LU without pivoting off the
+    diagonal (Sylvester's law: the signs of ``D`` are those of the eigenvalues); a factorisation
+    that breaks down is left to the later solves, which report it.
+    """
+    n = A.shape[0]
+    if n == 0:
+        return
+    need = "positive definite" if strict else "positive semidefinite"
+    if not sp.issparse(A):
+        if n > DEFINITENESS_DENSE_MAX_N:
+            return
+        eig = np.linalg.eigvalsh(A)
+        # eigenvalues are accurate to about n eps max|eig|: penalty-stiff models (cond 1e13) pass
+        limit = 10 * n * np.finfo(float).eps * max(np.max(np.abs(eig)), np.finfo(float).tiny)
+        if eig[0] < -limit or (strict and eig[0] <= limit):
+            raise ValueError(f"{name} must be symmetric {need}; its smallest eigenvalue is {eig[0]:.3g} "
+                             f"(largest {eig[-1]:.3g})")
+        return
+    if not strict:
+        return           # a sparse M with massless DOFs has no LDL^T; its diagonal was checked
+    import scipy.sparse.linalg as spla
+    try:
+        lu = spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                       options={"SymmetricMode": True})
+    except RuntimeError:
+        return
+    d = lu.U.diagonal()
+    if np.any(d <= 0):
+        raise ValueError(f"{name} must be symmetric {need}; its LDL^T factorisation has {int(np.sum(d <= 0))} "
+                         "nonpositive pivots (an unstable or indefinite structure)")
 
 
 def _check_diagonal_nonnegative(name, A, *, strict=False):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 from . import _validate as V
 from .discretization import Discretization
 from .kernels import KernelModel, TimeKernelModel
@@ -88,6 +90,7 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
                 raise ValueError(f"{name}_options apply to method={name!r} only (method={chosen.name!r})")
             chosen = type(chosen)(**value)
     chosen.check(model, disc.rule)
+    _check_memory(chosen, model, disc)
     run.stats.update(method=chosen.name, rule=disc.rule.name, lcp_solver=run.solver.name, steps=disc.N,
                      dt=disc.dt, m=model.m)
     if auto:
@@ -102,3 +105,24 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         chosen, run.stats["method_reason"] = other[0], f"{reason}; {other[1]}"
         run.stats["method"] = chosen.name
         return chosen.solve(model, load, initial, disc, run)
+
+
+#: A run may use at most this fraction of the machine's memory.
+MEMORY_FRACTION = 0.5
+
+
+def _check_memory(method, model, disc) -> None:
+    """Refuse a run whose arrays would not fit, with the estimate and what to change."""
+    parts = method.memory_estimate(model, disc)
+    need = sum(parts.values())
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):         # not a POSIX system
+        return
+    if need > MEMORY_FRACTION * total:
+        what = "; ".join(f"{text}: {size / 2**30:.3g} GiB" for text, size in parts.items())
+        raise MemoryError(
+            f"t_end/dt = {disc.N} steps with method={method.name!r} would need about {need / 2**30:.3g} GiB "
+            f"({what}), more than {MEMORY_FRACTION:.0%} of this machine's {total / 2**30:.3g} GiB: "
+            "increase dt, shorten t_end"
+            + (" or use method='modal' or 'direct' (no stored weights)" if method.name == "cq" else ""))

@@ -8,6 +8,12 @@ duration=0.2)(t)``.
 Pulses are zero at their start time and switch on just after it (``t_start < t``). A pulse
 starting at t = 0 therefore has ``f(0) = 0``, so that the static equilibrium a solver starts
 from at t = 0 is the unloaded one.
+
+Every function also knows its exact piecewise form (:meth:`TimeFunction.piecewise`): its
+breakpoints (jumps in value, kinks) and its one-sided values there (:meth:`TimeFunction.limits`).
+That is what the event-driven reference method integrates exactly, and what
+:meth:`TimeFunction.grid_samples` uses to give a time-stepping rule load samples that keep its
+order of accuracy across jumps (see :mod:`unilateral.loads.piecewise`).
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ from dataclasses import KW_ONLY, dataclass
 import numpy as np
 
 from unilateral._validate import as_vector, choice, positive_float
+from unilateral.loads.piecewise import Piecewise, constant, linear_table
 from unilateral.loads.records import RecordFormatError, _read_only_view, read_table
 
 
@@ -47,6 +54,31 @@ class TimeFunction(ABC):
     @abstractmethod
     def _evaluate(self, t: np.ndarray) -> np.ndarray:
         """Values at the float array of times ``t`` (any shape), same shape."""
+
+    def piecewise(self) -> Piecewise:
+        """The exact piecewise (polynomial + sinusoid) form of the function.
+
+        Subclasses defined outside the package may not have one: they raise
+        ``NotImplementedError`` and cannot be integrated exactly or sampled by averages.
+        """
+        raise NotImplementedError(f"{type(self).__name__} has no piecewise form")
+
+    @property
+    def breakpoints(self) -> np.ndarray:
+        """Times (s) where the function jumps or has a kink, increasing."""
+        return self.piecewise().edges
+
+    def limits(self, t) -> tuple[float, float]:
+        """One-sided values ``(f(t-), f(t+))`` at time ``t``."""
+        return self.piecewise().limits(t)
+
+    def grid_samples(self, dt: float, N: int, sampling: str = "hat") -> np.ndarray:
+        """Samples at ``t_k = k dt`` (k = 0..N) that keep a rule's order across jumps.
+
+        See :meth:`unilateral.loads.piecewise.Piecewise.grid_samples`; ``f(0-)`` (the static
+        preload) is ``limits(0.0)[0]``.
+        """
+        return self.piecewise().grid_samples(dt, N, sampling)
 
 
 @dataclass(frozen=True)
@@ -78,6 +110,9 @@ class Rectangular(TimeFunction):
         # round to just above t_end (3 * 0.1 > 0.3) still see the pulse
         end = self.t_end + END_TOLERANCE * max(abs(self.t_end), abs(self.t_start), 1e-300)
         return np.where((t > self.t_start) & (t <= end), self.amplitude, 0.0)
+
+    def piecewise(self) -> Piecewise:
+        return Piecewise([self.t_start, self.t_end], [[0.0], [self.amplitude], [0.0]])
 
 
 @dataclass(frozen=True)
@@ -121,6 +156,19 @@ class Triangular(TimeFunction):
         on = (t > self.t_start) & (t <= self.t_end)
         return np.where(on, self.amplitude * np.minimum(up, down), 0.0)
 
+    def piecewise(self) -> Piecewise:
+        A, ts, tp, te = self.amplitude, self.t_start, self.t_peak, self.t_end
+        edges, poly = [ts], [[0.0, 0.0]]
+        if tp > ts:                                     # rise, from ts
+            poly.append([0.0, A / (tp - ts)])
+        if te > tp:                                     # fall, from tp
+            if tp > ts:
+                edges.append(tp)
+            poly.append([A, -A / (te - tp)])
+        edges.append(te)
+        poly.append([0.0, 0.0])
+        return Piecewise(edges, poly)
+
 
 @dataclass(frozen=True)
 class HalfSine(TimeFunction):
@@ -150,6 +198,10 @@ class HalfSine(TimeFunction):
         phase = (t - self.t_start) / self.duration
         return np.where((phase > 0) & (phase < 1), self.amplitude * np.sin(np.pi * phase), 0.0)
 
+    def piecewise(self) -> Piecewise:
+        return Piecewise([self.t_start, self.t_start + self.duration], np.zeros((3, 1)),
+                         [[0.0, 0.0], [0.0, self.amplitude], [0.0, 0.0]], np.pi / self.duration)
+
 
 @dataclass(frozen=True)
 class Constant(TimeFunction):
@@ -162,6 +214,9 @@ class Constant(TimeFunction):
 
     def _evaluate(self, t):
         return np.full(t.shape, self.value)
+
+    def piecewise(self) -> Piecewise:
+        return constant(self.value)
 
 
 @dataclass(frozen=True)
@@ -185,6 +240,9 @@ class Ramp(TimeFunction):
 
     def _evaluate(self, t):
         return self.value * np.clip(t / self.t_ramp, 0.0, 1.0)
+
+    def piecewise(self) -> Piecewise:
+        return Piecewise([0.0, self.t_ramp], [[0.0, 0.0], [0.0, self.value / self.t_ramp], [self.value, 0.0]])
 
 
 @dataclass(frozen=True, eq=False)
@@ -267,6 +325,12 @@ class Tabulated(TimeFunction):
     def _evaluate(self, t):
         fill = 0.0 if self.outside == "zero" else None
         return np.asarray(np.interp(t, *self._samples, left=fill, right=fill))
+
+    def piecewise(self) -> Piecewise:
+        t, values = self._samples
+        if self.outside == "zero":
+            return linear_table(t, values, 0.0, 0.0)
+        return linear_table(t, values, values[0], values[-1])
 
 
 def _set_finite(obj, *names: str) -> None:

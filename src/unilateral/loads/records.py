@@ -151,6 +151,28 @@ class GroundMotion:
         """
         return np.interp(t, self._times, self._samples, left=0.0, right=0.0)
 
+    def piecewise(self):
+        """Exact piecewise-linear form: linear between samples, zero before 0 and after the end.
+
+        A record whose first (last) sample is not zero jumps at t = 0 (at its end).
+        """
+        from unilateral.loads.piecewise import linear_table
+
+        return linear_table(self._times, self._samples, 0.0, 0.0)
+
+    @property
+    def breakpoints(self) -> np.ndarray:
+        """Times of the samples (kinks of the interpolation; jumps at the ends if nonzero)."""
+        return self.piecewise().edges
+
+    def limits(self, t) -> tuple[float, float]:
+        """One-sided values ``(a(t-), a(t+))``."""
+        return self.piecewise().limits(t)
+
+    def grid_samples(self, dt: float, N: int, sampling: str = "hat") -> np.ndarray:
+        """Samples at ``k dt`` that keep a rule's order (see :mod:`unilateral.loads.piecewise`)."""
+        return self.piecewise().grid_samples(dt, N, sampling)
+
     def scaled(self, factor: float) -> GroundMotion:
         """Copy with the acceleration multiplied by ``factor`` (finite, may be negative)."""
         factor = float(factor)

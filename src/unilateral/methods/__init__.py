@@ -9,6 +9,7 @@ name               method
                    poles and residues of ``Lambda(s)``, O(r m) per step
 ``"direct"``       :class:`Direct`: the full model stepped with the rule, one LCP per step
 ``"time-kernel"``  :class:`TimeKernelMethod`: product integration of a time-domain kernel
+``"event"``        :class:`Event`: exact integration from contact change to contact change
 ``"auto"``         not a class: :func:`choose_method` picks one of the above and says why
 =================  ==========================================================================
 
@@ -25,11 +26,12 @@ from .auto import choose_method, fallback
 from .base import Method
 from .cq import CQ
 from .direct import Direct
+from .event import Event
 from .modal import Modal
 from .time_kernel import TimeKernelMethod, solve_time_kernel
 
 #: The registry: name -> Method subclass.
-METHODS = {"cq": CQ, "modal": Modal, "direct": Direct, "time-kernel": TimeKernelMethod}
+METHODS = {"cq": CQ, "modal": Modal, "direct": Direct, "time-kernel": TimeKernelMethod, "event": Event}
 #: Every name ``method=`` accepts.
 METHOD_NAMES = ("auto", *METHODS)
 #: The names that solve a matrix :class:`~unilateral.model.Model` (model files, the command line).
@@ -60,5 +62,5 @@ def get_method(method, options=None):
                     f"or a Method instance; got {V.describe(method)}")
 
 
-__all__ = ["CQ", "MATRIX_METHOD_NAMES", "METHODS", "METHOD_NAMES", "Direct", "Method", "Modal", "TimeKernelMethod", "choose_method",
+__all__ = ["CQ", "Direct", "Event", "MATRIX_METHOD_NAMES", "METHODS", "METHOD_NAMES", "Method", "Modal", "TimeKernelMethod", "choose_method",
            "fallback", "get_method", "solve_time_kernel"]

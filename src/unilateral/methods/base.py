@@ -55,6 +55,16 @@ class Method(ABC):
                 f"rule={rule.name!r} has no convolution-quadrature form; valid for method={self.name!r}: "
                 "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")
 
+    def memory_estimate(self, model, disc) -> dict:
+        """Bytes the run will hold, by what: ``{"histories of ...": bytes, ...}`` (a lower bound).
+
+        The default counts the output histories: ``u`` and ``udot`` (n each), ``v``, ``psi`` and
+        ``psiL`` (m each) at every step.
+        """
+        n = getattr(model, "n", 0)
+        return {f"the histories of u, udot, v, psi, psiL (n = {n}, m = {model.m})":
+                8.0 * (disc.N + 1) * (2 * n + 3 * model.m)}
+
     @abstractmethod
     def solve(self, model, load, initial, disc, run):
         """Solve ``model`` under ``load`` from ``initial`` on ``disc``; return a Solution.

@@ -15,54 +15,77 @@ from ..result import Solution
 
 
 # ---------------------------------------------------------------------- loads
-def load_function(model, load, disc):
-    """Return ``q(k) -> (n,)``: applied load plus the load of imposed strains at ``t_k``."""
+@dataclass
+class StepLoads:
+    """The load of every step of a run, and the load of the static state it starts from.
+
+    Attributes
+    ----------
+    q : callable ``q(k) -> (n,)``
+        Applied load plus the load of imposed strains used at step ``k``.
+    q_static : (n,)
+        The load of the static preload (``q(0-)``: a pulse starting at t = 0 is still off).
+    table : callable ``table() -> (N+1, n)``
+        Every step's ``q`` at once (vectorised where the load allows it).
+    """
+
+    q: object
+    q_static: np.ndarray
+    table: object
+
+
+def step_loads(model, load, disc) -> StepLoads:
+    """How ``load`` is sampled on the grid of ``disc``.
+
+    A :class:`~unilateral.loads.LoadHistory` gives hat-function averages that keep second order
+    across pulse edges, one-sided at ``t = 0`` (:meth:`~unilateral.loads.LoadHistory.grid_samples`,
+    ``docs/theory.md``), and ``q(0-)`` for the static preload. A callable is sampled at the grid
+    points (``q_static = q(0)``); an array (N+1, n) is used as given (``q_static`` its first row).
+    """
     n, dt, N = model.n, disc.dt, disc.N
     imposed = model.q_imposed
+    with_imposed = lambda Q: Q + (model.q_imposed(0.0) if model.q_imposed_is_constant
+                                  else np.array([imposed(k * dt) for k in range(N + 1)]))
     if load is None:
-        return lambda k: imposed(k * dt)
+        q = lambda k: imposed(k * dt)
+        return StepLoads(q, q(0), lambda: with_imposed(np.zeros((N + 1, n))))
+    if callable(getattr(load, "grid_factors", None)):
+        if load.n != n:
+            raise ValueError(f"load has {load.n} DOFs but the model has n = {n}")
+        factors, before = load.grid_factors(dt, N)
+        vectors = load.vectors()
+        bad = np.flatnonzero(~np.all(np.isfinite(factors), axis=1))
+        if bad.size:
+            raise ValueError(f"load(t) returned a non-finite value at t={bad[0] * dt} (step {bad[0]})")
+        q = lambda k: load.constant + factors[k] @ vectors + imposed(k * dt)
+        return StepLoads(q, load.constant + before @ vectors + imposed(0.0),
+                         lambda: with_imposed(load.constant + factors @ vectors))
     if callable(load):
         def q(k):
-            value = np.asarray(load(k * dt), dtype=float)
+            try:
+                value = np.asarray(load(k * dt), dtype=float)
+            except Exception as exc:
+                raise ValueError(f"the load raised {type(exc).__name__} at t={k * dt:.6g} (step {k}): {exc}") from exc
             if value.shape != (n,):
                 raise ValueError(f"load(t) must return shape ({n},), got shape {value.shape} at t={k * dt}")
             if not np.all(np.isfinite(value)):
                 raise ValueError(f"load(t) returned a non-finite value at t={k * dt} (step {k})")
             return value + imposed(k * dt)
-        return q
+        return StepLoads(q, q(0), lambda: np.array([q(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n))
     arr = V.as_matrix("load", load, (None, n), allow_sparse=False)
     if arr.shape[0] < N + 1:
         raise ValueError(
             f"load has {arr.shape[0]} rows but t_end/dt = {N} steps need {N + 1} (rows at t = k dt)"
         )
-    return lambda k: arr[k] + imposed(k * dt)
-
-
-def load_table(model, load, q, disc):
-    """``q(k)`` of every step, (N+1, n): sampled at once for an array load or one with ``sample(t)``."""
-    n, N = model.n, disc.N
-    vectorised = model.q_imposed_is_constant and (
-        isinstance(load, np.ndarray) or (callable(getattr(load, "sample", None)) and callable(load)))
-    if not vectorised:
-        return np.array([q(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
-    if isinstance(load, np.ndarray):
-        Q = np.array(load[: N + 1], dtype=float)
-    else:
-        Q = np.asarray(load.sample(disc.t), dtype=float)
-        if Q.shape != (N + 1, n):
-            raise ValueError(f"load.sample(t) must return shape ({N + 1}, {n}) for {N + 1} times, "
-                             f"got shape {Q.shape}")
-        bad = np.flatnonzero(~np.all(np.isfinite(Q), axis=1))
-        if bad.size:
-            raise ValueError(f"load(t) returned a non-finite value at t={bad[0] * disc.dt} (step {bad[0]})")
-    return Q + model.q_imposed(0.0)
+    q = lambda k: arr[k] + imposed(k * dt)
+    return StepLoads(q, q(0), lambda: with_imposed(arr[: N + 1]))
 
 
 # ---------------------------------------------------------------------- the base state
-def initial_state(model, q, initial, solver) -> InitialState:
-    """The base state of a matrix model: ``"static"`` (under ``q(0)``), ``"rest"`` or given."""
+def initial_state(model, q_static, initial, solver) -> InitialState:
+    """The base state of a matrix model: ``"static"`` (under ``q_static``), ``"rest"`` or given."""
     if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
-        return static_state(model, q(0), solver)
+        return static_state(model, q_static, solver)
     if isinstance(initial, str):                              # "rest"
         return given_state(model, {}, solver)
     if isinstance(initial, dict):
@@ -86,8 +109,9 @@ class BaseState:
 
     @classmethod
     def prepare(cls, model, load, initial, disc, run, *, tables: bool) -> BaseState:
-        q = load_function(model, load, disc)
-        init = initial_state(model, q, initial, run.solver)
+        loads = step_loads(model, load, disc)
+        q = loads.q
+        init = initial_state(model, loads.q_static, initial, run.solver)
         if init.message:
             return cls(model, init, None, None)
         run.stats["static_lcp_iterations"] = init.lcp_iterations
@@ -97,7 +121,7 @@ class BaseState:
         HFu = transpose_times(model.F, u_b) - model.H @ v_b
         if tables and model.n <= DENSE_STEPPING_MAX_N:
             # small models: the compiled sweeps take every step's load and offset as arrays
-            load_inc = load_table(model, load, q, disc) + (F_vb - K_ub)
+            load_inc = loads.table() + (F_vb - K_ub)
             g = (model.g(0.0) if model.g_is_constant
                  else np.array([model.g(k * disc.dt) for k in range(disc.N + 1)]))
             offset = np.tile(HFu, (disc.N + 1, 1)) - g

@@ -33,6 +33,11 @@ class CQ(Method):
     models = (Model, KernelModel)
     options = ("L", "rho", "history", "engine")
 
+    def memory_estimate(self, model, disc) -> dict:
+        out = super().memory_estimate(model, disc)
+        out[f"the CQ weights (3 copies of (N+1) m^2, m = {model.m})"] = 24.0 * (disc.N + 1) * model.m ** 2
+        return out
+
     def solve(self, model, load, initial, disc, run):
         weight_options = {k: self.config[k] for k in ("L", "rho") if k in self.config}
         march = {k: self.config[k] for k in ("history", "engine") if k in self.config}

@@ -1,0 +1,375 @@
+"""An exact event-driven reference march for small models with piecewise-analytic loads.
+
+Between two contact changes the model is linear with constant coefficients: for the contact set
+of the moment (open constraints ``psi_i = 0``, closed ones ``v_i = 0``) the unknowns
+``x = (u, v_open)`` obey a linear system (:mod:`unilateral.march.event_config`: massive DOFs
+second order, massless damped DOFs and the gaps of open Kelvin contacts first order, massless
+undamped DOFs and the gaps of open spring contacts condensed statically), and the load is the
+output of a small linear generator on each piece of its time functions
+(:mod:`unilateral.march.event_load`). The augmented system is integrated exactly by matrix
+exponentials.
+
+Events
+    A closed constraint's reaction ``psi_i`` reaching 0 from below, or an open constraint's gap
+    ``v_i`` reaching 0 from above. They are bracketed on a sub-grid of the exact solution (finer
+    than half a radian of the fastest oscillation of the configuration) and located by Brent's
+    method to ``tol`` (1e-13 s by default).
+Decision
+    At an event, a load breakpoint and the start, the constraints at the boundary (a closed one
+    with ``psi_i ~ 0``, an open one with ``v_i ~ 0``) and the triggering ones are critical. The new
+    contact set is the one whose exact solution just after ``t`` is admissible: for each critical
+    closed constraint the first non-negligible term of ``(psi, psi' d, psi'' d^2/2, psi''' d^3/6)``
+    is negative, for each critical open one that of ``(v, v' d, ...)`` is positive, and no other
+    constraint jumps out of its admissible side. Candidates are enumerated by increasing number of
+    switches, which solves the rate-level LCP when several constraints change at once. With
+    Kelvin contacts the reaction jumps at closure (``v'`` jumps to 0): the value level decides.
+
+Output on the grid ``t_k`` is the **left limit** ``lim_{t -> t_k-}`` (at ``t_0`` the initial
+state): at a grid time that coincides with an event or a load jump, u, u', v and psi are those
+before it. (Only quantities that can jump differ from the right limit: psi of a Kelvin contact at
+closure, u' of massless DOFs, psi under a load jump on massless DOFs.)
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import scipy.linalg as sla
+from scipy.optimize import brentq
+
+from unilateral.linalg import dense
+from unilateral.march.event_config import Config
+from unilateral.march.event_load import load_generator
+
+#: Bracketing sub-grid: at most this many radians of the fastest oscillation per sub-interval.
+SUBSTEP_RADIANS = 0.5
+#: Minimum number of sub-intervals per output interval.
+MIN_SUBSTEPS = 4
+#: Relative size (to the reference reaction / displacement) of a value that counts as zero.
+ZERO_RTOL = 1e-12
+#: Relative distance to the boundary within which a constraint is critical at a decision.
+CRITICAL_RTOL = 1e-9
+#: Round-off of an output ``E Y``: this many ulps of ``|E| |Y|`` count as zero.
+NOISE_ULPS = 256
+#: Largest number of critical constraints whose contact states are enumerated (2^k candidates).
+MAX_ENUMERATED = 12
+
+
+def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=100_000):
+    """Follow a matrix model exactly from event to event; output on ``t_grid``.
+
+    Parameters
+    ----------
+    model : Model
+        Dense or sparse (densified; meant for n up to a few hundred), with constant ``g`` and
+        ``q_imposed``; ``C``, ``H_v`` positive semidefinite.
+    load : LoadHistory, ndarray (len(t_grid), n) or None
+        A LoadHistory whose time functions have a piecewise form (the time functions of
+        :mod:`unilateral.loads` and GroundMotion records), integrated exactly; an array of samples
+        at ``t_grid``, taken as piecewise linear between them (constant before ``t_grid[0]``);
+        or None (only the model's imposed load). A plain callable raises ValueError.
+    t_grid : (N+1,) increasing output times; the initial state is at ``t_grid[0]``.
+    u0, udot0 : (n,) initial displacement and velocity (only the velocity of the DOFs with mass
+        matters; the others follow from the equations).
+    v0 : (m,) initial unilateral deformations (``v0 > 0``: open).
+    tol : float
+        Accuracy (s) of the event times.
+    max_events : int
+        Stop with RuntimeError after this many events (chattering guard).
+
+    Returns
+    -------
+    u, udot : (N+1, n);  v, psi : (N+1, m)
+        Left limits at the grid times.
+    info : dict
+        ``event_times`` (k,), ``event_constraints`` (k,) int, ``event_kinds`` (k,) "open"/"close",
+        ``events`` (number of contact changes), ``decisions``, ``configurations``,
+        ``undecided`` (decisions where no candidate was strictly admissible), ``substeps``.
+    """
+    t_grid = np.asarray(t_grid, dtype=float)
+    if t_grid.ndim != 1 or t_grid.size < 1 or np.any(np.diff(t_grid) <= 0):
+        raise ValueError("t_grid must be a 1-D array of increasing times")
+    n, m = model.n, model.m
+    if not model.g_is_constant:
+        raise ValueError("method='event' needs a constant constraint offset g; this model's g is a "
+                         "function of time")
+    gen = load_generator(model, load, t_grid)
+    mats = _matrices(model)
+    u0, udot0, v0 = (np.asarray(a, dtype=float).reshape(size) for a, size in ((u0, n), (udot0, n), (v0, m)))
+    march = _March(model, mats, gen, t_grid, (u0, udot0, v0), tol=tol, max_events=max_events)
+    return march.run()
+
+
+# ---------------------------------------------------------------------- the march
+def _matrices(model):
+    n, m = model.n, model.m
+    M, C, K, F = (dense(A).astype(float) for A in (model.M, model.damping(), model.K, model.F))
+    Fv = np.zeros((n, m)) if model.F_v is None else dense(model.F_v).astype(float)
+    H = dense(model.H).astype(float)
+    Hv = np.zeros((m, m)) if model.H_v is None else dense(model.H_v).astype(float)
+    g = np.asarray(model.g(0.0), dtype=float).reshape(m)
+    return M, C, K, F, Fv, H, Hv, g
+
+
+class _March:
+    def __init__(self, model, mats, gen, t_grid, state0, *, tol, max_events):
+        u0, udot0, v0 = state0
+        self.mats, self.gen, self.grid = mats, gen, t_grid
+        self.tol, self.max_events = float(tol), int(max_events)
+        self.u0, self.udot0, self.v0 = u0, udot0, v0
+        M, C, K, F, Fv, H, Hv, g = mats
+        n, m = K.shape[0], F.shape[1]
+        self.n, self.m = n, m
+        # reference sizes for "zero": displacement and reaction of the load patterns
+        qref = np.abs(gen.Gq[:, 0]).copy()
+        for vector, f in gen.terms:
+            amp = np.max(np.abs(f.poly[:, 0])) + np.max(np.hypot(f.trig[:, 0], f.trig[:, 1]))
+            qref += amp * np.abs(vector)
+        try:
+            uq = np.linalg.solve(K, qref)
+        except np.linalg.LinAlgError:
+            uq = np.zeros(n)
+        psi0 = F.T @ u0 + Fv.T @ udot0 - H @ v0 - g
+        self.psi0 = psi0
+        uref = max(np.abs(uq).max(initial=0.0), np.abs(u0).max(initial=0.0), np.abs(v0).max(initial=0.0))
+        psiref = max(np.abs(F.T @ uq).max(initial=0.0), np.abs(psi0).max(initial=0.0),
+                     np.abs(g).max(initial=0.0), np.abs(F).max(initial=0.0) * uref)
+        hmax = np.abs(np.diag(H)).max(initial=0.0)
+        vref = max(uref, psiref / hmax if hmax > 0 else 0.0)
+        self.psiref = psiref if psiref > 0 else 1.0
+        self.vref = vref if vref > 0 else 1.0
+        self.configs = {}
+        self.omega_load = max([f.omega for _, f in gen.terms if f.has_trig], default=0.0)
+        # uniform grid: full intervals use the canonical step (no drift from t_k - t_{k-1})
+        steps = np.diff(t_grid)
+        self.dt = float(steps.mean()) if steps.size else 0.0
+        self.uniform = steps.size > 0 and np.allclose(steps, self.dt, rtol=1e-9, atol=0.0)
+        self.event_times, self.event_constraints, self.event_kinds = [], [], []
+        self.decisions = 0
+        self.undecided = 0
+        self.substeps = 0
+        self.same_time = 0
+        self.last_event = -np.inf
+
+    # ------------------------------------------------------------------ configurations
+    def config(self, open_mask):
+        key = tuple(bool(b) for b in open_mask)
+        cfg = self.configs.get(key)
+        if cfg is None:
+            cfg = Config(self.mats, self.gen, np.array(key, dtype=bool))
+            cfg.zero = np.where(cfg.open, ZERO_RTOL * self.vref, ZERO_RTOL * self.psiref)
+            cfg.absE, cfg.absA = np.abs(cfg.E), np.abs(cfg.A)
+            freq = max(cfg.max_frequency, self.omega_load)
+            cfg.hmax = SUBSTEP_RADIANS / freq if freq > 0 else np.inf
+            self.configs[key] = cfg
+        return cfg
+
+    # ------------------------------------------------------------------ main loop
+    def run(self):
+        grid, gen = self.grid, self.gen
+        N = grid.size - 1
+        n, m = self.n, self.m
+        u = np.empty((N + 1, n))
+        ud = np.empty((N + 1, n))
+        v = np.empty((N + 1, m))
+        psi = np.empty((N + 1, m))
+        u[0], ud[0], v[0], psi[0] = self.u0, self.udot0, self.v0, self.psi0
+        t0, t_end = grid[0], grid[-1]
+        # breakpoints of the load inside (t0, t_end], snapped to grid times they round to
+        bps = gen.breakpoints[(gen.breakpoints > t0) & (gen.breakpoints <= t_end)]
+        snap = 1e-12 * max(abs(t_end), abs(t0), self.dt)
+        k_near = np.clip(np.searchsorted(grid, bps), 0, N)
+        on_grid = {}
+        for b, k in zip(bps, k_near):
+            for kk in (k - 1, k):
+                if 0 <= kk <= N and abs(grid[kk] - b) <= snap:
+                    on_grid[kk] = True
+                    break
+            else:
+                on_grid[float(b)] = False
+        stops = [(float(grid[k]), k, k in on_grid) for k in range(1, N + 1)]
+        stops += [(b, None, True) for b, flag in on_grid.items() if flag is False]
+        stops.sort(key=lambda s: s[0])
+
+        cfg = self.config(self.v0 > 0)
+        Y = cfg.state_from(self.u0, self.udot0, self.v0, gen.state(t0, "right"))
+        cfg, Y = self.decide(cfg, Y, t0, ())
+        t = t0
+        prev_grid = 0
+        for t_stop, k, is_bp in stops:
+            full = k is not None and prev_grid == k - 1 and t == grid[k - 1] and self.uniform
+            cfg, Y, pending = self.advance(cfg, Y, t, t_stop, self.dt if full else None)
+            t = t_stop
+            if k is not None:
+                u[k], ud[k], v[k], psi[k] = cfg.U @ Y, cfg.UD @ Y, cfg.V @ Y, cfg.PSI @ Y
+                prev_grid = k
+            if is_bp:
+                Y = Y.copy()
+                Y[cfg.ny:] = gen.state(t, "right")
+            if is_bp or pending:
+                cfg, Y = self.decide(cfg, Y, t, pending or ())
+        info = {
+            "event_times": np.array(self.event_times),
+            "event_constraints": np.array(self.event_constraints, dtype=int),
+            "event_kinds": np.array(self.event_kinds, dtype=object),
+            "events": len(self.event_times),
+            "decisions": self.decisions,
+            "configurations": len(self.configs),
+            "undecided": self.undecided,
+            "substeps": self.substeps,
+            "tol": self.tol,
+        }
+        return u, ud, v, psi, info
+
+    # ------------------------------------------------------------------ exact advance
+    def advance(self, cfg, Y, ta, tb, length=None):
+        """Advance from ``ta`` to ``tb``, handling the events on the way.
+
+        Returns ``(cfg, Y(tb-), pending)`` with ``pending`` the constraints of an event found at
+        ``tb`` itself (decided by the caller after recording the left limit).
+        """
+        while True:
+            L = (tb - ta) if length is None else length
+            if L <= 0:
+                return cfg, Y, ()
+            J = max(MIN_SUBSTEPS, math.ceil(L / cfg.hmax - 1e-9)) if np.isfinite(cfg.hmax) else MIN_SUBSTEPS
+            h = L / J
+            P = cfg.powers(h, J)
+            Ys = P @ Y                                            # (J, NY)
+            self.substeps += J
+            es = Ys @ cfg.E.T                                     # (J, m)
+            over = es > np.maximum(cfg.zero, _noise(cfg.absE, Ys))
+            if not over.any():
+                return cfg, Ys[-1], ()
+            j = int(np.argmax(over.any(axis=1)))
+            tau, which = self._locate(cfg, Y, Ys, es, j, h)
+            t_e = ta + tau
+            if t_e >= tb - self.tol:                              # the event is at tb
+                return cfg, Ys[-1], which
+            Y = sla.expm(cfg.A * tau) @ Y if tau > 0 else Y
+            cfg, Y = self.decide(cfg, Y, t_e, which)
+            ta, length = t_e, None
+
+    def _locate(self, cfg, Y0, Ys, es, j, h):
+        """Earliest root in sub-interval j: ``(tau from the start, triggering constraints)``."""
+        e_left = (cfg.E @ Y0) if j == 0 else es[j - 1]
+        Y_left = Y0 if j == 0 else Ys[j - 1]
+        candidates = np.flatnonzero(es[j] > np.maximum(cfg.zero, _noise(cfg.absE, Ys[j])))
+        best, roots = np.inf, {}
+        for i in candidates:
+            Ei = cfg.E[i]
+            if e_left[i] >= 0.0:
+                r = 0.0
+            else:
+                f = lambda s: float(Ei @ (sla.expm(cfg.A * s) @ Y_left))
+                r = brentq(f, 0.0, h, xtol=min(self.tol, h) * 0.25, rtol=4 * np.finfo(float).eps,
+                           maxiter=200)
+            roots[i] = r
+            best = min(best, r)
+        which = tuple(i for i, r in roots.items() if r <= best + self.tol)
+        return j * h + best, which
+
+    # ------------------------------------------------------------------ decisions
+    def decide(self, cfg, Y, t, forced):
+        """Choose the admissible contact set at ``t`` (see the module docstring)."""
+        self.decisions += 1
+        u, ud, v = cfg.U @ Y, cfg.UD @ Y, cfg.V @ Y
+        z = Y[cfg.ny:]
+        # the massive velocity is continuous; state_from projects u' on the massive DOFs
+        e = cfg.E @ Y
+        near = np.where(cfg.open, CRITICAL_RTOL * self.vref, CRITICAL_RTOL * self.psiref)
+        critical = set(int(i) for i in forced) | set(np.flatnonzero(e > -near).tolist())
+        if not critical:
+            return cfg, Y
+        delta = 1e-6 * (self.dt if self.dt > 0 else 1.0)
+        for _ in range(self.m + 1):
+            crit = sorted(critical)
+            best, best_violation, grown = None, np.inf, False
+            for switches in _patterns(len(crit)):
+                mask = cfg.open.copy()
+                for i, s in zip(crit, switches):
+                    if s:
+                        mask[i] = not mask[i]
+                new = self.config(mask)
+                Yn = new.state_from(u, ud, v, z)
+                violation, jumped = self._violation(new, Yn, crit, delta)
+                if jumped:
+                    critical |= jumped
+                    grown = True
+                    continue
+                if violation <= 0.0:
+                    best, best_violation = (new, Yn), 0.0
+                    break
+                if violation < best_violation:
+                    best, best_violation = (new, Yn), violation
+            if best_violation <= 0.0 or not grown:
+                break
+        if best is None:
+            raise RuntimeError(f"no admissible contact set at t = {t!r}")
+        if best_violation > 0.0:
+            self.undecided += 1
+        new, Yn = best
+        changed = np.flatnonzero(new.open != cfg.open)
+        if changed.size:
+            if abs(t - self.last_event) <= 10 * self.tol:
+                self.same_time += 1
+                if self.same_time > 4 * self.m + 10:
+                    raise RuntimeError(f"the contact set keeps changing at t = {t!r} (no admissible "
+                                       "contact set found)")
+            else:
+                self.same_time = 0
+            self.last_event = t
+            for i in changed:
+                self.event_times.append(float(t))
+                self.event_constraints.append(int(i))
+                self.event_kinds.append("open" if new.open[i] else "close")
+            if len(self.event_times) > self.max_events:
+                raise RuntimeError(f"more than {self.max_events} contact changes by t = {t!r} "
+                                   "(chattering?); raise max_events if this is expected")
+        return new, Yn
+
+    def _violation(self, cfg, Y, crit, delta):
+        """How much the critical constraints leave their admissible side just after now (<= 0:
+        admissible), and the non-critical constraints that jump out of theirs."""
+        D, noise = [cfg.E @ Y], [_noise(cfg.absE, Y)]
+        W, absW = Y, np.abs(Y)
+        for _ in range(3):
+            W, absW = cfg.A @ W, cfg.absA @ absW
+            D.append(cfg.E @ W)
+            noise.append(_noise(cfg.absE, absW))
+        scale = np.array([delta ** k / math.factorial(k) for k in range(4)])[:, None]
+        terms = np.array(D) * scale                                          # (4, m)
+        thr = np.maximum(np.array(noise) * scale, cfg.zero[None, :])
+        thr[0] = np.maximum(thr[0], 1e3 * cfg.zero)
+        crit_mask = np.zeros(self.m, dtype=bool)
+        crit_mask[crit] = True
+        jumped = set(np.flatnonzero(~crit_mask & (terms[0] > thr[0])).tolist())
+        violation = -np.inf
+        for i in crit:
+            big = np.flatnonzero(np.abs(terms[:, i]) > thr[:, i])
+            if big.size and terms[big[0], i] > 0:
+                violation = max(violation, terms[big[0], i] / thr[big[0], i])
+            else:
+                violation = max(violation, -1.0)
+        return violation, jumped
+
+
+def _noise(absE, absY):
+    """Round-off level of ``E Y`` (rows of ``absY`` or one vector)."""
+    return NOISE_ULPS * np.finfo(float).eps * (np.abs(absY) @ absE.T)
+
+
+def _patterns(k):
+    """Switch patterns of k critical constraints, fewest switches first."""
+    if k > MAX_ENUMERATED:
+        yield (True,) * k                       # too many to enumerate: switch them all
+        yield (False,) * k
+        return
+    for r in range(k + 1):
+        for on in itertools.combinations(range(k), r):
+            pattern = [False] * k
+            for i in on:
+                pattern[i] = True
+            yield tuple(pattern)

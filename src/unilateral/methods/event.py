@@ -1,0 +1,63 @@
+"""``method="event"``: the exact event-driven reference for small models."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..march.event import march_event
+from ..march.event_load import load_generator
+from ..model import Model
+from ..result import Solution
+from .base import Method
+from .common import failed_at_start, initial_state, step_loads
+
+
+class Event(Method):
+    """Exact integration between contact changes, events located by root finding.
+
+    Between two contact changes the model is linear: it is integrated exactly with matrix
+    exponentials of the load-augmented first-order system (:mod:`unilateral.march.event`), and
+    the changes are located on the exact solution to ``tol`` (1e-13 s by default). The loads must
+    have an exact piecewise form: a :class:`~unilateral.loads.LoadHistory` of the package's time
+    functions and records, an array (taken as piecewise linear between the grid samples) or None.
+    The output on the grid is the left limit at each ``t_k``; the rule is not used. For small
+    models (n up to a few hundred): it is the yardstick of the convergence tests.
+
+    ``stats`` has ``event_times``, ``event_constraints``, ``event_kinds`` ("open"/"close") and
+    ``contact_changes``.
+
+    Options
+    -------
+    tol : float, the accuracy of the event times, s
+    max_events : int, a guard against chattering (default 100000)
+    """
+
+    name = "event"
+    models = (Model,)
+    options = ("tol", "max_events")
+    cq_rules_only = False
+
+    def solve(self, model, load, initial, disc, run):
+        if run.bilateral:
+            raise ValueError("method='event' follows the contact changes; for the bilateral case "
+                             "(bilateral=True) use method='direct' or 'modal'")
+        run.stats.pop("rule", None)
+        run.stats["n"] = model.n
+        load_generator(model, load, disc.t)           # refuses loads without an exact form, clearly
+        loads = step_loads(model, load, disc)
+        init = initial_state(model, loads.q_static, initial, run.solver)
+        if init.message:
+            return failed_at_start(model, init, run)
+        run.timer.lap("initial")
+        u, udot, v, psi, info = march_event(model, load, disc.t, init.u, init.udot, init.v,
+                                            tol=self.config.get("tol", 1e-13),
+                                            max_events=self.config.get("max_events", 100_000))
+        run.timer.lap("steps")
+        run.stats.update({key: (value.tolist() if isinstance(value, np.ndarray) else value)
+                          for key, value in info.items()})
+        run.stats.update(contact_changes=int(info["events"]), steps_done=disc.N, time=run.timer.laps())
+        return Solution(t=disc.t, v=v, psi=psi, psiL=None, u=u, udot=udot, success=True,
+                        message=f"{disc.N} steps, {info['events']} contact changes (exact, events "
+                                f"to {self.config.get('tol', 1e-13):g} s)",
+                        stats=run.stats, dof_names=list(model.dof_names),
+                        constraint_names=list(model.constraint_names))
