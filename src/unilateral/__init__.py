@@ -9,24 +9,59 @@ Entry points: :class:`Model` (matrices or the natural form), :class:`KernelModel
 ``Lambda(s)`` and ``psiL``), :class:`TimeKernelModel` (a time-domain kernel ``Lambda(t)``, e.g.
 by numerical Laplace inversion, :func:`invert_laplace`), and :func:`solve` (loads as callables,
 arrays or a :class:`LoadHistory`). Structures are built with :class:`unilateral.structure.Frame2D`
-or read from model files (:func:`unilateral.modelfile.load_model_file`).
+or read from model files (:func:`unilateral.modelfile.load_model_file`); :func:`run` analyses a
+model file and writes every output, as ``unilateral run`` does.
+
+The names are imported lazily, on first use: ``import unilateral`` (and the command line's
+``--help``) does not import numpy, scipy, xarray or matplotlib.
 """
 
-from .kernels import (CallableKernel, KernelModel, MatrixKernel, PoleResidueKernel, TimeKernel,
-                      TimeKernelModel, cq_weights, invert_laplace, time_kernel_weights)
-from .lcp import LCP_SOLVERS, LCPResult, LCPSolver, get_lcp_solver, solve_lcp
-from .loads import LoadHistory
-from .methods import METHODS, solve_time_kernel
-from .model import Model, NaturalForm
-from .result import Solution
-from .rules import BDF, HHT, Newmark, get_rule
-from .solve import solve
+import sys
+import types
+from importlib import import_module
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "BDF", "CallableKernel", "HHT", "KernelModel", "LCPResult", "LCPSolver", "LCP_SOLVERS",
-    "LoadHistory", "METHODS", "MatrixKernel", "Model", "NaturalForm", "Newmark", "PoleResidueKernel",
-    "Solution", "TimeKernel", "TimeKernelModel", "cq_weights", "get_lcp_solver", "get_rule",
-    "invert_laplace", "solve", "solve_lcp", "solve_time_kernel", "time_kernel_weights",
-]
+#: Public name -> the module that defines it.
+_LAZY = {
+    **dict.fromkeys(("CallableKernel", "KernelModel", "MatrixKernel", "PoleResidueKernel", "TimeKernel",
+                     "TimeKernelModel", "cq_weights", "invert_laplace", "time_kernel_weights"),
+                    "unilateral.kernels"),
+    **dict.fromkeys(("LCP_SOLVERS", "LCPResult", "LCPSolver", "get_lcp_solver", "solve_lcp"), "unilateral.lcp"),
+    "LoadHistory": "unilateral.loads",
+    **dict.fromkeys(("METHODS", "solve_time_kernel"), "unilateral.methods"),
+    **dict.fromkeys(("Model", "NaturalForm"), "unilateral.model"),
+    "Solution": "unilateral.result",
+    **dict.fromkeys(("BDF", "HHT", "Newmark", "get_rule"), "unilateral.rules"),
+    "solve": "unilateral.solve",
+    "run": "unilateral.analysis",
+}
+_ALIASES = {"run": "run_model_file"}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'unilateral' has no attribute {name!r}")
+    value = getattr(import_module(module), _ALIASES.get(name, name))
+    globals()[name] = value         # later lookups skip __getattr__
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
+
+class _Package(types.ModuleType):
+    """The package module: ``unilateral.solve`` stays the function when the submodule
+    ``unilateral.solve`` is imported (the import system would bind the module to the name)."""
+
+    def __setattr__(self, name, value):
+        if name == "solve" and isinstance(value, types.ModuleType):
+            value = value.solve
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

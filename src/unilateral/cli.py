@@ -1,19 +1,26 @@
-"""The ``unilateral`` command line."""
+"""The ``unilateral`` command line.
+
+Imports are lazy: this module imports click only, so ``unilateral --help`` and option errors
+answer at once; numpy, scipy, numba, xarray and matplotlib are imported when a command needs them.
+The names of methods, rules and LCP solvers are listed here (``tests/test_figures_cli.py`` checks
+them against the registries) so that a wrong ``--lcp`` fails before anything heavy is loaded.
+"""
 
 from __future__ import annotations
 
 import sys
-from contextlib import contextmanager
+import time
 from pathlib import Path
 
 import click
 
 from . import __version__
-from .rules import RULES
-from .methods import MATRIX_METHOD_NAMES
 
 EXAMPLES = ("liolios1990",)
-UNITS_KN = {"length": "m", "force": "kN", "time": "s"}
+METHOD_NAMES = ("auto", "cq", "modal", "direct")                 # in unilateral.methods.MATRIX_METHOD_NAMES
+RULE_NAMES = ("bdf1", "bdf2", "hht", "newmark", "trapezoidal")   # unilateral.rules.RULES
+LCP_NAMES = ("bpp", "enumerate", "lemke", "newton", "pgs")       # unilateral.lcp.LCP_SOLVERS
+FIGURE_FORMATS = ("png", "pdf", "svg")
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -27,19 +34,46 @@ def main():
     """
 
 
+def _figure_formats(ctx, param, value):
+    if value is None:
+        return ("png",)
+    parts = [p.strip().lower() for p in value.split(",") if p.strip()]
+    if parts == ["none"]:
+        return ()
+    bad = [p for p in parts if p not in FIGURE_FORMATS]
+    if bad or not parts:
+        raise click.BadParameter(f"{value!r}: give a comma-separated list of {', '.join(FIGURE_FORMATS)}, "
+                                 "or none", ctx=ctx, param=param)
+    return tuple(dict.fromkeys(parts))
+
+
+def _method(ctx, param, value):
+    """A method name: the common ones without importing anything; others from the registry."""
+    if value is None or value in METHOD_NAMES:
+        return value
+    from .methods import MATRIX_METHOD_NAMES
+
+    if value not in MATRIX_METHOD_NAMES:
+        raise click.BadParameter(f"{value!r} is not one of {', '.join(map(repr, MATRIX_METHOD_NAMES))}",
+                                 ctx=ctx, param=param)
+    return value
+
+
 def _analysis_options(function):
     options = [
-        click.option("--method", type=click.Choice(MATRIX_METHOD_NAMES), default=None,
+        click.option("--method", default=None, callback=_method, metavar="[" + "|".join(METHOD_NAMES) + "|...]",
                      help="auto: the fastest correct method; cq: the paper's convolutional LCP; "
                           "modal: the same with a recursive history; direct: full-model time stepping. "
                           "Default: cq for examples, the model file's [analysis] method for run."),
-        click.option("--rule", type=click.Choice(sorted(RULES)), default=None,
+        click.option("--rule", type=click.Choice(RULE_NAMES), default=None,
                      help="Time discretisation (default bdf2; newmark and hht need --method direct)."),
         click.option("--dt", type=float, default=None, help="Time step [time unit of the model]."),
         click.option("--t-end", "t_end", type=float, default=None, help="End time."),
-        click.option("--lcp", default=None, help="LCP solver: bpp (default), lemke, pgs, newton, enumerate."),
+        click.option("--lcp", type=click.Choice(LCP_NAMES), default=None, help="LCP solver (default bpp)."),
         click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=None,
                      help="Output directory."),
+        click.option("--figures", "formats", default=None, callback=_figure_formats, metavar="FORMATS",
+                     help="Figure formats: png (default), pdf, svg, comma-separated, or none."),
     ]
     for option in reversed(options):
         function = option(function)
@@ -49,74 +83,53 @@ def _analysis_options(function):
 @main.command()
 @click.argument("name", type=click.Choice(EXAMPLES))
 @_analysis_options
-def example(name, method, rule, dt, t_end, lcp, out):
+def example(name, method, rule, dt, t_end, lcp, out, formats):
     """Run a built-in example, with and without uplift, and write results and figures.
 
     liolios1990: the paper's example (a mass on a column on a rigid foundation resting on
     three tensionless spring-dashpot soil elements, gravity and a horizontal pulse). Writes
     results.nc, CSV tables, summary.json and the paper's Fig. 2 to OUT (default ./liolios1990).
     """
-    from .structure.examples import liolios1990
-
-    structure, load, info = liolios1990()
-    settings = _settings({"dt": 1e-3, "t_end": 0.5, "method": "cq", "rule": "bdf2", "lcp": "bpp"},
-                         method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
-    fig = info["figure2"]
-    _run(structure.to_model(), load, settings, out or Path(name), structure=structure,
-         units=UNITS_KN, figure=fig, title="Liolios (1990), Fig. 2: vertical displacement of node 3",
-         meta={"example": name, "model": "Liolios (1990) section 5, reconstruction in docs/theory.md"},
-         bilateral_reference=True, unilateral=True,
-         labels={"unilateral": "with uplift", "bilateral": "without uplift"})
+    overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
+    _run(lambda progress: _analysis().run_example(name, out or Path(name), figures=formats, progress=progress,
+                                                  **overrides), out or Path(name), overrides)
 
 
 @main.command()
 @click.argument("model_file", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @_analysis_options
 @click.option("--bilateral", is_flag=True, help="Hold every constraint bilateral (no uplift) only.")
-def run(model_file, method, rule, dt, t_end, lcp, out, bilateral):
+def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral):
     """Analyse the structure described by MODEL_FILE (TOML; see docs/model-file.md)."""
-    from .modelfile import ModelFileError, load_model_file
-
-    try:
-        spec = load_model_file(model_file)
-    except ModelFileError as exc:
-        raise click.ClickException(str(exc)) from None
-    a = spec.analysis
-    settings = _settings(a, method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
-    _run(spec.model, spec.load, settings, out or Path(model_file.stem), structure=spec.structure,
-         units=spec.units, figure=spec.figure, title=a.get("title") or model_file.stem,
-         meta={"model_file": str(model_file)},
-         bilateral_reference=bool(a.get("bilateral_reference", True)) and not bilateral,
-         unilateral=not bilateral, labels=None)
+    overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
+    target = out or Path(model_file.stem)
+    _run(lambda progress: _analysis().run_model_file(model_file, target, bilateral=bilateral, figures=formats,
+                                                     progress=progress, **overrides), target, overrides)
 
 
 @main.command()
 @click.argument("results", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=None,
               help="Output directory (default: the folder of RESULTS).")
-def plot(results, out):
-    """Draw the figures of a results.nc written by `run` or `example`."""
-    from .io import from_dataset, load_netcdf
-    from .figures import plot_constraints, plot_displacement, save_figure
+@click.option("--figures", "formats", default=None, callback=_figure_formats, metavar="FORMATS",
+              help="Figure formats: png (default), pdf, svg, comma-separated, or none.")
+def plot(results, out, formats):
+    """Draw the figures of a results.nc written by `run` or `example` (the same files they drew)."""
+    head = results.read_bytes()[:8]
+    if not (head.startswith(b"\x89HDF\r\n\x1a\n") or head.startswith(b"CDF")):
+        raise click.ClickException(
+            f"{results} is not a results.nc (netCDF) file; give the results.nc that `unilateral run` "
+            f"or `unilateral example` wrote, e.g. `unilateral plot {results.parent / 'results.nc'}`")
+    from .figures.results import draw_figures
+    from .io import load_netcdf
 
-    ds = load_netcdf(results)
-    out = out or results.parent
-    out.mkdir(parents=True, exist_ok=True)
-    cases = ({str(c): from_dataset(ds.sel(case=c)) for c in ds["case"].values} if "case" in ds.dims
-             else {"unilateral": from_dataset(ds)})
-    units = {key: ds.attrs[f"units_{key}"] for key in ("length", "force", "time") if f"units_{key}" in ds.attrs}
-    written = []
-    for name, sol in cases.items():
-        if sol.v.shape[1]:
-            written += save_figure(plot_constraints(sol, units=units or None), out / f"constraints_{name}")
-    node, dof = ds.attrs.get("figure_node"), ds.attrs.get("figure_dof")
-    if node is not None and "node_displacement" in ds:
-        nd = ds["node_displacement"].sel(node=str(node), component=dof)
-        curves = ({str(c): (ds["time"].values, nd.sel(case=c).values) for c in ds["case"].values}
-                  if "case" in nd.dims else {"": (ds["time"].values, nd.values)})
-        fig = plot_displacement(curves, ylabel=f"{dof} of node {node}", title=ds.attrs.get("title"))
-        written += save_figure(fig, out / "fig2")
-    for path in written:
+    try:
+        ds = load_netcdf(results)
+    except (OSError, ValueError) as exc:
+        raise click.ClickException(f"{results}: cannot read it as a results.nc ({exc})") from None
+    if "time" not in ds.coords:
+        raise click.ClickException(f"{results} is a netCDF file but not a results.nc of unilateral (no time axis)")
+    for path in draw_figures(ds, out or results.parent, formats):
         click.echo(path)
 
 
@@ -124,7 +137,7 @@ def plot(results, out):
                                 "help_option_names": []})
 @click.pass_context
 def bench(ctx):
-    """Run the benchmark suite (options: see `unilateral bench --help`; `--quick` for CI).
+    """Run the benchmark suite (options: see `unilateral bench --help`; `--quick` for a smoke run).
 
     Times every method on the paper's example, a tower under an earthquake record and beams on a
     tensionless Winkler foundation; prints a table and writes JSON and a scaling figure.
@@ -135,42 +148,57 @@ def bench(ctx):
 
 
 # ---------------------------------------------------------------------- helpers
-def _settings(defaults: dict, **given) -> dict:
-    out = {key: defaults.get(key) for key in ("dt", "t_end", "method", "rule", "lcp", "initial")}
-    out["initial"] = out["initial"] or "static"
-    out.update({key: value for key, value in given.items() if value is not None})
-    return out
+def _analysis():
+    from . import analysis
+
+    return analysis
 
 
-def _run(model, load, settings, out, *, structure, units, figure, title, meta,
-         bilateral_reference, unilateral, labels):
-    from .analysis import report, run_cases, write_outputs
-
-    N = int(round(settings["t_end"] / settings["dt"]))
-    click.echo(f"unilateral {__version__}: n = {model.n} DOFs, m = {model.m} unilateral constraints, "
-               f"{N} steps of {settings['dt']:g}, method {settings['method']}, rule {settings['rule']}")
+def _run(call, out, overrides):
+    """Run an analysis with a progress bar, print the report; exit 1 if a case failed."""
+    started = time.perf_counter()
+    bar = _ProgressBar() if sys.stderr.isatty() else None
     try:
-        with _progress(N, "unilateral" if unilateral else "bilateral") as progress:
-            cases = run_cases(model, load, bilateral_reference=bilateral_reference,
-                              unilateral=unilateral, progress=progress, **settings)
-        meta = dict(meta, title=title)
-        if figure is not None:
-            meta.update(figure_node=str(figure["node"]), figure_dof=figure["dof"])
-        result = write_outputs(out, cases, structure=structure, units=units, figure=figure,
-                               title=title, meta=meta, labels=labels)
+        result = call(bar)
     except (ValueError, TypeError) as exc:
         raise click.ClickException(str(exc)) from None
-    click.echo(report(result))
-    click.echo(f"results in {out}/")
-    if not all(sol.success for sol in cases.values()):
+    finally:
+        if bar is not None:
+            bar.close()
+    report = _analysis().report(result)
+    click.echo(report)
+    click.echo(f"results in {out}/ ({time.perf_counter() - started:.2f} s)")
+    if not result.get("success_all", True):
         sys.exit(1)
 
 
-@contextmanager
-def _progress(N, label):
-    """A progress bar on a terminal for runs of more than a few seconds; silent otherwise."""
-    if N < 2000 or not sys.stderr.isatty():
-        yield None
-        return
-    with click.progressbar(length=N, label=label, file=sys.stderr) as bar:
-        yield lambda k, total: bar.update(1)
+class _ProgressBar:
+    """A one-line progress bar on stderr with the ETA of the whole run (cases and writing).
+
+    It appears only for runs longer than a second, and redraws at most ten times a second.
+    """
+
+    def __init__(self, width=30):
+        self.start = time.perf_counter()
+        self.width = width
+        self.last = 0.0
+        self.shown = False
+
+    def __call__(self, done, total):
+        now = time.perf_counter()
+        elapsed = now - self.start
+        if elapsed < 1.0 or (now - self.last < 0.1 and done < total) or total <= 0:
+            return
+        self.last = now
+        frac = min(done / total, 1.0)
+        eta = elapsed * (1 - frac) / frac if frac > 0 else float("nan")
+        filled = int(self.width * frac)
+        sys.stderr.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] {100 * frac:5.1f}%  "
+                         f"elapsed {elapsed:5.1f} s  ETA {eta:5.1f} s ")
+        sys.stderr.flush()
+        self.shown = True
+
+    def close(self):
+        if self.shown:
+            sys.stderr.write("\n")
+            sys.stderr.flush()

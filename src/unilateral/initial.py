@@ -13,7 +13,7 @@ import numpy as np
 
 from . import _validate as V
 from .lcp import get_lcp_solver
-from .linalg import Factorization, dense, transpose_times
+from .linalg import Factorization, SingularMatrixError, dense, mechanism_dofs, transpose_times
 
 
 @dataclass
@@ -68,9 +68,18 @@ def static_lcp(Lambda0, psiL0, solver) -> tuple[np.ndarray, int, str]:
 
 def static_state(model, q0, solver) -> InitialState:
     """Static unilateral equilibrium of a matrix model under the total load ``q0`` (n,)."""
-    K = Factorization(
-        model.K, what="K (the structure with every constraint held bilateral must be stable)"
-    )
+    try:
+        K = Factorization(
+            model.K, what="K (the structure with every constraint held bilateral must be stable)"
+        )
+    except SingularMatrixError as exc:
+        moved = mechanism_dofs(model.K, list(getattr(model, "dof_names", None) or []) or None)
+        if moved is None:
+            raise
+        raise SingularMatrixError(
+            f"{exc}: the structure is a mechanism; a zero-energy mode moves the free DOFs "
+            f"{', '.join(moved)} without deforming any element; add supports, bracing or rotational "
+            "restraints there (or start from given initial values instead of the static state)") from None
     Y = K.solve(dense(model.F))                     # (n, m) = K^-1 F
     uq = K.solve(q0)
     Lambda0 = model.H - transpose_times(model.F, Y)

@@ -76,3 +76,29 @@ def transpose_times(F, X) -> np.ndarray:
     """``F^T X`` as a dense array, for F (n, m) dense or sparse and X (n,) or (n, k)."""
     out = F.T @ X
     return out.toarray() if sp.issparse(out) else np.asarray(out)
+
+
+#: Up to this many DOFs a singular stiffness is explained by its zero-energy mode.
+MECHANISM_CHECK_MAX_N = 2000
+
+
+def mechanism_dofs(K, names=None, limit=10) -> list | None:
+    """The DOFs a zero-energy mode of the symmetric ``K`` moves most, or None if there is none.
+
+    ``K`` is scaled by its diagonal and its lowest eigenvector taken (dense, up to
+    :data:`MECHANISM_CHECK_MAX_N` DOFs; None above). ``names`` labels the DOFs (default: indices).
+    """
+    n = K.shape[0]
+    if n == 0 or n > MECHANISM_CHECK_MAX_N:
+        return None
+    A = dense(K).astype(float)
+    d = np.diag(A).copy()
+    scale = 1.0 / np.sqrt(np.where(d > 0, d, 1.0))
+    A = 0.5 * (A + A.T) * scale[:, None] * scale[None, :]
+    w, V = np.linalg.eigh(A)
+    if w[0] > 1e-11 * max(w[-1], 1.0):
+        return None
+    mode = V[:, 0] * scale
+    order = np.argsort(-np.abs(mode))
+    moved = [i for i in order if abs(mode[i]) > 1e-3 * abs(mode[order[0]])][:limit]
+    return [names[i] if names is not None else str(i) for i in moved]

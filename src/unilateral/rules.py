@@ -204,7 +204,18 @@ class Newmark(Rule):
 
 
 def HHT(alpha: float = 0.05) -> Newmark:
-    """Hilber-Hughes-Taylor alpha method: ``gamma = 1/2 + alpha``, ``beta = (1 + alpha)^2 / 4``."""
+    """Hilber-Hughes-Taylor alpha method: ``gamma = 1/2 + alpha``, ``beta = (1 + alpha)^2 / 4``.
+
+    The library's ``alpha`` in ``[0, 1/3]`` weights the previous step (``alpha = 0``: the
+    trapezoidal rule; more: more high-frequency dissipation). Hilber, Hughes and Taylor's own
+    convention ``alpha_HHT`` in ``[-1/3, 0]`` is accepted too and mapped to ``alpha = -alpha_HHT``:
+    ``HHT(-0.1)`` is ``HHT(0.1)``.
+    """
+    if isinstance(alpha, (int, float)) and not isinstance(alpha, bool) and -1.0 / 3.0 <= alpha < 0.0:
+        alpha = -float(alpha)
+    elif isinstance(alpha, (int, float)) and not isinstance(alpha, bool) and not 0.0 <= alpha <= 1.0 / 3.0:
+        raise ValueError(f"alpha={alpha!r} is not valid for HHT; valid: 0 <= alpha <= 1/3 (or Hilber's "
+                         "convention -1/3 <= alpha <= 0, mapped to -alpha)")
     return Newmark(gamma=0.5 + alpha, beta=(1.0 + alpha) ** 2 / 4.0, alpha=alpha)
 
 

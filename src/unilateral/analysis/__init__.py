@@ -1,10 +1,14 @@
 """A structural analysis from start to finish: the unilateral and bilateral cases, and every output.
 
-:func:`run_cases` solves the cases; :func:`write_outputs` writes ``results.nc``, CSV tables,
-``summary.json`` and the figures atomically; :func:`report` is the terminal summary. The command
-line (``unilateral run``, ``unilateral example``) is these three calls.
+:func:`run_model_file` (also ``unilateral.run``) and :func:`run_example` are the command line's
+``run`` and ``example`` from Python; :func:`run_cases` solves the cases; :func:`write_outputs`
+writes ``results.nc``, CSV tables, ``summary.json`` and the figures atomically; :func:`report` is
+the terminal summary. The structure's results (end forces, reactions, base shear, drifts,
+accelerations) are in :mod:`unilateral.analysis.results`, the energy balance in
+:mod:`unilateral.analysis.energy`, periods and mode shapes in :mod:`unilateral.analysis.modes`.
 """
 
 from .outputs import report, run_cases, write_outputs
+from .run import analyse, run_example, run_model_file
 
-__all__ = ["report", "run_cases", "write_outputs"]
+__all__ = ["analyse", "report", "run_cases", "run_example", "run_model_file", "write_outputs"]

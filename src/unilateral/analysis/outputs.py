@@ -4,26 +4,33 @@ Outputs in the output directory, each written atomically (a failed run leaves wh
 
 =========================  ================================================================
 ``results.nc``             all cases (dims ``case x time x dof``, ``case x time x constraint``,
-                           and node displacements ``case x time x node x component``)
+                           node displacements ``case x time x node x component``) and, for a
+                           frame, the structure's results of :mod:`unilateral.analysis.results`
+                           (end forces, reactions, base shear, overturning moment, drifts,
+                           accelerations, energies, modes), each with ``long_name`` and ``units``
 ``displacements.csv``      the unilateral case, one column per DOF (``bilateral_...`` likewise)
 ``constraints.csv``        uplift ``v`` and reaction ``psi`` per unilateral element
-``summary.json``           the key figures (static state, peaks, LCP error, run time)
-``fig2.png/.pdf``          the main history (the paper's Fig. 2: node 3, with and without uplift)
-``constraints.png/.pdf``   uplift and contact force of each unilateral element
-``force_deformation...``   the force-deformation path of each unilateral element
+``element_forces.csv``     end forces ``name:N_i`` ... ``name:M_j`` per element (frames)
+``base.csv``               base shear, base vertical force, overturning moment, drifts, energies
+``summary.json``           the key figures (static state, peaks with their times, periods,
+                           energy balance, LCP error, run time)
+figures                    :mod:`unilateral.figures.results`, drawn from the Dataset written
+                           to ``results.nc`` (``unilateral plot`` draws the same files)
 =========================  ================================================================
 """
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
 from ..io import format_summary, save_csv, save_netcdf, summary, to_dataset, write_json_atomic
-from ..figures import plot_constraints, plot_displacement, plot_force_deformation, save_figure
+from ..io.atomic import to_jsonable, write_text_atomic
 from ..solve import solve
+from .results import ground_motions_of, structure_results
 
 COMPONENTS = ("ux", "uy", "rz")
 
@@ -46,7 +53,8 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", in
 
 
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
-                  meta=None, labels=None) -> dict:
+                  meta=None, labels=None, model=None, load=None, rule=None, formats=("png",),
+                  point=None, storeys=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     Parameters
@@ -54,71 +62,221 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     out_dir : path, created if needed
     cases : dict of name -> Solution ("unilateral", "bilateral")
     structure : Structure, optional
-        Gives node displacements (slave nodes included) and element deformations.
+        Gives node displacements (slave nodes included) and, with ``model``, the structure's
+        results (:func:`unilateral.analysis.results.structure_results`).
     units : dict ``{"length": ..., "force": ..., "time": ...}``
     figure : dict ``node``, ``dof``, ``label``, optional: the main history to plot
     title : str
     meta : dict, optional: attributes stored in ``results.nc`` and ``summary.json``
     labels : dict, optional: legend label of each case (default: the case names)
+    model : Model, optional: the model solved (modes of the bilateral structure)
+    load : LoadHistory, array or callable, optional: the applied load (energy input, ground motions)
+    rule : the time rule of the runs (default: the ``rule`` statistic of the main case)
+    formats : figure formats, e.g. ``("png",)`` (default), ``("png", "pdf")`` or ``()`` (none)
+    point : (x0, y0) of the overturning moment (default: the lowest, leftmost node)
+    storeys : ``[(lower_node, upper_node)]`` storeys for drifts (default: levels by elevation)
     """
+    from ..figures.results import draw_figures
+
     labels = labels or {}
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     meta = dict(meta or {})
     main = cases.get("unilateral") or cases["bilateral"]
+    if figure is not None:
+        meta.update(figure_node=str(figure["node"]), figure_dof=figure["dof"],
+                    figure_text=_strip_unit(figure.get("label") or f"{figure['dof']} of node {figure['node']}"))
+    if title:
+        meta["title"] = title
     ds = to_dataset(cases, units=units, attrs=meta)
+    ds.attrs["case_labels"] = json.dumps({name: labels.get(name, name) for name in cases})
+    extra_results = None
     if structure is not None:
         ds = _with_node_displacements(ds, cases, structure, units)
+        ds = _with_constraint_coords(ds, structure)
+        if model is not None:
+            extra_results = _structure_results(structure, model, cases, load=load, units=units,
+                                               rule=rule or main.stats.get("rule", "bdf2"), point=point,
+                                               storeys=storeys)
+            ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
     save_netcdf(ds, out / "results.nc")
     for name, sol in cases.items():
         save_csv(sol, out, prefix="" if sol is main else f"{name}_")
+    if extra_results is not None:
+        _save_result_tables(ds, out, main_name=next(name for name, sol in cases.items() if sol is main))
 
-    extra = dict(meta)
+    extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
     if figure is not None and structure is not None:
-        histories = {labels.get(name, name): (sol.t, structure.node_displacement(sol, figure["node"], figure["dof"]))
+        histories = {labels.get(name, name): structure.node_displacement(sol, figure["node"], figure["dof"])
                      for name, sol in cases.items()}
         extra["figure"] = {
             "node": figure["node"], "dof": figure["dof"],
-            "static": float(next(iter(histories.values()))[1][0]),
-            "peak": {label: float(np.max(y)) for label, (_, y) in histories.items()},
-            "minimum": {label: float(np.min(y)) for label, (_, y) in histories.items()},
+            "static": float(next(iter(histories.values()))[0]),
+            "peak": {label: float(np.max(y)) for label, y in histories.items()},
+            "minimum": {label: float(np.min(y)) for label, y in histories.items()},
         }
-        ylabel = figure.get("label") or f"{figure['dof']} of node {figure['node']}"
-        fig = plot_displacement(histories, ylabel=_with_unit(ylabel, units, figure["dof"]), title=title,
-                                units=units)
-        save_figure(fig, out / "fig2")
     if len(cases) > 1:
         extra["cases"] = {name: {"success": sol.success, "message": sol.message}
                           for name, sol in cases.items()}
     result = summary(main, units=units, extra=extra)
+    if extra_results is not None:
+        result["results"] = to_jsonable(extra_results["peaks"])
     write_json_atomic(out / "summary.json", result)
-    if main.v.shape[1]:
-        save_figure(plot_constraints(main, units=units), out / "constraints")
-        if structure is not None:
-            e, _ = structure.element_deformations(main.u, main.v)
-            names = main.constraint_names
-            fig = plot_force_deformation({k: e[:, i] for i, k in enumerate(names)},
-                                         {k: main.psi[:, i] for i, k in enumerate(names)}, units=units)
-            save_figure(fig, out / "force_deformation")
+    result["figures"] = [str(p) for p in draw_figures(ds, out, formats)]
     return result
 
 
+def _strip_unit(label: str) -> str:
+    """``"ux of node 7 (m)"`` -> ``"ux of node 7"``: figures state their own (scaled) unit."""
+    for opening in (" (", " ["):
+        if label.endswith((")", "]")) and opening in label:
+            return label[: label.rindex(opening)]
+    return label
+
+
+def _structure_results(structure, model, cases, *, load, units, rule, point, storeys):
+    main = next(iter(cases.values()))
+    samples = None
+    if load is not None:
+        t = main.t
+        if isinstance(load, np.ndarray):
+            samples = np.asarray(load, dtype=float)[: len(t)]
+        elif callable(getattr(load, "sample", None)):
+            samples = np.asarray(load.sample(t), dtype=float)
+        elif callable(load):
+            samples = np.array([load(tk) for tk in t], dtype=float)
+    return structure_results(structure, model, cases, rule=rule, load_samples=samples,
+                             ground_motions=ground_motions_of(structure, load), point=point,
+                             storey_pairs=storeys, units=units)
+
+
+def _with_results(ds, res, multi, names):
+    """Add the structure's results to the Dataset (a ``case`` dim if ``multi``)."""
+    coords = {}
+    for key, value in res["coords"].items():
+        coords[key] = value
+    ds = ds.assign_coords(coords)
+    new = {}
+    for name, (dims, per_case, attrs) in res["variables"].items():
+        if not all(case in per_case for case in names):
+            continue
+        if multi:
+            data = np.stack([per_case[case] for case in names])
+            new[name] = xr.DataArray(data, dims=("case", *dims), attrs=attrs)
+        else:
+            new[name] = xr.DataArray(per_case[names[0]], dims=dims, attrs=attrs)
+    for name, (dims, data, attrs) in res["static"].items():
+        new[name] = xr.DataArray(data, dims=dims, attrs=attrs)
+    ds = ds.assign(new)
+    for key, value in res["attrs"].items():
+        ds.attrs[key] = value
+    return ds
+
+
+def _with_constraint_coords(ds, structure):
+    """Position, kind and gap of each unilateral element, as coordinates along ``constraint``."""
+    if not structure.m:
+        return ds
+    by_name = {e.name: e for e in structure.elements}
+    x, y, kind, gap = [], [], [], []
+    for name in structure.constraint_names:
+        e = by_name.get(name)
+        nodes = [node for node, _ in e.dofs] if e is not None else []
+        xy = np.mean([structure.coords[node] for node in nodes], axis=0) if nodes and structure.coords else (np.nan, np.nan)
+        x.append(float(xy[0]))
+        y.append(float(xy[1]))
+        kind.append(e.kind if e is not None else "")
+        gap.append(float(-e.theta[0]) if e is not None and e.kind != "cable" else 0.0)
+    return ds.assign_coords(constraint_x=("constraint", x), constraint_y=("constraint", y),
+                            constraint_kind=("constraint", kind), constraint_gap=("constraint", gap))
+
+
+def _save_result_tables(ds, out, *, main_name):
+    """``element_forces.csv`` and ``base.csv`` of the main case."""
+    d = ds.sel(case=main_name) if "case" in ds.dims else ds
+    t = d["time"].values
+    if "end_force" in d:
+        end = d["end_force"].values
+        columns = {"time": t}
+        for k, name in enumerate(d["element"].values):
+            for c, comp in enumerate(d["end_component"].values):
+                columns[f"{name}:{comp}"] = end[:, k, c]
+        write_text_atomic(out / "element_forces.csv", _csv(columns))
+    columns = {"time": t}
+    for name in ("base_shear", "base_vertical", "overturning_moment"):
+        if name in d:
+            columns[name] = d[name].values
+    if "support_reaction" in d:
+        for k, label in enumerate(d["support"].values):
+            columns[f"reaction:{label}"] = d["support_reaction"].values[:, k]
+    if "drift_ratio" in d:
+        for k, label in enumerate(d["storey"].values):
+            columns[f"drift_ratio:{label}"] = d["drift_ratio"].values[:, k]
+    for name in d.data_vars:
+        if str(name).startswith("energy_"):
+            columns[str(name)] = d[name].values
+    write_text_atomic(out / "base.csv", _csv(columns))
+
+
+def _csv(columns) -> str:
+    import csv
+    import io
+
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(columns)
+    writer.writerows(np.column_stack(list(columns.values())).astype(float).tolist())
+    return buffer.getvalue()
+
+
 def report(result: dict) -> str:
-    """The terminal summary of a run: :func:`format_summary` and the main history's extremes."""
+    """The terminal summary of a run: :func:`format_summary`, the main history's extremes and the
+    structure's key results (periods, base shear, overturning moment, drift, energy balance)."""
     extra = result.get("extra", {})
     text = format_summary({**result, "extra": {k: v for k, v in extra.items()
                                                if k not in ("figure", "cases", "figure_node", "figure_dof")}})
+    units = result.get("units") or {}
     fig = extra.get("figure")
     if fig:
-        unit = (result.get("units") or {}).get("length", "")
+        unit = units.get("length", "") if fig["dof"] != "rz" else "rad"
         lines = [f"{fig['dof']} of node {fig['node']} [{unit}]: static {fig['static']:.4g}"]
         for label, peak in fig["peak"].items():
             lines.append(f"  {label:>15}: max {peak:.4g}, min {fig['minimum'][label]:.4g}")
         text += "\n\n" + "\n".join(lines)
+    results = result.get("results") or {}
+    if results:
+        text += "\n\n" + "\n".join(_result_lines(results, units))
     for name, case in extra.get("cases", {}).items():
         if not case["success"]:
             text += f"\n{name} case FAILED: {case['message']}"
     return text
+
+
+def _result_lines(results: dict, units: dict) -> list[str]:
+    force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
+    lines = []
+    for case, p in results.items():
+        if not lines and p.get("periods"):
+            periods = ", ".join(f"{T:.4g}" for T in p["periods"][:3])
+            lines.append(f"periods of the bilateral structure [{time}]: {periods}")
+        head = f"{case}:"
+        shear = p["base_shear"]
+        peak = shear["max"] if abs(shear["max"]) >= abs(shear["min"]) else shear["min"]
+        t_peak = shear["t_max"] if peak == shear["max"] else shear["t_min"]
+        mom = p["overturning_moment"]
+        mpeak = mom["max"] if abs(mom["max"]) >= abs(mom["min"]) else mom["min"]
+        t_m = mom["t_max"] if mpeak == mom["max"] else mom["t_min"]
+        lines.append(f"{head} peak base shear {peak:.4g} {force} at t = {t_peak:.4g} {time}; "
+                     f"overturning moment {mpeak:.4g} {force} {length} at t = {t_m:.4g} {time}")
+        if p.get("drift_ratio"):
+            label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
+            lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}) at t = {d['t']:.4g} {time}")
+        if p.get("energy"):
+            e = p["energy"]
+            lines.append(f"{' ' * len(head)} energy balance: relative error {e['max_relative_error']:.2g}, "
+                         f"input work {e['input_work']:.4g}, dissipated {e['damping_dissipated']:.4g} (damping) "
+                         f"+ {e['contact_dissipated']:.4g} (contact) [{force} {length}]")
+    return lines
 
 
 def _with_unit(label, units, dof):

@@ -13,7 +13,8 @@ from .problems import PROBLEMS
 from .report import format_table, save_scaling_figure
 from .suite import METHODS, Limits, ScalingConfig, machine_info, run_one, run_scaling, run_suite
 
-DEFAULT_OUT = Path("benchmarks") / "results" / "benchmarks.json"
+#: Default results file: in ./bench-results of the current directory, never inside the package.
+DEFAULT_OUT = Path("bench-results") / "benchmarks.json"
 
 
 def parser() -> argparse.ArgumentParser:

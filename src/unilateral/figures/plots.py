@@ -29,7 +29,7 @@ DPI = 150
 _STYLE = {
     "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "xtick.labelsize": 8, "ytick.labelsize": 8,
     "legend.fontsize": 8, "figure.titlesize": 10, "lines.linewidth": 1.2, "axes.linewidth": 0.6,
-    "axes.grid": True, "grid.linewidth": 0.4, "grid.alpha": 0.6, "axes.formatter.use_mathtext": True,
+    "axes.grid": True, "grid.linewidth": 0.4, "grid.alpha": 0.6, "axes.formatter.use_mathtext": False,
     "legend.framealpha": 0.9, "pdf.fonttype": 42, "ps.fonttype": 42,
 }
 _LINESTYLES = ("-", "--", "-.", ":")

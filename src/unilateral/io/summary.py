@@ -8,7 +8,8 @@ from ..result import Solution
 from .atomic import to_jsonable
 
 
-def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = None) -> dict:
+def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = None,
+            key_dofs: list | None = None) -> dict:
     """Key figures of a solution, in plain JSON types.
 
     Parameters
@@ -19,6 +20,9 @@ def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = No
         recorded under ``"units"`` and shown by :func:`format_summary`.
     extra : dict, optional
         Anything else worth keeping with the figures (model data, load case), under ``"extra"``.
+    key_dofs : list of str, optional
+        The DOFs :func:`format_summary` prints (``"static_shown"``); default: at most
+        :data:`SHOWN_DOFS` DOFs with the largest static displacements (``static`` keeps all).
 
     Returns
     -------
@@ -48,8 +52,26 @@ def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = No
         "static": {} if sol.u is None else dict(zip(sol.dof_names, np.asarray(sol.u)[0])),
         "constraints": {name: _peaks(t, v, psi) for name, v, psi
                         in zip(sol.constraint_names, np.asarray(sol.v).T, np.asarray(sol.psi).T)},
+        "static_shown": _shown(sol, key_dofs),
         "extra": dict(extra or {}),
     })
+
+
+#: At most this many DOFs are printed with their static displacement.
+SHOWN_DOFS = 6
+
+
+def _shown(sol: Solution, key_dofs) -> list:
+    if sol.u is None or not len(sol.u):
+        return []
+    if key_dofs is not None:
+        return list(key_dofs)[:SHOWN_DOFS]
+    u0 = np.abs(np.asarray(sol.u)[0])
+    if not u0.any():
+        return []
+    order = np.argsort(-u0, kind="stable")
+    keep = [k for k in order[:SHOWN_DOFS] if u0[k] > 1e-9 * u0.max()]
+    return [sol.dof_names[k] for k in sorted(keep)]
 
 
 def format_summary(summary_dict: dict) -> str:
@@ -66,8 +88,12 @@ def format_summary(summary_dict: dict) -> str:
         f"run time {_number(s['run_time'])} s, max LCP error {_number(s['max_lcp_error'])}, "
         f"contact changes {_number(s['contact_changes'])}",
     ]
-    if s["static"]:
-        lines += ["", *_table(["DOF", "u(t=0)"], [[name, _number(u)] for name, u in s["static"].items()])]
+    shown = s.get("static_shown", list(s["static"]))
+    if shown:
+        hidden = len(s["static"]) - len(shown)
+        lines += ["", *_table(["DOF", "u(t=0)"], [[name, _number(s["static"][name])] for name in shown])]
+        if hidden > 0:
+            lines.append(f"({hidden} more DOFs in summary.json and displacements.csv)")
     lines += ["", *_table(
         ["constraint", _label("max v", length), _label("at t", time), _label("min psi", force),
          _label("at t", time)],

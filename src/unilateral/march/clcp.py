@@ -58,20 +58,31 @@ def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callb
     return v, psi, log
 
 
-def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol):
+#: A compiled march with a progress callback reports after chunks of about this many steps (or
+#: a 200th of the run, whichever is larger).
+PROGRESS_CHUNK = 256
+
+
+def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol, callback=None):
     """:func:`march_cq` with block principal pivoting, compiled (:mod:`unilateral.march.compiled`).
 
     Parameters
     ----------
     kind : "naive" (``args = (W, psi_affine)``) or "recursive"
         (``args = (W0, coef, gain, out, inp, psi_affine)``, see :func:`compiled.march_recursive`)
+    callback : callable ``callback(k, N)``, optional
+        Progress: the compiled loop runs in chunks of steps, with its state carried across, and
+        ``callback`` is called after each chunk (the same operations as one call).
 
     Returns the same ``(v, psi, log)`` as :func:`march_cq`.
     """
     from . import compiled
 
-    march = compiled.march_naive if kind == "naive" else compiled.march_recursive
-    v, psi, stats, failed = march(*args, v_b, max_iter, tol)
+    if callback is None:
+        march = compiled.march_naive if kind == "naive" else compiled.march_recursive
+        v, psi, stats, failed = march(*args, v_b, max_iter, tol)
+    else:
+        v, psi, stats, failed = _chunked(compiled, kind, args, v_b, max_iter, tol, callback)
     log = StepLog(v_b.shape[0], v_b > 0)
     log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
     log.contact_changes, log.max_error = int(stats[2]), float(stats[3])
@@ -84,3 +95,30 @@ def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol):
     if len(v):
         log.active = v[-1] > 0
     return v, psi, log
+
+
+def _chunked(compiled, kind, args, v_b, max_iter, tol, callback):
+    """The compiled march over chunks of steps, calling ``callback(k, N)`` after each."""
+    psi_affine = args[-1]
+    N = psi_affine.shape[0] - 1
+    chunk = max(PROGRESS_CHUNK, N // 200)
+    if kind == "naive":
+        W = args[0]
+        carry = compiled.naive_start(W[0], psi_affine, v_b)
+        step = lambda n0, n1: compiled.naive_steps(W, psi_affine, v_b, max_iter, tol, carry, n0, n1)
+    else:
+        W0, filters = args[0], tuple(args[1:5])
+        carry = compiled.recursive_start(W0, filters[0], psi_affine, v_b)
+        step = lambda n0, n1: compiled.recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, carry,
+                                                       (n0, n1))
+    failed = 0
+    for n0 in range(1, N + 1, chunk):
+        n1 = min(n0 + chunk, N + 1)
+        failed = step(n0, n1)
+        if failed:
+            break
+        callback(n1 - 1, N)
+    v, psi, stats = carry[0], carry[1], carry[3]
+    if failed:
+        return v[:failed], psi[:failed], stats, failed
+    return v, psi, stats, 0

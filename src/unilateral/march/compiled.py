@@ -181,16 +181,34 @@ def march_naive(W, psi_affine, v_b, max_iter, tol):
     stats : (4,) float: total solves, largest solves in a step, contact changes, max LCP error
     failed_step : int, 0 if every step succeeded, else the step whose LCP failed
     """
-    N1, m = psi_affine.shape
-    W0 = W[0]
+    carry = naive_start(W[0], psi_affine, v_b)
+    failed = naive_steps(W, psi_affine, v_b, max_iter, tol, carry, 1, psi_affine.shape[0])
+    v, psi, stats = carry[0], carry[1], carry[3]
+    if failed:
+        return v[:failed], psi[:failed], stats, failed
+    return v, psi, stats, 0
+
+
+@njit(cache=True)
+def naive_start(W0, psi_affine, v_b):
+    """The state a chunked naive march carries: outputs, statistics, contact sets, ``first``."""
     v, psi, dv, stats, active, previous, base = _outputs(W0, psi_affine, v_b)
+    first = np.full(1, -1, dtype=np.int64)   # first step with a nonzero increment
+    return v, psi, dv, stats, active, previous, base, first
+
+
+@njit(cache=True)
+def naive_steps(W, psi_affine, v_b, max_iter, tol, carry, n0, n1):
+    """Steps ``n0 <= n < n1`` of :func:`march_naive` on the carried state; the failed step or 0."""
+    v, psi, dv, stats, active, previous, base, first = carry
+    m = psi_affine.shape[1]
+    W0 = W[0]
     q, vn, wn, idx, S, rhs, x = _workspace(m)
-    first = -1                              # first step with a nonzero increment
-    for n in range(1, N1):
+    for n in range(n0, n1):
         for a in range(m):
             q[a] = -psi_affine[n, a] - base[a]
-        if first >= 0:
-            for j in range(1, n - first + 1):
+        if first[0] >= 0:
+            for j in range(1, n - first[0] + 1):
                 Wj = W[j]
                 d = dv[n - j]
                 for a in range(m):
@@ -200,12 +218,12 @@ def march_naive(W, psi_affine, v_b, max_iter, tol):
                     q[a] += t
         it = bpp(W0, q, active, vn, wn, max_iter, idx, S, rhs, x)
         if not _record(n, it, lcp_error(vn, wn, q), tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
-            return v[:n], psi[:n], stats, n
-        if first < 0:
+            return n
+        if first[0] < 0:
             for a in range(m):
                 if dv[n, a] != 0.0:
-                    first = n
-    return v, psi, stats, 0
+                    first[0] = n
+    return 0
 
 
 @njit(cache=True)
@@ -228,13 +246,37 @@ def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
     -------
     As :func:`march_naive`.
     """
-    N1, m = psi_affine.shape
-    rows, c = coef.shape
+    carry = recursive_start(W0, coef, psi_affine, v_b)
+    failed = recursive_steps(W0, (coef, gain, out, inp), psi_affine, v_b, max_iter, tol, carry,
+                             (1, psi_affine.shape[0]))
+    v, psi, stats = carry[0], carry[1], carry[3]
+    if failed:
+        return v[:failed], psi[:failed], stats, failed
+    return v, psi, stats, 0
+
+
+@njit(cache=True)
+def recursive_start(W0, coef, psi_affine, v_b):
+    """The state a chunked recursive march carries: outputs, statistics, contact sets, filters."""
     v, psi, dv, stats, active, previous, base = _outputs(W0, psi_affine, v_b)
-    q, vn, wn, idx, S, rhs, x = _workspace(m)
+    rows, c = coef.shape
     state = np.zeros((rows, c), dtype=np.complex128)
+    return v, psi, dv, stats, active, previous, base, state
+
+
+@njit(cache=True)
+def recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, carry, steps):
+    """Steps ``steps[0] <= n < steps[1]`` of :func:`march_recursive`; the failed step or 0.
+
+    ``filters`` is ``(coef, gain, out, inp)``; ``carry`` the state of :func:`recursive_start`.
+    """
+    coef, gain, out, inp = filters
+    v, psi, dv, stats, active, previous, base, state = carry
+    m = psi_affine.shape[1]
+    rows, c = coef.shape
+    q, vn, wn, idx, S, rhs, x = _workspace(m)
     free = np.empty(c, dtype=np.complex128)
-    for n in range(1, N1):
+    for n in range(steps[0], steps[1]):
         for k in range(c):
             t = 0j
             for i in range(rows):
@@ -247,7 +289,7 @@ def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
             q[a] = t - psi_affine[n, a] - base[a]
         it = bpp(W0, q, active, vn, wn, max_iter, idx, S, rhs, x)
         if not _record(n, it, lcp_error(vn, wn, q), tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
-            return v[:n], psi[:n], stats, n
+            return n
         for i in range(rows - 1, 1, -1):
             for k in range(c):
                 state[i, k] = state[i - 2, k]
@@ -257,7 +299,7 @@ def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
                 u += inp[k, a] * dv[n, a]
             state[0, k] = free[k] + gain[k] * u
             state[1, k] = u
-    return v, psi, stats, 0
+    return 0
 
 
 @njit(cache=True)

@@ -21,7 +21,7 @@ def use_compiled(engine, compiled_ok, run, *, option, needs) -> bool:
     """Whether to run compiled: ``engine`` asked for it (and it applies), or ``auto`` and it applies."""
     if engine == "compiled" and not compiled_ok:
         raise ValueError(f"{option}['engine']='compiled' needs {needs}")
-    return engine == "compiled" or (engine == "auto" and compiled_ok and run.callback is None)
+    return engine == "compiled" or (engine == "auto" and compiled_ok)
 
 
 def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto", option="cq_options"):
@@ -43,7 +43,7 @@ def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto",
                     needs="history='naive' and lcp='bpp'"):
         run.stats["engine"] = "compiled"
         return march_cq_compiled("naive", (W, psi_affine), v_b, dt=disc.dt, tol=solver.tol,
-                                 max_iter=solver.max_iter or 10 * W.shape[1] + 10)
+                                 max_iter=solver.max_iter or 10 * W.shape[1] + 10, callback=run.callback)
     run.stats["engine"] = "python"
     return march_cq(W[0], HISTORIES[history](W), psi_affine, v_b, solver, dt=disc.dt,
                     bilateral=run.bilateral, callback=run.callback)

@@ -55,7 +55,8 @@ class Modal(Method):
             if use_compiled(engine, compiled_applies(run), run, option="modal_options", needs="lcp='bpp'"):
                 run.stats["engine"] = "compiled"
                 return march_cq_compiled("recursive", (W0, *history.arrays(), psi_affine), v_b, dt=disc.dt,
-                                         tol=solver.tol, max_iter=solver.max_iter or 10 * model.m + 10)
+                                         tol=solver.tol, max_iter=solver.max_iter or 10 * model.m + 10,
+                                         callback=run.callback)
             run.stats["engine"] = "python"
             return march_cq(W0, history, psi_affine, v_b, solver, dt=disc.dt, bilateral=run.bilateral,
                             callback=run.callback)

@@ -119,8 +119,8 @@ class Frame2D:
         add = np.array([_real(where, "m", m, ">=0")] * 2 + [_real(where, "J", J, ">=0")])
         self._mass[node] = self._mass.get(node, np.zeros(3)) + add
 
-    def rayleigh(self, a0, a1) -> None:
-        """Rayleigh damping ``C += a0 M + a1 K``.
+    def rayleigh(self, a0=0.0, a1=0.0) -> None:
+        """Rayleigh damping ``C += a0 M + a1 K`` (either coefficient may be left at 0).
 
         ``K`` here is the stiffness of the bilateral elements only: a unilateral element (soil,
         gap, cable) gets no stiffness-proportional damping, which would act across an open
@@ -268,6 +268,8 @@ class Frame2D:
             strain_names=tuple(s for e in self._elements for s in e.strain_labels),
             constraint_names=tuple(self._elements[p].name for p in unilateral),
             constraint_strains=rows, nodal_mass=nodal_mass,
+            elements=tuple(self._elements), dashpots=tuple(self._dashpots),
+            coords={node: xy.copy() for node, xy in self._coords.items()}, rayleigh=self._rayleigh,
         )
 
     # ------------------------------------------------------------------ helpers
@@ -354,6 +356,15 @@ class Structure:
     constraint_names : (m,) names of the unilateral elements, the order of ``v`` and ``psi``
     constraint_strains : (m,) int, the strain (row of ``G^T u``) of each unilateral element
     nodal_mass : (n_nodes, 3) lumped ``(m, m, J)`` per node, in the order of ``dofs.nodes``
+    elements : the :class:`~unilateral.structure.elements.Element` objects of the natural form,
+        in strain order (empty for a structure built by hand)
+    dashpots : the attached dashpots (their viscosity is in ``C``)
+    coords : dict node -> (2,) coordinates
+    rayleigh : ``(a0, a1)`` of the Rayleigh damping in ``C``, or None
+
+    Results of a solution (end forces, reactions, base shear, drifts, accelerations) are in
+    :mod:`unilateral.structure.forces`; :meth:`influence` and :meth:`ground_motion` build the load
+    of a ground motion.
     """
 
     natural: NaturalForm
@@ -365,6 +376,10 @@ class Structure:
     constraint_names: tuple
     constraint_strains: np.ndarray
     nodal_mass: np.ndarray
+    elements: tuple = ()
+    dashpots: tuple = ()
+    coords: dict | None = None
+    rayleigh: tuple | None = None
 
     @property
     def n(self) -> int:
@@ -419,6 +434,30 @@ class Structure:
                     )
                 f[row] = value
         return self.dofs.gather(f)
+
+    def influence(self, direction="ux") -> np.ndarray:
+        """Influence vector ``r`` (n,) of a rigid ground translation along ``"ux"`` or ``"uy"``.
+
+        ``r`` is 1 on the free translations along ``direction`` and 0 elsewhere (rotations 0):
+        with ``u_full = T r`` every node that is not supported moves by one unit along the
+        direction (rigidly linked nodes follow their masters). A ground acceleration ``a_g(t)``
+        then loads the structure, in displacements relative to the ground, with ``-M r a_g(t)``.
+        """
+        if direction not in ("ux", "uy"):
+            raise ValueError(f"direction={direction!r} is not valid for a ground motion; valid: 'ux', 'uy'")
+        return np.array([1.0 if dof == direction else 0.0 for _, dof in self.dofs.free])
+
+    def ground_motion(self, a_g, direction="ux") -> tuple:
+        """The term ``(-M r, a_g)`` of a ground acceleration ``a_g(t)`` along ``direction``.
+
+        For :class:`~unilateral.loads.LoadHistory`: ``LoadHistory(st.gravity(), [st.ground_motion(a_g)])``.
+        ``a_g`` is a time function (e.g. a :class:`~unilateral.loads.GroundMotion` in the model's
+        units); the displacements solved are relative to the ground; the absolute acceleration
+        is ``u'' + r a_g`` (:func:`unilateral.structure.forces.absolute_acceleration`).
+        """
+        if not callable(a_g):
+            raise TypeError(f"a_g must be a time function a_g(t), got {a_g!r}")
+        return -np.asarray(self.M @ self.influence(direction)).ravel(), a_g
 
     def element_deformations(self, u, v) -> tuple[np.ndarray, np.ndarray]:
         """Deformations of the unilateral elements.
@@ -504,6 +543,13 @@ def _coo(rows, cols, vals, shape) -> sp.csr_matrix:
 
 
 def _check_stiffness(K, dofs: DofMap) -> None:
+    """Raise ``ValueError`` naming the free DOFs no element stiffens.
+
+    A mechanism whose diagonal is positive (e.g. a frame that sways with pinned joints, or a
+    foundation on one soil element that rocks) is named where ``K`` must be factorised, by
+    :func:`unilateral.linalg.mechanism_dofs` (the static state): its mass may still make the
+    dynamic problem well posed.
+    """
     d = K.diagonal()
     bad = np.flatnonzero(d <= 0)
     if bad.size:

@@ -1,0 +1,58 @@
+"""Wall time of the command line: ``--help``, ``example liolios1990``, ``run examples/pounding.toml``.
+
+Each command runs in a fresh process, ``--repeat`` times after one warm-up run (numba's disk
+cache filled); the table shows the best and the median. Outputs go to a temporary directory.
+
+    python benchmarks/cli_timing.py [--repeat 3] [--out timing.json]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+COMMANDS = {
+    "--help": ["--help"],
+    "example liolios1990": ["example", "liolios1990"],
+    "run examples/pounding.toml": ["run", str(ROOT / "examples" / "pounding.toml")],
+}
+TARGETS = {"example liolios1990": 3.0, "run examples/pounding.toml": 4.0}
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--repeat", type=int, default=3)
+    p.add_argument("--out", type=Path, default=None, help="JSON results (default: in a temporary directory)")
+    args = p.parse_args(argv)
+    work = Path(tempfile.mkdtemp(prefix="unilateral-cli-timing-"))
+    rows = {}
+    for label, command in COMMANDS.items():
+        extra = [] if command == ["--help"] else ["--out", str(work / label.split()[-1].replace("/", "_"))]
+        argv_ = [sys.executable, "-m", "unilateral", *command, *extra]
+        subprocess.run(argv_, check=True, capture_output=True)          # warm-up
+        times = []
+        for _ in range(args.repeat):
+            start = time.perf_counter()
+            subprocess.run(argv_, check=True, capture_output=True)
+            times.append(time.perf_counter() - start)
+        rows[label] = {"best_s": min(times), "median_s": statistics.median(times), "runs": times,
+                       "target_s": TARGETS.get(label)}
+    print(f"{'command':<30} {'best [s]':>9} {'median [s]':>11} {'target [s]':>11}")
+    for label, row in rows.items():
+        target = "" if row["target_s"] is None else f"{row['target_s']:.1f}"
+        print(f"{label:<30} {row['best_s']:>9.2f} {row['median_s']:>11.2f} {target:>11}")
+    out = args.out or work / "cli_timing.json"
+    out.write_text(json.dumps({"python": sys.version, "rows": rows}, indent=2))
+    print(f"\nresults: {out}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

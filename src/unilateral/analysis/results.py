@@ -1,0 +1,215 @@
+"""The structure's results of solved cases: variables for ``results.nc`` and peaks for the summary.
+
+:func:`structure_results` computes, per case, from a :class:`~unilateral.structure.Structure` and
+its :class:`~unilateral.Solution` (sign conventions in :mod:`unilateral.structure.forces`):
+
+========================  =====================================  ===================================
+variable                  dims                                   content
+========================  =====================================  ===================================
+``acceleration``          time, dof                              ``u''`` of the rule (relative)
+``absolute_acceleration`` time, dof                              ``u'' + r a_g`` (ground motion only)
+``ground_acceleration``   time, excitation                       ``a_g`` of each ground motion
+``end_force``             time, element, end_component           ``N_i, V_i, M_i, N_j, V_j, M_j``
+``axial_force``           time, element                          ``N_j``: tension positive
+``support_reaction``      time, support                          force of the ground at ``node.dof``
+``ground_reaction``       time, ground_element, component        ``fx, fy, mz`` of soil and springs
+``base_shear``            time                                   sum of the ground's x forces
+``base_vertical``         time                                   sum of the ground's y forces
+``overturning_moment``    time                                   about ``overturning_point``
+``storey_drift``          time, storey                           ``ux`` upper - lower
+``drift_ratio``           time, storey                           drift / storey height
+``constraint_deformation`` time, constraint                      total strain of unilateral elements
+``energy_*``              time                                   :mod:`unilateral.analysis.energy`
+``mode_period``,          mode; mode, dof                        bilateral periods and shapes
+``mode_shape``, ...
+========================  =====================================  ===================================
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..structure import forces as F
+from .energy import energy_balance
+from .modes import modes
+
+#: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
+MODES_MAX_N = 3000
+ENERGY_KEYS = ("kinetic", "elastic_structure", "elastic_unilateral", "damping_dissipated",
+               "contact_dissipated", "input_work", "balance_error", "relative_error")
+
+
+def ground_motions_of(structure, load) -> list:
+    """``[(direction, a_g)]`` of the ground-motion terms ``(-M r, a_g)`` of a LoadHistory."""
+    out = []
+    for vector, f in getattr(load, "terms", ()):
+        for direction in ("ux", "uy"):
+            pattern = -np.asarray(structure.M @ structure.influence(direction)).ravel()
+            if pattern.any() and np.allclose(vector, pattern, rtol=1e-12, atol=0.0):
+                out.append((direction, f))
+    return out
+
+
+def structure_results(structure, model, cases: dict, *, rule, load_samples=None, ground_motions=(),
+                      point=None, storey_pairs=None, units=None) -> dict:
+    """Results of each solved case of a frame.
+
+    Parameters
+    ----------
+    structure : Structure
+    model : Model (for the modes)
+    cases : dict name -> Solution
+    rule : the time rule of the runs (name or Rule)
+    load_samples : (N+1, n) applied load at the steps, optional (energy input and initial
+        acceleration; without it no energy balance is computed)
+    ground_motions : ``[(direction, a_g)]``, see :func:`ground_motions_of`
+    point : (x0, y0) of the overturning moment; default: the lowest, leftmost node
+    storey_pairs : ``[(lower, upper)]`` nodes of the storeys; default: levels by elevation
+    units : dict of the base units (for the attributes)
+
+    Returns
+    -------
+    dict with ``variables`` (name -> (dims, {case: array}, attrs)), ``coords`` (name -> values),
+    ``static`` (name -> (dims, array, attrs)): case-independent variables (modes),
+    ``peaks`` (case -> summary dict), ``attrs`` (dataset attributes).
+    """
+    units = dict(units or {})
+    L, Fu, T = (units.get(k, "") for k in ("length", "force", "time"))
+    acc_unit = f"{L}/{T}^2" if L and T else ""
+    moment_unit = f"{Fu} {L}".strip()
+    if point is None:
+        xy = np.array([structure.coords[node] for node in structure.dofs.nodes])
+        low = xy[np.lexsort((xy[:, 0], xy[:, 1]))[0]]
+        point = (float(low[0]), float(low[1]))
+    variables: dict = {}
+    peaks: dict = {}
+    coords: dict = {}
+
+    def put(name, dims, case, array, long_name, unit=""):
+        entry = variables.setdefault(name, (dims, {}, {"long_name": long_name} | ({"units": unit} if unit else {})))
+        entry[1][case] = np.asarray(array, dtype=float)
+
+    for case, sol in cases.items():
+        if sol.u is None or len(sol.t) < 2:
+            continue
+        q0 = None if load_samples is None else load_samples[0]
+        h = F.Histories.from_solution(structure, sol, rule, load0=q0)
+        t = h.t
+        put("acceleration", ("time", "dof"), case, h.uddot, "acceleration relative to the ground (of the time rule)",
+            acc_unit)
+        if ground_motions:
+            put("absolute_acceleration", ("time", "dof"), case, F.absolute_acceleration(structure, h, ground_motions),
+                "absolute acceleration u'' + r a_g", acc_unit)
+            put("ground_acceleration", ("time", "excitation"), case,
+                np.column_stack([np.asarray(a_g(t), dtype=float) for _, a_g in ground_motions]),
+                "ground acceleration a_g", acc_unit)
+            coords["excitation"] = [f"{k}:{d}" for k, (d, _) in enumerate(ground_motions)]
+        ends = F.end_forces(structure, h)
+        names = list(ends)
+        coords["element"] = names
+        coords["element_kind"] = ("element", [_kind(structure, name) for name in names])
+        coords["end_component"] = list(F.END_COMPONENTS)
+        end = np.stack([ends[name] for name in names], axis=1)
+        put("end_force", ("time", "element", "end_component"), case, end,
+            "end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
+            f"{Fu} (N, V); {moment_unit} (M)".strip())
+        axial = np.where(np.any(end[:, :, 3] != 0, axis=0), end[:, :, 3], end[:, :, 5])
+        put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
+            "(moment of a rotational spring)", Fu)
+        reaction = F.reactions(structure, h)
+        base = F.base_forces(structure, reaction, point)
+        if reaction["support"]:
+            coords["support"] = list(reaction["support"])
+            put("support_reaction", ("time", "support"), case, np.column_stack(list(reaction["support"].values())),
+                "force of the support on the structure at node.dof", f"{Fu} or {moment_unit}")
+        if reaction["ground_elements"]:
+            coords["ground_element"] = list(reaction["ground_elements"])
+            coords["force_component"] = ["fx", "fy", "mz"]
+            put("ground_reaction", ("time", "ground_element", "force_component"), case,
+                np.stack(list(reaction["ground_elements"].values()), axis=1),
+                "force of the ground on the structure through the element", f"{Fu} (fx, fy); {moment_unit} (mz)")
+        put("base_shear", ("time",), case, base["base_shear"], "base shear: sum of the x forces of the ground", Fu)
+        put("base_vertical", ("time",), case, base["base_vertical"], "sum of the y forces of the ground", Fu)
+        put("overturning_moment", ("time",), case, base["overturning_moment"],
+            f"overturning moment of the ground forces about ({point[0]:g}, {point[1]:g}), counter-clockwise",
+            moment_unit)
+        drifts = F.storey_drifts(structure, h, storey_pairs)
+        if drifts:
+            coords["storey"] = list(drifts)
+            put("storey_drift", ("time", "storey"), case, np.column_stack([d for d, _ in drifts.values()]),
+                "interstorey drift ux(upper) - ux(lower)", L)
+            put("drift_ratio", ("time", "storey"), case, np.column_stack([r for _, r in drifts.values()]),
+                "interstorey drift ratio", "1")
+        if structure.m:
+            e, _ = structure.element_deformations(h.u, h.v)
+            put("constraint_deformation", ("time", "constraint"), case, e,
+                "total deformation of the unilateral element (soil, gap: opening positive; cable: elongation)", L)
+        energy = None
+        if load_samples is not None:
+            energy = energy_balance(structure, h, np.asarray(load_samples)[: len(t)])
+            for key in ENERGY_KEYS:
+                put(f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
+                    "1" if key == "relative_error" else moment_unit)
+        peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
+                             structure=structure)
+    static = {}
+    if model.n <= MODES_MAX_N:
+        info = modes(model, count=10, influence={"x": structure.influence("ux"), "y": structure.influence("uy")})
+        if info["period"].size:
+            coords["mode"] = np.arange(1, info["period"].size + 1)
+            static["mode_period"] = (("mode",), info["period"], {"long_name": "period of the bilateral structure",
+                                                                  "units": T})
+            static["mode_frequency"] = (("mode",), info["frequency"], {"long_name": "frequency", "units": f"1/{T}"})
+            static["mode_shape"] = (("mode", "dof"), info["shape"],
+                                    {"long_name": "mode shape (largest component 1)"})
+            for name, values in info["effective_mass"].items():
+                total = info["total_mass"][name]
+                static[f"mode_mass_ratio_{name}"] = (("mode",), values / total if total else values,
+                                                     {"long_name": f"effective modal mass ratio along {name}"})
+            for p in peaks.values():
+                p["periods"] = info["period"].tolist()
+    return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
+            "attrs": {"overturning_point": list(point)}}
+
+
+def _kind(structure, name):
+    for e in list(structure.elements) + list(structure.dashpots):
+        if e.name == name:
+            return e.kind
+    return ""
+
+
+def _extreme(t, y) -> dict:
+    i, j = int(np.argmax(y)), int(np.argmin(y))
+    return {"max": float(y[i]), "t_max": float(t[i]), "min": float(y[j]), "t_min": float(t[j])}
+
+
+def _abs_peak(t, y) -> dict:
+    i = int(np.argmax(np.abs(y)))
+    return {"value": float(y[i]), "t": float(t[i])}
+
+
+def _peaks(t, base, ends, reaction, drifts, energy, *, h, ground_motions, structure) -> dict:
+    """Peaks with their times, for summary.json."""
+    out = {key: _extreme(t, value) for key, value in base.items()}
+    out["end_forces"] = {name: {comp: _abs_peak(t, f[:, k]) for k, comp in enumerate(F.END_COMPONENTS)
+                                if np.any(f[:, k])} for name, f in ends.items()}
+    out["support_reactions"] = {label: _extreme(t, f) for label, f in reaction["support"].items()}
+    out["ground_reactions"] = {name: {c: _extreme(t, f[:, k]) for k, c in enumerate(("fx", "fy", "mz"))
+                                      if np.any(f[:, k])}
+                               for name, f in reaction["ground_elements"].items()}
+    if drifts:
+        out["drift_ratio"] = {label: _abs_peak(t, ratio) for label, (_, ratio) in drifts.items()}
+    if ground_motions:
+        acc = F.absolute_acceleration(structure, h, ground_motions)
+        names = structure.dofs.names
+        out["absolute_acceleration"] = {names[k]: _abs_peak(t, acc[:, k]) for k in range(acc.shape[1])
+                                        if names[k].endswith(("ux", "uy")) and structure.M[k, k] > 0}
+    if energy is not None:
+        k = int(np.argmax(energy["relative_error"]))
+        out["energy"] = {"max_relative_error": energy["max_relative_error"], "t_max_relative_error": float(t[k]),
+                         "input_work": float(energy["input_work"][-1]),
+                         "damping_dissipated": float(energy["damping_dissipated"][-1]),
+                         "contact_dissipated": float(energy["contact_dissipated"][-1]),
+                         "kinetic_max": float(energy["kinetic"].max())}
+    return out

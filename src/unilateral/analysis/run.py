@@ -1,0 +1,109 @@
+"""Analyses from Python with the command line's outputs: :func:`run_model_file`, :func:`run_example`.
+
+>>> import unilateral
+>>> result = unilateral.run("examples/pounding.toml", out="pounding", t_end=1.0)   # doctest: +SKIP
+>>> result["results"]["unilateral"]["base_shear"]                                # doctest: +SKIP
+
+Both return the summary dict that ``summary.json`` holds (plus ``"figures"``, the files drawn),
+and write ``results.nc``, the CSV tables, ``summary.json`` and the figures to ``out``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+EXAMPLES = ("liolios1990",)
+UNITS_KN = {"length": "m", "force": "kN", "time": "s"}
+SETTINGS = ("dt", "t_end", "method", "rule", "lcp", "initial")
+
+
+def settings_of(defaults: dict, **given) -> dict:
+    """``dt, t_end, method, rule, lcp, initial`` from defaults and the given (non-None) values."""
+    unknown = set(given) - set(SETTINGS)
+    if unknown:
+        raise TypeError(f"unknown setting(s) {sorted(unknown)}; valid: {', '.join(SETTINGS)}")
+    out = {key: defaults.get(key) for key in SETTINGS}
+    out["initial"] = out["initial"] or "static"
+    out.update({key: value for key, value in given.items() if value is not None})
+    return out
+
+
+def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progress=None, point=None,
+                   storeys=None, **overrides) -> dict:
+    """Analyse a model file and write every output, as ``unilateral run`` does.
+
+    Parameters
+    ----------
+    path : the TOML model file (see ``docs/model-file.md``)
+    out : output directory (default: the file's stem, in the current directory)
+    bilateral : hold every constraint bilateral only (no uplift)
+    figures : figure formats (``("png",)``, ``("png", "pdf")``, ``()``)
+    progress : callable ``progress(done, total)`` in work units over the whole run, optional
+    point, storeys : see :func:`unilateral.analysis.write_outputs`
+    **overrides : ``dt``, ``t_end``, ``method``, ``rule``, ``lcp``, ``initial``
+
+    Returns
+    -------
+    dict : the summary (``summary.json``) and ``figures``, the files drawn.
+    """
+    from ..modelfile import load_model_file
+
+    path = Path(path)
+    spec = load_model_file(path)
+    a = spec.analysis
+    settings = settings_of(a, **overrides)
+    return analyse(spec.model, spec.load, settings, Path(out) if out is not None else Path(path.stem),
+                   structure=spec.structure, units=spec.units, figure=spec.figure,
+                   title=a.get("title") or path.stem, meta={"model_file": str(path)},
+                   cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
+                   labels=None, formats=figures, progress=progress, point=point, storeys=storeys)
+
+
+def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None, **overrides) -> dict:
+    """Run a built-in example (``"liolios1990"``) with and without uplift; see :func:`run_model_file`."""
+    if name not in EXAMPLES:
+        raise ValueError(f"no example {name!r}; valid: {', '.join(EXAMPLES)}")
+    from ..structure.examples import liolios1990
+
+    structure, load, info = liolios1990()
+    settings = settings_of({"dt": 1e-3, "t_end": 0.5, "method": "cq", "rule": "bdf2", "lcp": "bpp"}, **overrides)
+    return analyse(structure.to_model(), load, settings, Path(out) if out is not None else Path(name),
+                   structure=structure, units=UNITS_KN, figure=info["figure2"],
+                   title="Liolios (1990), Fig. 2: vertical displacement of node 3",
+                   meta={"example": name, "model": "Liolios (1990) section 5, reconstruction in docs/theory.md"},
+                   cases=("unilateral", "bilateral"), formats=figures, progress=progress,
+                   labels={"unilateral": "with uplift", "bilateral": "without uplift"})
+
+
+def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:
+    cases = ("unilateral",) if unilateral else ()
+    return cases + (("bilateral",) if bilateral_reference or not unilateral else ())
+
+
+def analyse(model, load, settings, out, *, structure, units, figure, title, meta, cases, labels,
+            formats=("png",), progress=None, point=None, storeys=None) -> dict:
+    """Solve ``cases`` (``"unilateral"``, ``"bilateral"``) and write every output to ``out``.
+
+    ``progress(done, total)`` is called with work units over the whole run: ``N`` per case (step
+    by step where the march reports) and ``N`` for writing the outputs and figures.
+    """
+    from ..solve import solve
+    from .outputs import write_outputs
+
+    N = int(round(settings["t_end"] / settings["dt"]))
+    total = N * (len(cases) + 1)
+    kw = {key: settings[key] for key in SETTINGS}
+    solved = {}
+    for k, name in enumerate(cases):
+        done = k * N
+        callback = None if progress is None else (lambda step, _N, done=done: progress(done + step, total))
+        solved[name] = solve(model, load, callback=callback, bilateral=(name == "bilateral"), **kw)
+        if progress is not None:
+            progress((k + 1) * N, total)
+    result = write_outputs(out, solved, structure=structure, units=units, figure=figure, title=title,
+                           meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
+                           formats=formats, point=point, storeys=storeys)
+    if progress is not None:
+        progress(total, total)
+    result["success_all"] = all(sol.success for sol in solved.values())
+    return result

@@ -1,0 +1,324 @@
+"""The figures of a run, drawn from its ``results.nc`` alone: ``run`` and ``plot`` call :func:`draw_figures`.
+
+Every figure reads only the Dataset (variables, coordinates and attributes written by
+:func:`unilateral.analysis.write_outputs`), so ``unilateral plot results.nc`` redraws exactly the
+files ``unilateral run`` wrote. Rules of the house: a unit on every axis; one length unit per
+figure, millimetres when the values are below half a metre; openings and compressive forces on
+one-sided axes (both start at zero: an element is either open or pressed, never both).
+
+=======================  ======================================================================
+file                     content
+=======================  ======================================================================
+``fig2``                 the main history (``output.figure``), every case
+``constraints``          opening and compression of each unilateral element, or, with more than
+                         :data:`MAX_PANELS` elements, a space-time map of the opening and the
+                         envelopes along the foundation
+``force_deformation``    force against deformation of the unilateral elements (the largest)
+``gaps``                 relative displacement across each gap element with the gap line
+``ground_motion``        the input record(s)
+``base_forces``          base shear and overturning moment
+``energy``               the energy balance and its relative error
+=======================  ======================================================================
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from .plots import PAGE_WIDTH, _figure, _styled, save_figure
+
+MAX_PANELS = 6
+FORMATS = ("png", "pdf")
+
+
+def main_case(ds) -> str | None:
+    """The case the single-case figures show: ``unilateral`` if present."""
+    if "case" not in ds.dims:
+        return None
+    cases = [str(c) for c in ds["case"].values]
+    return "unilateral" if "unilateral" in cases else cases[0]
+
+
+def _case(ds, name):
+    return ds if name is None else ds.sel(case=name)
+
+
+def length_scale(unit: str, peak: float) -> tuple[str, float]:
+    """Display unit and factor for lengths: millimetres for metre values below 0.5 m."""
+    if unit == "m" and 0.0 < peak < 0.5:
+        return "mm", 1e3
+    return unit, 1.0
+
+
+def force_scale(unit: str, peak: float) -> tuple[str, float]:
+    """Display unit and factor for forces: MN above 10^4 kN, kN above 10^4 N."""
+    if unit == "kN" and peak >= 1e4:
+        return "MN", 1e-3
+    if unit == "N" and peak >= 1e4:
+        return "kN", 1e-3
+    return unit, 1.0
+
+
+def _unit(ds, key):
+    return str(ds.attrs.get(f"units_{key}", ""))
+
+
+def _axis(text, unit):
+    return f"{text} [{unit}]" if unit else text
+
+
+def draw_figures(ds, out_dir, formats=("png",)) -> list[Path]:
+    """Draw every figure the Dataset supports into ``out_dir``; return the files written.
+
+    ``formats``: matplotlib formats, e.g. ``("png",)`` (default) or ``("png", "pdf")``; empty: none.
+    """
+    formats = tuple(formats)
+    if not formats:
+        return []
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name, draw in (("fig2", history_figure), ("constraints", constraints_figure),
+                       ("force_deformation", force_deformation_figure), ("gaps", gaps_figure),
+                       ("ground_motion", ground_motion_figure), ("base_forces", base_forces_figure),
+                       ("energy", energy_figure)):
+        fig = draw(ds)
+        if fig is not None:
+            written += save_figure(fig, out / name, formats)
+    return written
+
+
+@_styled
+def history_figure(ds):
+    """The main history of every case (the paper's Fig. 2 for the example)."""
+    node, dof = ds.attrs.get("figure_node"), ds.attrs.get("figure_dof")
+    if node is None or "node_displacement" not in ds:
+        return None
+    nd = ds["node_displacement"].sel(node=str(node), component=str(dof))
+    labels = json.loads(ds.attrs.get("case_labels", "{}"))
+    t = ds["time"].values
+    curves = ({labels.get(str(c), str(c)): nd.sel(case=c).values for c in ds["case"].values}
+              if "case" in nd.dims else {"": nd.values})
+    peak = max(float(np.max(np.abs(y))) for y in curves.values())
+    unit, factor = ("rad", 1.0) if dof == "rz" else length_scale(_unit(ds, "length"), peak)
+    fig, ax = _figure((PAGE_WIDTH, 3.0))
+    for k, (label, y) in enumerate(curves.items()):
+        ax.plot(t, factor * y, ("-", "--", "-.", ":")[k % 4], color=f"C{k}", label=label or None)
+    ax.margins(x=0)
+    ax.set(xlabel=_axis("time t", _unit(ds, "time")),
+           ylabel=_axis(ds.attrs.get("figure_text") or f"{dof} of node {node}", unit))
+    if ds.attrs.get("title"):
+        ax.set_title(str(ds.attrs["title"]))
+    if any(curves):
+        ax.legend(loc="best")
+    return fig
+
+
+def _constraint_data(ds):
+    d = _case(ds, main_case(ds))
+    if "v" not in d or d.sizes.get("constraint", 0) == 0:
+        return None
+    return d
+
+
+@_styled
+def constraints_figure(ds):
+    """Opening and compression of each unilateral element, or a map for many of them."""
+    d = _constraint_data(ds)
+    if d is None:
+        return None
+    m = d.sizes["constraint"]
+    if m > MAX_PANELS and "constraint_x" in d.coords:
+        return _contact_map(d)
+    return _contact_panels(d)
+
+
+def _contact_panels(d):
+    t = d["time"].values
+    v, psi = d["v"].values, d["psi"].values
+    names = [str(c) for c in d["constraint"].values]
+    shown = np.arange(len(names))
+    if len(names) > MAX_PANELS:
+        shown = np.sort(np.argsort(-v.max(axis=0), kind="stable")[:MAX_PANELS])
+    lunit, lf = length_scale(_unit(d, "length"), float(np.max(v[:, shown], initial=0.0)))
+    funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, shown], initial=0.0)))
+    fig, axes = _figure((PAGE_WIDTH, 0.6 + 1.45 * len(shown)), nrows=len(shown), sharex=True, squeeze=False)
+    for ax, i in zip(axes[:, 0], shown):
+        ax.plot(t, lf * v[:, i], color="C0")
+        twin = ax.twinx()
+        twin.plot(t, -ff * psi[:, i], color="C3", linestyle="--")
+        twin.grid(False)
+        ax.set_ylim(0.0, 1.08 * lf * float(v[:, i].max()) or 1.0)
+        twin.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
+        ax.margins(x=0)
+        ax.set_title(names[i], loc="left")
+        ax.set_ylabel(_axis("opening v", lunit), color="C0")
+        twin.set_ylabel(_axis("compression −ψ", funit), color="C3")
+        ax.tick_params(axis="y", colors="C0")
+        twin.tick_params(axis="y", colors="C3")
+    axes[-1, 0].set_xlabel(_axis("time t", _unit(d, "time")))
+    fig.suptitle(f"{len(shown)} of {len(names)} unilateral elements, the largest openings" if len(shown) < len(names)
+                 else "Unilateral elements: opening (solid) and compression (dashed)")
+    return fig
+
+
+def _contact_map(d):
+    t = d["time"].values
+    x = d["constraint_x"].values.astype(float)
+    order = np.argsort(x, kind="stable")
+    x = x[order]
+    v, psi = d["v"].values[:, order], d["psi"].values[:, order]
+    lunit, lf = length_scale(_unit(d, "length"), float(np.max(v, initial=0.0)))
+    funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi, initial=0.0)))
+    xunit = _unit(d, "length")
+    fig, (top, mid, low) = _figure((PAGE_WIDTH, 6.2), nrows=3, height_ratios=(2.2, 1, 1))
+    image = top.pcolormesh(x, t, lf * v, shading="nearest", cmap="viridis", vmin=0.0)
+    fig.colorbar(image, ax=top, label=_axis("opening v", lunit))
+    top.set(xlabel=_axis("position x", xunit), ylabel=_axis("time t", _unit(d, "time")),
+            title=f"Opening of {len(x)} unilateral elements over time")
+    top.grid(False)
+    mid.plot(x, lf * v.max(axis=0), "o-", color="C0", markersize=3)
+    mid.set_ylim(0.0, 1.08 * lf * float(v.max()) or 1.0)
+    mid.set(xlabel=_axis("position x", xunit), ylabel=_axis("peak opening", lunit))
+    low.plot(x, -ff * psi.min(axis=0), "s-", color="C3", markersize=3)
+    low.set_ylim(0.0, 1.08 * ff * float(-psi.min()) or 1.0)
+    low.set(xlabel=_axis("position x", xunit), ylabel=_axis("peak compression", funit))
+    return fig
+
+
+@_styled
+def force_deformation_figure(ds):
+    """Force (compression positive) against deformation of the unilateral elements."""
+    d = _constraint_data(ds)
+    if d is None or "constraint_deformation" not in d:
+        return None
+    e, psi, v = d["constraint_deformation"].values, d["psi"].values, d["v"].values
+    names = [str(c) for c in d["constraint"].values]
+    shown = np.arange(len(names))
+    if len(names) > MAX_PANELS:
+        shown = np.sort(np.argsort(-v.max(axis=0), kind="stable")[:MAX_PANELS])
+    lunit, lf = length_scale(_unit(d, "length"), float(np.max(np.abs(e[:, shown]), initial=0.0)))
+    funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, shown], initial=0.0)))
+    ncols = min(3, len(shown))
+    nrows = -(-len(shown) // ncols)
+    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), 0.5 + 2.0 * nrows), nrows=nrows, ncols=ncols,
+                        squeeze=False)
+    for ax in axes.flat[len(shown):]:
+        ax.remove()
+    for ax, i in zip(axes.flat, shown):
+        ax.plot(lf * e[:, i], -ff * psi[:, i], color="C0", marker="o", markevery=[0], markersize=3)
+        ax.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
+        ax.set_title(names[i], loc="left")
+        ax.set(xlabel=_axis("deformation", lunit), ylabel=_axis("compression", funit))
+    if len(shown) < len(names):
+        fig.suptitle(f"{len(shown)} of {len(names)} unilateral elements, the largest openings")
+    return fig
+
+
+@_styled
+def gaps_figure(ds):
+    """Relative displacement across each gap element, with the line where the gap closes."""
+    d = _constraint_data(ds)
+    if d is None or "constraint_kind" not in d.coords or "constraint_deformation" not in d:
+        return None
+    kinds = [str(k) for k in d["constraint_kind"].values]
+    gaps = [i for i, k in enumerate(kinds) if k == "gap"][:MAX_PANELS]
+    if not gaps:
+        return None
+    t = d["time"].values
+    e, psi = d["constraint_deformation"].values, d["psi"].values
+    gap = d["constraint_gap"].values.astype(float)
+    names = [str(c) for c in d["constraint"].values]
+    lunit, lf = length_scale(_unit(d, "length"), max(float(np.max(np.abs(e[:, gaps]))), float(np.max(gap[gaps]))))
+    funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, gaps], initial=0.0)))
+    fig, axes = _figure((PAGE_WIDTH, 0.6 + 2.4 * len(gaps)), nrows=2 * len(gaps), sharex=True, squeeze=False,
+                        height_ratios=[2, 1] * len(gaps))
+    for k, i in enumerate(gaps):
+        ax, low = axes[2 * k, 0], axes[2 * k + 1, 0]
+        ax.plot(t, lf * e[:, i], color="C0", label="relative displacement (opening +)")
+        ax.axhline(-lf * gap[i], color="C3", linestyle="--", linewidth=0.9,
+                   label=f"contact: gap {lf * gap[i]:g} {lunit} closed")
+        ax.margins(x=0)
+        ax.set_title(names[i], loc="left")
+        ax.set_ylabel(_axis("opening", lunit))
+        ax.legend(loc="best")
+        low.plot(t, -ff * psi[:, i], color="C3")
+        low.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
+        low.set_ylabel(_axis("contact force", funit))
+    axes[-1, 0].set_xlabel(_axis("time t", _unit(d, "time")))
+    return fig
+
+
+@_styled
+def ground_motion_figure(ds):
+    """The input ground acceleration(s)."""
+    d = _case(ds, main_case(ds))
+    if "ground_acceleration" not in d:
+        return None
+    t = d["time"].values
+    a = d["ground_acceleration"].values
+    unit = str(d["ground_acceleration"].attrs.get("units", ""))
+    fig, ax = _figure((PAGE_WIDTH, 2.4))
+    for k, label in enumerate(d["excitation"].values):
+        ax.plot(t, a[:, k], color=f"C{k}", linewidth=0.8, label=f"{label}")
+    ax.margins(x=0)
+    ax.set(xlabel=_axis("time t", _unit(d, "time")), ylabel=_axis("ground acceleration a_g", unit),
+           title="Input record")
+    ax.legend(loc="upper right")
+    return fig
+
+
+@_styled
+def base_forces_figure(ds):
+    """Base shear and overturning moment, every case."""
+    if "base_shear" not in ds:
+        return None
+    t = ds["time"].values
+    cases = [None] if "case" not in ds.dims else [str(c) for c in ds["case"].values]
+    labels = json.loads(ds.attrs.get("case_labels", "{}"))
+    shear = [_case(ds, c)["base_shear"].values for c in cases]
+    moment = [_case(ds, c)["overturning_moment"].values for c in cases]
+    funit, ff = force_scale(_unit(ds, "force"), max(float(np.max(np.abs(s))) for s in shear))
+    munit = f"{funit} {_unit(ds, 'length')}".strip()
+    fig, (top, low) = _figure((PAGE_WIDTH, 4.2), nrows=2, sharex=True)
+    for k, c in enumerate(cases):
+        label = labels.get(c, c) if c else None
+        top.plot(t, ff * shear[k], ("-", "--")[k % 2], color=f"C{k}", label=label)
+        low.plot(t, ff * moment[k], ("-", "--")[k % 2], color=f"C{k}", label=label)
+    point = ds.attrs.get("overturning_point")
+    where = f" about ({point[0]:g}, {point[1]:g})" if point is not None and len(point) == 2 else ""
+    top.set(ylabel=_axis("base shear", funit))
+    low.set(ylabel=_axis(f"overturning moment{where}", munit), xlabel=_axis("time t", _unit(ds, "time")))
+    top.margins(x=0)
+    if len(cases) > 1:
+        top.legend(loc="best")
+    return fig
+
+
+@_styled
+def energy_figure(ds):
+    """Energies of the main case and the relative error of their balance."""
+    d = _case(ds, main_case(ds))
+    if "energy_input_work" not in d:
+        return None
+    t = d["time"].values
+    unit = str(d["energy_input_work"].attrs.get("units", ""))
+    fig, (top, low) = _figure((PAGE_WIDTH, 4.2), nrows=2, sharex=True, height_ratios=(2.2, 1))
+    for key, label in (("input_work", "input work"), ("kinetic", "kinetic"),
+                       ("elastic_structure", "elastic (structure, change)"),
+                       ("elastic_unilateral", "elastic (unilateral, change)"),
+                       ("damping_dissipated", "damping dissipated"), ("contact_dissipated", "contact dissipated")):
+        y = d[f"energy_{key}"].values
+        if key.startswith("elastic"):
+            y = y - y[0]
+        if np.any(y):
+            top.plot(t, y, label=label)
+    top.set(ylabel=_axis("energy", unit), title="Energy balance")
+    top.legend(loc="best", ncols=2)
+    top.margins(x=0)
+    low.semilogy(t, np.maximum(d["energy_relative_error"].values, 1e-17), color="0.3")
+    low.set(ylabel="relative error [1]", xlabel=_axis("time t", _unit(d, "time")))
+    return fig
