@@ -147,6 +147,16 @@ def bench(ctx):
     sys.exit(bench_main(ctx.args))
 
 
+def _register_batch():
+    """``unilateral batch``: imported here, the batch package imports Dask only when it runs."""
+    from .batch.cli import batch
+
+    main.add_command(batch, name="batch")
+
+
+_register_batch()
+
+
 # ---------------------------------------------------------------------- helpers
 def _analysis():
     from . import analysis

@@ -14,8 +14,9 @@ the file, the key path and the bad value, says what is wrong and what would be v
 ``model.toml: elements[3].node_j = 17: no node 17 (nodes are 1..12)``.
 """
 
-from .build import LoadHistory, ModelSpec, load_model_file
+from .build import LoadHistory, ModelSpec, build_model_spec, load_model_file
 from .errors import ModelFileError
 from .schema import model_file_schema, write_schema
 
-__all__ = ["LoadHistory", "ModelFileError", "ModelSpec", "load_model_file", "model_file_schema", "write_schema"]
+__all__ = ["LoadHistory", "ModelFileError", "ModelSpec", "build_model_spec", "load_model_file", "model_file_schema",
+           "write_schema"]

@@ -77,6 +77,32 @@ def load_model_file(path) -> ModelSpec:
     source = Path(path)
     try:
         document = _read_document(source)
+    except Problems as exc:
+        raise ModelFileError(path, exc.problems) from None
+    return _build_spec(document, source, path)
+
+
+def build_model_spec(data: dict, source) -> ModelSpec:
+    """Check and build a model file that is already parsed: ``data`` as from :func:`tomllib.load`.
+
+    For programs that change a model file's values before building it (parameter studies).
+    ``source`` is the file the data stands for: file names in ``data`` are relative to its folder,
+    and error messages name it. Raises :class:`ModelFileError` as :func:`load_model_file` does.
+    """
+    source = Path(source)
+    try:
+        try:
+            document = ModelFile.model_validate(data)
+        except ValidationError as exc:
+            raise Problems(translate(exc, data, ModelFile)) from None
+    except Problems as exc:
+        raise ModelFileError(source, exc.problems) from None
+    return _build_spec(document, source, source)
+
+
+def _build_spec(document: ModelFile, source: Path, path) -> ModelSpec:
+    """Cross checks and the build of a validated document (``path``: the file as named in errors)."""
+    try:
         _check(document, source.parent)
         if document.matrices is None:
             structure = _build_structure(document)

@@ -1,0 +1,661 @@
+"""Read a study file: TOML -> validated document -> checks -> the list of analyses.
+
+:func:`load_study` is the entry point. It reads and validates the study file, reads every model
+file once, applies the changed values and the parameter sweeps (by key path) and builds every
+model variant (which checks it, and gives its first period ``T1``), lists the records, works out
+the scale factor of every record at every intensity level, and names every analysis by a hash of
+everything its result depends on. Every problem is reported as a :class:`StudyFileError` with
+one line ``<file>: <key path> = <value>: <what is wrong> (<what is valid>)`` per problem, as for
+model files.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from pydantic import ValidationError
+
+from ..modelfile import ModelFileError, build_model_spec
+from ..modelfile.errors import did_you_mean, key_path, toml_value, translate, value_problem
+from .keypath import KeyPathError, parse_key_path, set_key_path
+from .schema import StudyFile
+
+RECORD_SUFFIXES = (".at2", ".txt", ".dat", ".csv")
+"""Files of a records folder that are read as records (any case); .AT2 files carry their units."""
+
+TIME_UNITS = {"s": 1.0, "ms": 1e-3}
+_TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
+
+
+class StudyFileError(ModelFileError):
+    """An invalid study file; one line ``<file>: <problem>`` per problem (a ``ValueError``)."""
+
+
+class _Problems(Exception):
+    def __init__(self, problems):
+        self.problems = list(problems)
+        super().__init__("\n".join(self.problems))
+
+
+def package_version() -> str:
+    from .. import __version__
+
+    return __version__
+
+
+def sha256_file(path) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def sha256_json(obj) -> str:
+    text = json.dumps(obj, sort_keys=True, separators=(",", ":"), default=str, allow_nan=True)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+# ---------------------------------------------------------------------- the pieces of a study
+@dataclass
+class Record:
+    """A ground-motion record of the study (a file, or synthetic by seed)."""
+
+    name: str
+    kind: str                         # "file" or "synthetic"
+    path: Path | None
+    options: dict                     # reader options (files) or generator arguments (synthetic)
+    digest: str                       # content hash
+    motion: object = None             # the GroundMotion, when read on the client
+    error: str | None = None          # why it cannot be read (its analyses fail without running)
+
+    def payload(self) -> dict:
+        return {"name": self.name, "kind": self.kind, "path": None if self.path is None else str(self.path),
+                "options": self.options, "digest": self.digest}
+
+
+@dataclass
+class Variant:
+    """A model file with its changed values and one combination of the swept parameters."""
+
+    index: int
+    model: str                        # the model's name
+    model_index: int
+    path: Path
+    overrides: list                   # [(key path, value), ...], applied in order
+    parameters: dict                  # swept key path -> value
+    digest: str                       # model file and the files it references
+    file_digest: str                  # the model file alone (checked by the workers)
+    ground_motion: dict               # {"direction": ...} or {"influence": path, "digest": ...}
+    settings: dict                    # dt, t_end, method, rule, lcp, initial
+    T1: float = math.nan              # first period with every constraint bilateral [s]
+    constraint_names: list = field(default_factory=list)
+    spec: object = field(default=None, repr=False)    # the built ModelSpec (client side)
+
+
+@dataclass
+class Analysis:
+    """One analysis: a variant, a record and an intensity level."""
+
+    key: str
+    index: int
+    variant: Variant
+    record: Record | None
+    level: int
+    intensity: float
+    scale: float
+    record_intensity: float           # intensity measure of the unscaled record (units of [scaling])
+    settings: dict
+    payload: dict
+    error: str | None = None
+
+    def inputs(self) -> dict:
+        """The inputs of the analysis as a flat dict (one row of the study table)."""
+        row = {"key": self.key, "model": self.variant.model, "variant": self.variant.index,
+               "record": "" if self.record is None else self.record.name, "level": self.level,
+               "intensity": self.intensity, "scale": self.scale, "record_intensity": self.record_intensity,
+               "T1": self.variant.T1, "dt": self.settings["dt"], "t_end": self.settings["t_end"],
+               "method": self.settings["method"]}
+        for name, value in self.variant.parameters.items():
+            row[f"param.{name}"] = value
+        return row
+
+
+@dataclass
+class Study:
+    """A study file read and expanded: its variants, records and analyses."""
+
+    source: Path
+    document: StudyFile
+    variants: list
+    records: list
+    analyses: list
+    quantity_columns: list
+    intensity_label: str
+
+    @property
+    def title(self) -> str:
+        return self.document.title
+
+
+# ---------------------------------------------------------------------- reading
+def read_study_document(source: Path) -> tuple[StudyFile, dict]:
+    try:
+        text = source.read_bytes().decode("utf-8-sig")
+    except FileNotFoundError:
+        raise _Problems(["file not found"]) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise _Problems([f"cannot read the file ({exc})"]) from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        match = _TOML_POSITION.match(str(exc))
+        where = f"line {match[2]}, column {match[3]}: " if match else ""
+        raise _Problems([f"{where}invalid TOML: {match[1] if match else exc}"]) from None
+    try:
+        return StudyFile.model_validate(data), data
+    except ValidationError as exc:
+        raise _Problems(translate(exc, data, StudyFile)) from None
+
+
+def load_study(path) -> Study:
+    """Read, check and expand the study file ``path`` (TOML; see ``docs/study-file.md``).
+
+    Raises
+    ------
+    StudyFileError
+        One line ``<file>: <key path> = <value>: <problem> (<what is valid>)`` per problem.
+    """
+    source = Path(path)
+    try:
+        document, _ = read_study_document(source)
+        return _expand(document, source)
+    except _Problems as exc:
+        raise StudyFileError(path, exc.problems) from None
+
+
+def _expand(doc: StudyFile, source: Path) -> Study:
+    folder = source.parent
+    problems = _static_problems(doc, folder)
+    if problems:
+        raise _Problems(problems)
+    records = _records(doc, folder)
+    variants = _variants(doc, folder)
+    _check_quantities(doc, variants)
+    scaling = doc.scaling
+    need_motion = doc.records is not None and (
+        (scaling is not None and scaling.measure != "factor") or doc.analysis.t_end == "record")
+    if need_motion:
+        _read_records(records, doc)
+    levels = list(scaling.values) if scaling is not None else [1.0]
+    analyses = []
+    record_list = records if records else [None]
+    for variant in variants:
+        for record in record_list:
+            for level, value in enumerate(levels):
+                analyses.append(_analysis(len(analyses), doc, variant, record, level, value))
+    columns = quantity_columns(doc, variants)
+    label = _intensity_label(doc)
+    return Study(source=source, document=doc, variants=variants, records=records, analyses=analyses,
+                 quantity_columns=columns, intensity_label=label)
+
+
+def _intensity_label(doc: StudyFile) -> str:
+    scaling = doc.scaling
+    if scaling is None or scaling.measure == "factor":
+        return "scale factor"
+    if scaling.measure == "pga":
+        return f"PGA ({scaling.units})"
+    period = "T1" if scaling.period == "T1" else f"{scaling.period:g} s"
+    return f"Sa({period}, {100 * scaling.damping:g}%) ({scaling.units})"
+
+
+# ---------------------------------------------------------------------- checks without the models
+def _static_problems(doc: StudyFile, folder: Path) -> list[str]:
+    from ..loads import acceleration_factor
+
+    problems = []
+    names = {}
+    for k, entry in enumerate(doc.models):
+        if not (folder / entry.file).is_file():
+            problems.append(value_problem(("models", k, "file"), entry.file,
+                                          f"file not found (looked for {folder / entry.file})"))
+        name = entry.name or Path(entry.file).stem
+        if name in names:
+            problems.append(value_problem(("models", k, "name"), name,
+                                          f"duplicate model name (also models[{names[name]}]; give name = ...)"))
+        names.setdefault(name, k)
+        for key in entry.set:
+            try:
+                parse_key_path(key)
+            except KeyPathError as exc:
+                problems.append(f'{key_path(("models", k, "set"))}."{key}": {exc}')
+    rec = doc.records
+    if rec is not None:
+        if rec.folder is not None and not (folder / rec.folder).is_dir():
+            problems.append(value_problem(("records", "folder"), rec.folder,
+                                          f"folder not found (looked for {folder / rec.folder})"))
+        for k, name in enumerate(rec.files):
+            if not (folder / name).is_file():
+                problems.append(value_problem(("records", "files", k), name,
+                                              f"file not found (looked for {folder / name})"))
+        if rec.units is not None:
+            try:
+                acceleration_factor(rec.units)
+            except ValueError as exc:
+                problems.append(value_problem(("records", "units"), rec.units, str(exc)))
+        if rec.influence is not None and not (folder / rec.influence).is_file():
+            problems.append(value_problem(("records", "influence"), rec.influence,
+                                          f"file not found (looked for {folder / rec.influence})"))
+    if doc.scaling is not None:
+        if rec is None:
+            problems.append("scaling: needs [records] (the levels scale the records)")
+        try:
+            acceleration_factor(doc.scaling.units)
+        except ValueError as exc:
+            problems.append(value_problem(("scaling", "units"), doc.scaling.units, str(exc)))
+    if doc.analysis.t_end == "record" and rec is None:
+        problems.append(value_problem(("analysis", "t_end"), "record", 'needs [records] (or give a number)'))
+    groups = {}
+    for k, parameter in enumerate(doc.parameters):
+        try:
+            parse_key_path(parameter.key)
+        except KeyPathError as exc:
+            problems.append(value_problem(("parameters", k, "key"), parameter.key, str(exc)))
+        group = parameter.group or f"#{k}"
+        if group in groups and len(doc.parameters[groups[group]].values) != len(parameter.values):
+            first = groups[group]
+            problems.append(f"{key_path(('parameters', k, 'values'))}: {len(parameter.values)} values, but "
+                            f"parameters[{first}] of the same group {toml_value(parameter.group)} has "
+                            f"{len(doc.parameters[first].values)} (a group is varied together: equal lengths)")
+        groups.setdefault(group, k)
+        keys = [p.key for p in doc.parameters[:k]]
+        if parameter.key in keys:
+            problems.append(value_problem(("parameters", k, "key"), parameter.key,
+                                          f"swept twice (also parameters[{keys.index(parameter.key)}])"))
+    seen = {}
+    for k, quantity in enumerate(doc.quantities):
+        if quantity.name in seen:
+            problems.append(value_problem(("quantities", k, "name"), quantity.name,
+                                          f"duplicate quantity name (also quantities[{seen[quantity.name]}])"))
+        seen.setdefault(quantity.name, k)
+        for key in quantity.NEEDS.get(quantity.type, ()):
+            if getattr(quantity, key) is None:
+                problems.append(f"{key_path(('quantities', k, key))}: missing key ({_article(quantity.type)} "
+                                f"{quantity.type} quantity needs {' and '.join(quantity.NEEDS[quantity.type])}"
+                                f"{', and node for a frame' if key == 'dof' and quantity.type != 'drift' else ''})")
+        for key in ("elements", "node", "dof", "pairs"):
+            if getattr(quantity, key) is not None and key not in quantity.USES[quantity.type]:
+                uses = ", ".join(quantity.USES[quantity.type]) or "no other key"
+                problems.append(value_problem(("quantities", k, key), getattr(quantity, key),
+                                              f"not used by {_article(quantity.type)} {quantity.type} quantity "
+                                              f"(it uses: {uses})"))
+        if quantity.type == "drift" and quantity.pairs is not None:
+            for j, (upper, lower) in enumerate(quantity.pairs):
+                if upper == lower:
+                    problems.append(value_problem(("quantities", k, "pairs", j), [upper, lower],
+                                                  "the two nodes of a storey must differ"))
+    return problems
+
+
+def quantity_columns(doc: StudyFile, variants) -> list[str]:
+    """Names of the quantity columns of the table, in order."""
+    columns = []
+    for quantity in doc.quantities:
+        if quantity.type in ("uplift", "contact_force") and quantity.over == "each":
+            names = quantity.elements
+            if names is None:
+                names = []
+                for variant in variants:
+                    names += [n for n in variant.constraint_names if n not in names]
+            columns += [f"{quantity.name}.{n}" for n in names]
+        else:
+            columns.append(quantity.name)
+    return columns
+
+
+def _check_quantities(doc: StudyFile, variants) -> None:
+    problems = []
+    for variant in variants:
+        spec = variant.spec
+        where = f"in model {variant.model} ({variant.path.name})"
+        ids = [node.id for node in spec.document.nodes]
+        ys = {node.id: node.y for node in spec.document.nodes}
+        for k, q in enumerate(doc.quantities):
+            for j, name in enumerate(q.elements or []):
+                if name not in variant.constraint_names:
+                    problems.append(value_problem(("quantities", k, "elements", j), name,
+                                                  f"no unilateral element {toml_value(name)} {where} (valid: "
+                                                  f"{', '.join(variant.constraint_names) or 'none'})")
+                                    + did_you_mean(name, variant.constraint_names))
+            nodes = [("node", q.node)] if q.node is not None else []
+            nodes += [(("pairs", j, i), n) for j, pair in enumerate(q.pairs or []) for i, n in enumerate(pair)]
+            if spec.structure is None:
+                if nodes:
+                    problems.append(f"{key_path(('quantities', k, 'node'))}: {where}: a matrix-level model has no "
+                                    "nodes (give dof = a DOF name)")
+                elif q.dof is not None and q.dof not in spec.model.dof_names:
+                    problems.append(value_problem(("quantities", k, "dof"), q.dof, f"no DOF {toml_value(q.dof)} "
+                                                  f"{where}") + did_you_mean(q.dof, spec.model.dof_names))
+                continue
+            for part, node in nodes:
+                parts = ("quantities", k, *(part if isinstance(part, tuple) else (part,)))
+                if node not in ids:
+                    from ..modelfile.errors import compact_ids
+
+                    problems.append(value_problem(parts, node, f"no node {toml_value(node)} {where} (nodes are "
+                                                  f"{compact_ids(ids)})"))
+            if q.type in ("displacement", "residual") and q.node is None and q.dof is not None:
+                problems.append(f"{key_path(('quantities', k, 'node'))}: missing key (a frame needs the node of "
+                                f"dof {toml_value(q.dof)})")
+            if q.dof is not None and q.dof not in ("ux", "uy", "rz"):
+                problems.append(value_problem(("quantities", k, "dof"), q.dof, 'unknown DOF of a frame node '
+                                              '(valid: ux, uy, rz)') + did_you_mean(q.dof, ["ux", "uy", "rz"]))
+            for j, pair in enumerate(q.pairs or []):
+                if q.ratio and all(n in ys for n in pair) and ys[pair[0]] == ys[pair[1]]:
+                    problems.append(value_problem(("quantities", k, "pairs", j), pair, f"both nodes at y = "
+                                                  f"{ys[pair[0]]:g} {where}: no storey height for the drift ratio "
+                                                  "(give ratio = false for the drift itself)"))
+    columns = quantity_columns(doc, variants)
+    for k, limit in enumerate(doc.limit_states):
+        if limit.quantity not in columns:
+            problems.append(value_problem(("limit_states", k, "quantity"), limit.quantity,
+                                          f"no such quantity (valid: {', '.join(columns)})")
+                            + did_you_mean(limit.quantity, columns))
+    ida = doc.figures.ida
+    if ida is not None and ida not in columns:
+        problems.append(value_problem(("figures", "ida"), ida, f"no such quantity (valid: {', '.join(columns)})")
+                        + did_you_mean(ida, columns))
+    if problems:
+        raise _Problems(list(dict.fromkeys(problems)))
+
+
+# ---------------------------------------------------------------------- records
+def _records(doc: StudyFile, folder: Path) -> list[Record]:
+    rec = doc.records
+    if rec is None:
+        return []
+    files = []
+    if rec.folder is not None:
+        files += sorted(p for p in (folder / rec.folder).iterdir()
+                        if p.is_file() and p.suffix.lower() in RECORD_SUFFIXES and not p.name.startswith("."))
+        if not files:
+            raise _Problems([value_problem(("records", "folder"), rec.folder,
+                                           f"no records in the folder (files ending in "
+                                           f"{', '.join(s.upper() if s == '.at2' else s for s in RECORD_SUFFIXES)})")])
+    files += [folder / name for name in rec.files]
+    problems = []
+    out = []
+    names = {}
+    for path in files:
+        at2 = path.suffix.lower() == ".at2"
+        options = {} if at2 else {k: v for k, v in (("units", rec.units), ("dt", rec.dt)) if v is not None}
+        if not at2 and rec.units is None:
+            problems.append(f"records.units: missing key (the plain-text record {path.name} needs the units of "
+                            'its values, e.g. units = "g" or "cm/s2")')
+        name = path.stem
+        if name in names:
+            name = f"{path.stem}{path.suffix}"
+        names[name] = path
+        digest = sha256_json({"file": sha256_file(path), "options": options})
+        out.append(Record(name=name, kind="file", path=path.resolve(), options=options, digest=digest))
+    if rec.synthetic is not None:
+        syn = rec.synthetic
+        for seed in syn.seeds:
+            options = {"duration": syn.duration, "dt": syn.dt, "pga": syn.pga, "seed": seed, "f_g": syn.f_g,
+                       "zeta_g": syn.zeta_g, "envelope": syn.envelope}
+            out.append(Record(name=f"synthetic-{seed}", kind="synthetic", path=None, options=options,
+                              digest=sha256_json({"synthetic": options})))
+    seen = {}
+    for k, record in enumerate(out):
+        if record.name in seen:
+            problems.append(f"records: two records named {toml_value(record.name)} (every record needs a "
+                            "different name: file stems and synthetic-<seed>)")
+        seen.setdefault(record.name, k)
+    if problems:
+        raise _Problems(problems)
+    return out
+
+
+def read_study_record(payload: dict):
+    """The GroundMotion of a record payload (``Record.payload()``), in m/s^2."""
+    from ..loads import read_record, synthetic_accelerogram
+
+    if payload["kind"] == "synthetic":
+        return synthetic_accelerogram(**payload["options"])
+    return read_record(payload["path"], **payload["options"])
+
+
+def _read_records(records: list[Record], doc: StudyFile) -> None:
+    for record in records:
+        try:
+            record.motion = read_study_record(record.payload())
+        except (ValueError, OSError, TypeError) as exc:
+            record.error = f"cannot read the record: {exc}"
+
+
+# ---------------------------------------------------------------------- model variants
+def _combinations(doc: StudyFile) -> list[dict]:
+    """Every combination of the swept parameters: groups zipped, groups crossed."""
+    groups: dict = {}
+    for k, parameter in enumerate(doc.parameters):
+        groups.setdefault(parameter.group or f"#{k}", []).append(parameter)
+    axes = []
+    for members in groups.values():
+        axes.append([{p.key: p.values[i] for p in members} for i in range(len(members[0].values))])
+    combos = []
+    for choice in itertools.product(*axes):
+        combo = {}
+        for part in choice:
+            combo.update(part)
+        combos.append(combo)
+    return combos or [{}]
+
+
+def _parameter_site(doc: StudyFile, key: str, value) -> tuple:
+    for k, parameter in enumerate(doc.parameters):
+        if parameter.key == key:
+            for j, v in enumerate(parameter.values):
+                if v == value:
+                    return ("parameters", k, "values", j)
+            return ("parameters", k, "values")
+    return ("parameters",)
+
+
+def _variants(doc: StudyFile, folder: Path) -> list[Variant]:
+    problems = []
+    variants = []
+    combos = _combinations(doc)
+    for k, entry in enumerate(doc.models):
+        path = (folder / entry.file)
+        name = entry.name or Path(entry.file).stem
+        try:
+            base = tomllib.loads(path.read_bytes().decode("utf-8-sig"))
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+            problems.append(value_problem(("models", k, "file"), entry.file, f"cannot read the model file ({exc})"))
+            continue
+        ground = _ground_motion(doc, base, folder, path, k)
+        if isinstance(ground, str):
+            problems.append(ground)
+            continue
+        study_settings = [(f"analysis.{key}", value) for key, value in
+                          doc.analysis.model_dump(include={"dt", "method", "rule", "lcp", "initial"}).items()
+                          if value is not None]
+        if isinstance(doc.analysis.t_end, float):
+            study_settings.append(("analysis.t_end", doc.analysis.t_end))
+        head = [("loads.ground_motion", [])] if doc.records is not None else []
+        model_sets = list(entry.set.items())
+        prefix = copy.deepcopy(base)
+        base_problem = False
+        for j, (key, value) in enumerate(head + study_settings + model_sets):
+            try:
+                set_key_path(prefix, key, value)
+            except KeyPathError as exc:
+                problems.append(f'{key_path(("models", k, "set"))}."{key}": {exc}'
+                                if j >= len(head) + len(study_settings) else f"models[{k}] ({entry.file}): {exc}")
+                base_problem = True
+        if base_problem:
+            continue
+        file_digest = sha256_file(path)
+        for combo in combos:
+            data = copy.deepcopy(prefix)
+            overrides = head + study_settings + model_sets + list(combo.items())
+            bad = False
+            for key, value in combo.items():       # the sweep wins over the model's set
+                try:
+                    set_key_path(data, key, value)
+                except KeyPathError as exc:
+                    site = _parameter_site(doc, key, value)[:2] + ("key",)
+                    problems.append(f"{key_path(site)} = {toml_value(key)}: in model {name} ({entry.file}): {exc}")
+                    bad = True
+            if bad:
+                continue
+            try:
+                spec = build_model_spec(data, path)
+            except ModelFileError as exc:
+                if len(combo) == 1:
+                    (key, value), = combo.items()
+                    where = f"{key_path(_parameter_site(doc, key, value))} = {toml_value(value)}: "
+                else:
+                    where = "".join(f"with {', '.join(f'{k} = {toml_value(v)}' for k, v in combo.items())}: "
+                                    for _ in [0] if combo)
+                problems += [f"{where}models[{k}] ({entry.file}): {p}" for p in exc.problems]
+                continue
+            settings = {key: spec.analysis[key] for key in ("dt", "t_end", "method", "rule", "lcp", "initial")}
+            seconds = TIME_UNITS[spec.units["time"]]
+            try:
+                from .spectrum import first_period
+
+                T1 = first_period(spec.model) * seconds
+            except Exception:                                   # noqa: BLE001 - T1 is informative only
+                T1 = math.nan
+            digest = sha256_json({"file": file_digest, "refs": _referenced_digests(data, path.parent)})
+            variants.append(Variant(index=len(variants), model=name, model_index=k, path=path.resolve(),
+                                    overrides=overrides, parameters=dict(combo), digest=digest,
+                                    file_digest=file_digest, ground_motion=ground, settings=settings, T1=T1,
+                                    constraint_names=list(spec.model.constraint_names), spec=spec))
+    if problems:
+        raise _Problems(list(dict.fromkeys(problems)))
+    return variants
+
+
+def _ground_motion(doc: StudyFile, base: dict, folder: Path, model_path: Path, k: int):
+    """How the study's records enter model ``k``: a direction (frames) or an influence vector."""
+    if doc.records is None:
+        return {}
+    frame = "matrices" not in base
+    motions = (base.get("loads") or {}).get("ground_motion") or []
+    first = motions[0] if motions and isinstance(motions[0], dict) else {}
+    if frame:
+        direction = doc.records.direction or first.get("direction")
+        if direction not in ("ux", "uy"):
+            return (f"records.direction: missing key (model {model_path.name} has no ground motion to take the "
+                    'direction from; give direction = "ux" or "uy")')
+        return {"direction": direction}
+    if doc.records.influence is not None:
+        influence = (folder / doc.records.influence).resolve()
+    elif first.get("influence"):
+        influence = (model_path.parent / first["influence"]).resolve()
+    else:
+        return (f"records.influence: missing key (the matrix-level model {model_path.name} has no ground motion "
+                "to take the influence vector r from)")
+    if not influence.is_file():
+        return f"models[{k}]: influence file not found (looked for {influence})"
+    return {"influence": str(influence), "digest": sha256_file(influence)}
+
+
+def _referenced_digests(data, folder: Path) -> dict:
+    """Hashes of the files a (changed) model file refers to: tables and matrices."""
+    found = {}
+
+    def walk(node, in_matrices=False):
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if isinstance(value, str) and (key == "file" or in_matrices):
+                    candidate = folder / value
+                    if candidate.is_file():
+                        found[value] = sha256_file(candidate)
+                else:
+                    walk(value, in_matrices or key == "matrices")
+        elif isinstance(node, list):
+            for value in node:
+                walk(value, in_matrices)
+
+    walk(data)
+    return found
+
+
+# ---------------------------------------------------------------------- analyses
+def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | None, level: int, value: float):
+    from ..loads import acceleration_factor
+
+    scaling = doc.scaling
+    settings = dict(variant.settings)
+    settings["lcp_options"] = dict(doc.analysis.lcp_options)
+    settings["timeout"] = doc.analysis.timeout
+    error = None if record is None else record.error
+    record_im = math.nan
+    scale = 1.0
+    if scaling is None:
+        intensity = 1.0
+    elif scaling.measure == "factor":
+        scale = intensity = float(value)
+    else:
+        intensity = float(value)
+        if record.motion is not None:
+            unit = acceleration_factor(scaling.units)
+            if scaling.measure == "pga":
+                record_im = record.motion.pga / unit
+            else:
+                from .spectrum import response_spectrum
+
+                period = variant.T1 if scaling.period == "T1" else scaling.period
+                if math.isfinite(period):
+                    record_im = _sa_cached(record, period, scaling.damping) / unit
+                else:
+                    error = error or "no first period T1 for Sa(T1) (the model has no mode with mass)"
+            if math.isfinite(record_im) and record_im > 0:
+                scale = intensity / record_im
+            elif error is None:
+                error = f"the record's intensity is {record_im:g}: it cannot be scaled to {intensity:g}"
+    if doc.analysis.t_end == "record" and record is not None:
+        if record.motion is not None:
+            seconds = TIME_UNITS[variant.spec.units["time"]]
+            settings["t_end"] = (record.motion.duration + doc.analysis.t_after) / seconds
+        else:
+            settings["t_end"] = math.nan
+    ident = {"version": package_version(), "model": variant.digest, "overrides": variant.overrides,
+             "record": None if record is None else record.digest, "ground_motion": variant.ground_motion,
+             "scale": scale, "settings": {k: v for k, v in settings.items() if k != "timeout"},
+             "quantities": [q.model_dump() for q in doc.quantities]}
+    key = sha256_json(ident)[:24]
+    payload = {"key": key, "model_path": str(variant.path), "model_digest": variant.file_digest,
+               "overrides": variant.overrides, "record": None if record is None else record.payload(),
+               "ground_motion": variant.ground_motion, "scale": scale, "settings": settings,
+               "quantities": [q.model_dump() for q in doc.quantities]}
+    return Analysis(key=key, index=index, variant=variant, record=record, level=level, intensity=intensity,
+                    scale=scale, record_intensity=record_im, settings=settings, payload=payload, error=error)
+
+
+_SA_CACHE: dict = {}
+
+
+def _sa_cached(record: Record, period: float, zeta: float) -> float:
+    from .spectrum import response_spectrum
+
+    key = (record.digest, float(period), float(zeta))
+    if key not in _SA_CACHE:
+        _SA_CACHE[key] = response_spectrum(record.motion, period, zeta)
+    return _SA_CACHE[key]
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiou" else "a"

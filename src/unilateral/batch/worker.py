@@ -1,0 +1,377 @@
+"""One analysis of a study, as run by a worker: build (cached), solve, collect the peaks, write.
+
+:func:`run_analysis` takes the payload of an :class:`~unilateral.batch.study.Analysis` (a small
+JSON-able dict) and writes the result ``<results>/<key>.json`` atomically, failures included.
+Models and records are cached per process (a Dask worker process runs many analyses): a model
+variant is built once per (file, modification time, size, changed values), a record read once per
+(file, modification time, size, options), so a worker reads each file once whatever the number
+of analyses that use it.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import os
+import socket
+import time
+import tomllib
+import traceback
+from pathlib import Path
+
+import numpy as np
+
+_MODEL_CACHE: dict = {}
+_RECORD_CACHE: dict = {}
+_CACHE_STATS = {"model_builds": 0, "record_reads": 0}
+NOTES = {
+    "base_shear": "not available: this version's Solution has no base shear",
+    "energy_error": 'not available: this version of solve() reports no stats["energy_error"]',
+}
+
+
+class AnalysisTimeout(Exception):
+    """An analysis that did not finish within its time limit."""
+
+
+def cache_stats() -> dict:
+    """How many model variants this process has built and records it has read."""
+    return dict(_CACHE_STATS, pid=os.getpid())
+
+
+def clear_caches() -> None:
+    _MODEL_CACHE.clear()
+    _RECORD_CACHE.clear()
+
+
+# ---------------------------------------------------------------------- cached inputs
+def _file_stamp(path: str) -> tuple:
+    st = os.stat(path)
+    return (path, st.st_mtime_ns, st.st_size)
+
+
+def model_variant(payload: dict):
+    """``(spec, ground-motion vector or None, node y coordinates)`` of the payload's model variant."""
+    import json
+
+    from ..modelfile import build_model_spec
+    from .keypath import set_key_path
+    from .study import sha256_file
+
+    path = payload["model_path"]
+    key = (_file_stamp(path), json.dumps(payload["overrides"], sort_keys=True, default=str),
+           json.dumps(payload["ground_motion"], sort_keys=True))
+    hit = _MODEL_CACHE.get(key)
+    if hit is not None:
+        return hit
+    if sha256_file(path) != payload["model_digest"]:
+        raise RuntimeError(f"the model file {path} has changed since the study was started; start it again")
+    data = tomllib.loads(Path(path).read_bytes().decode("utf-8-sig"))
+    for key_path, value in payload["overrides"]:
+        set_key_path(data, key_path, copy.deepcopy(value))
+    spec = build_model_spec(data, Path(path))
+    vector = _ground_vector(spec, payload["ground_motion"])
+    ys = {node.id: node.y for node in spec.document.nodes}
+    _CACHE_STATS["model_builds"] += 1
+    _MODEL_CACHE[key] = (spec, vector, ys)
+    return _MODEL_CACHE[key]
+
+
+def _ground_vector(spec, ground: dict):
+    """``-M r`` of the study's ground motion, as the model file builds it."""
+    if not ground:
+        return None
+    model = spec.model
+    if "direction" in ground:
+        r = np.array([1.0 if dof == ground["direction"] else 0.0 for _, dof in spec.structure.dofs.free])
+    else:
+        import scipy.io
+        import scipy.sparse as sp
+
+        matrix = scipy.io.mmread(ground["influence"])
+        r = np.asarray(matrix.todense() if sp.issparse(matrix) else matrix, dtype=float).ravel()
+        if r.size != model.n:
+            raise ValueError(f"the influence vector {ground['influence']} has {r.size} entries, the model {model.n}")
+    return -np.asarray(model.M @ r).ravel()
+
+
+def study_record(payload: dict):
+    """The GroundMotion of a record payload, cached per process."""
+    import json
+
+    from .study import read_study_record
+
+    if payload["kind"] == "file":
+        key = (_file_stamp(payload["path"]), json.dumps(payload["options"], sort_keys=True))
+    else:
+        key = ("synthetic", json.dumps(payload["options"], sort_keys=True))
+    hit = _RECORD_CACHE.get(key)
+    if hit is None:
+        hit = _RECORD_CACHE[key] = read_study_record(payload)
+        _CACHE_STATS["record_reads"] += 1
+    return hit
+
+
+def analysis_load(spec, vector, record, scale: float):
+    """The model's load with the record ``record`` (m/s^2) times ``scale`` as its ground motion.
+
+    The same arithmetic as a model file's ``[[loads.ground_motion]]`` with ``scale``: a study's
+    analysis equals the model file run with that record, bit for bit.
+    """
+    from ..loads import LoadHistory, Tabulated, length_factor
+    from .study import TIME_UNITS
+
+    if vector is None:
+        return spec.load
+    seconds = TIME_UNITS[spec.units["time"]]
+    to_model = seconds ** 2 / length_factor(spec.units["length"])
+    a_g = Tabulated(record.time / seconds, record.acceleration * (scale * to_model))
+    return LoadHistory(spec.load.constant, tuple(spec.load.terms) + ((vector, a_g),))
+
+
+# ---------------------------------------------------------------------- peaks
+def _peak(x) -> float:
+    x = np.asarray(x, dtype=float)
+    return float(np.max(np.abs(x))) if x.size else math.nan
+
+
+def collect(quantity: dict, sol, spec, ys: dict) -> tuple[dict, list]:
+    """``({column: value}, notes)`` of one ``[[quantities]]`` entry for the solution ``sol``."""
+    kind, name = quantity["type"], quantity["name"]
+    notes = []
+    if kind in ("uplift", "contact_force"):
+        names = quantity["elements"] or list(sol.constraint_names)
+        missing = [n for n in names if n not in sol.constraint_names]
+        if missing:
+            raise KeyError(f"quantity {name}: no unilateral element {missing[0]!r} "
+                           f"(elements: {', '.join(sol.constraint_names)})")
+        cols = [sol.constraint_names.index(n) for n in names]
+        series = sol.v[:, cols] if kind == "uplift" else -sol.psi[:, cols]
+        peaks = series.max(axis=0) if series.shape[0] else np.full(len(cols), math.nan)
+        if quantity["over"] == "each":
+            return {f"{name}.{n}": float(p) for n, p in zip(names, peaks)}, notes
+        return {name: float(np.max(peaks)) if peaks.size else math.nan}, notes
+    if kind in ("displacement", "residual"):
+        u = _dof_history(sol, spec, quantity["node"], quantity["dof"])
+        return {name: _peak(u) if kind == "displacement" else abs(float(u[-1] - u[0]))}, notes
+    if kind == "drift":
+        dof = quantity["dof"] or "ux"
+        values = []
+        for upper, lower in quantity["pairs"]:
+            d = _dof_history(sol, spec, upper, dof) - _dof_history(sol, spec, lower, dof)
+            if quantity["ratio"]:
+                d = d / (ys[upper] - ys[lower])
+            values.append(_peak(d))
+        return {name: max(values)}, notes
+    if kind == "base_shear":
+        value = getattr(sol, "base_shear", None)
+        if value is None:
+            value = sol.stats.get("base_shear")
+        if value is None:
+            return {name: math.nan}, [f"{name}: {NOTES['base_shear']}"]
+        return {name: _peak(value)}, notes
+    if kind == "energy_error":
+        value = sol.stats.get("energy_error")
+        if value is None:
+            return {name: math.nan}, [f"{name}: {NOTES['energy_error']}"]
+        return {name: _peak(value)}, notes
+    raise ValueError(f"unknown quantity type {kind!r}")
+
+
+_ROWS: dict = {}
+
+
+def _dof_history(sol, spec, node, dof):
+    """History of a node's DOF (frames; as ``Structure.node_displacement``) or of a named DOF."""
+    if spec.structure is None:
+        return sol.dof(dof)
+    if node is None:
+        raise KeyError(f"a frame needs the node of dof {dof!r}")
+    dofs = spec.structure.dofs
+    key = (id(dofs), node, dof)
+    row = _ROWS.get(key)
+    if row is None or row[0] is not dofs:
+        dense = np.asarray(dofs.T[dofs.full_index(node, dof)].todense()).ravel()
+        nonzero = np.flatnonzero(dense)
+        row = _ROWS[key] = (dofs, nonzero, dense[nonzero])
+    _, nonzero, weights = row
+    if sol.u is None or sol.u.shape[1] != spec.structure.n:
+        return spec.structure.node_displacement(sol, node, dof)       # its error message
+    return sol.u[:, nonzero] @ weights if nonzero.size else np.zeros(len(sol.t))
+
+
+# ---------------------------------------------------------------------- one analysis
+def result_path(results: str | Path, key: str) -> Path:
+    return Path(results) / f"{key}.json"
+
+
+def write_result(path: Path, result: dict, *, fsync: bool = False) -> None:
+    """Write a result atomically: a temporary file in the same folder, renamed over ``path``.
+
+    A process killed half-way leaves the previous state (no file, or the old one) and at most a
+    stale temporary file (removed by the next run). With ``fsync`` the file and the rename are
+    also flushed to disk (:func:`unilateral.io.atomic.write_json_atomic`), which survives a crash
+    of the operating system too but costs about 8 ms per result on an ordinary disk; without it a
+    crash of the machine can leave a truncated file, which the next run finds unreadable and runs
+    again, so nothing is lost either way.
+    """
+    import json
+    import secrets
+
+    if fsync:
+        from ..io.atomic import write_json_atomic
+
+        write_json_atomic(path, result)
+        return
+    from ..io.atomic import to_jsonable
+
+    text = json.dumps(to_jsonable(result), indent=1) + "\n"
+    tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp{path.suffix}")
+    try:
+        with open(tmp, "x", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def run_analysis(payload: dict, results: str, run_id: str = "") -> dict:
+    """Run one analysis and write its result atomically to ``<results>/<key>.json``.
+
+    Never raises for a problem of the analysis itself: an LCP failure (``success=False``), an
+    exception or a timeout is written as the result, with its message. A result that already
+    exists (a retried task whose first attempt finished) is returned as it is.
+
+    Returns
+    -------
+    dict
+        The result: ``key``, ``status`` (``"ok"``, ``"failed"``, ``"error"``, ``"timeout"``),
+        ``message``, ``values`` (the peak quantities), ``notes``, ``stats`` (steps, method,
+        max_lcp_error, contact_changes), ``solve_time``, ``task_time``, ``worker``, ``pid``,
+        ``run_id``, ``cache``.
+    """
+    import json
+
+    start = time.perf_counter()
+    path = result_path(results, payload["key"])
+    if path.exists():
+        try:
+            return dict(json.loads(path.read_text()), existing=True)
+        except (OSError, ValueError):
+            pass                                       # unreadable: run again and replace it
+    result = {"key": payload["key"], "status": "ok", "message": "", "values": {}, "notes": [], "stats": {},
+              "solve_time": math.nan, "run_id": run_id, "pid": os.getpid(), "host": socket.gethostname(),
+              "worker": _worker_address()}
+    restart = False
+    try:
+        builds, reads = _CACHE_STATS["model_builds"], _CACHE_STATS["record_reads"]
+        spec, vector, ys = model_variant(payload)
+        record = None if payload["record"] is None else study_record(payload["record"])
+        result["cache"] = {"model": "miss" if _CACHE_STATS["model_builds"] > builds else "hit",
+                           "record": "miss" if _CACHE_STATS["record_reads"] > reads else "hit"}
+        load = analysis_load(spec, vector, record, payload["scale"])
+        settings = payload["settings"]
+        if not math.isfinite(settings["t_end"]):
+            raise ValueError("no end time (the record could not be read)")
+        t0 = time.perf_counter()
+        sol, cpu = _solve(spec.model, load, settings)
+        result["solve_time"] = time.perf_counter() - t0
+        result["solve_cpu_time"] = cpu
+        stats = sol.stats
+        result["stats"] = {"steps": int(len(sol.t) - 1), "method": str(stats.get("method", "")),
+                           "max_lcp_error": float(stats.get("max_lcp_error", math.nan)),
+                           "contact_changes": int(stats.get("contact_changes", -1))}
+        result["message"] = sol.message
+        if not sol.success:
+            result["status"] = "failed"
+        values = {}
+        for quantity in payload["quantities"]:
+            got, notes = collect(quantity, sol, spec, ys)
+            values.update(got)
+            result["notes"] += notes
+        if not sol.success:                            # peaks of a run that stopped half-way mislead
+            values = {name: math.nan for name in values}
+        result["values"] = values
+    except AnalysisTimeout as exc:
+        result.update(status="timeout", message=str(exc))
+        restart = True
+    except Exception as exc:                           # noqa: BLE001 - recorded, the study goes on
+        tb = traceback.extract_tb(exc.__traceback__)
+        where = f" (at {Path(tb[-1].filename).name}:{tb[-1].lineno})" if tb else ""
+        result.update(status="error", message=f"{type(exc).__name__}: {exc}{where}")
+    result["task_time"] = time.perf_counter() - start
+    write_result(path, result, fsync=payload.get("fsync", False))
+    if restart:
+        result["restart_worker"] = True
+    return result
+
+
+def _solve(model, load, settings: dict):
+    """``(solution, CPU seconds)`` of ``unilateral.solve`` with the study's settings (in a thread if
+    there is a time limit)."""
+    from .. import solve
+
+    kwargs = dict(dt=settings["dt"], t_end=settings["t_end"], method=settings["method"], rule=settings["rule"],
+                  lcp=settings["lcp"], initial=settings["initial"], lcp_options=settings["lcp_options"] or None)
+    timeout = settings.get("timeout")
+    if not timeout:
+        cpu = time.thread_time()
+        sol = solve(model, load, **kwargs)
+        return sol, time.thread_time() - cpu
+    future = _executor().submit(_timed_solve, solve, model, load, kwargs)
+    try:
+        return future.result(timeout)
+    except TimeoutError:
+        _abandon_executor()
+        raise AnalysisTimeout(f"stopped after {timeout:g} s (analysis.timeout); the worker is restarted") from None
+
+
+_EXECUTOR = None
+
+
+def _executor():
+    """A thread of this process that runs the solves with a time limit (started once)."""
+    global _EXECUTOR
+    if _EXECUTOR is None:
+        from concurrent.futures import ThreadPoolExecutor
+
+        _EXECUTOR = ThreadPoolExecutor(1, thread_name_prefix="unilateral-analysis")
+    return _EXECUTOR
+
+
+def _abandon_executor() -> None:
+    """Leave the thread of a timed-out solve to finish on its own; the next solve gets a new one."""
+    global _EXECUTOR
+    if _EXECUTOR is not None:
+        _EXECUTOR.shutdown(wait=False, cancel_futures=True)
+    _EXECUTOR = None
+
+
+def _timed_solve(solve, model, load, kwargs):
+    cpu = time.thread_time()
+    sol = solve(model, load, **kwargs)
+    return sol, time.thread_time() - cpu
+
+
+def _worker_address() -> str:
+    import sys
+
+    if "distributed" not in sys.modules:
+        return ""
+    try:
+        return sys.modules["distributed"].get_worker().address
+    except Exception:                                  # noqa: BLE001 - not in a Dask worker
+        return ""
+
+
+def warm_up() -> float:
+    """Solve a tiny model once so that the compiled (numba) code is loaded; returns the seconds."""
+    import unilateral as ul
+
+    start = time.perf_counter()
+    m, k = 1.0, 100.0
+    model = ul.Model(M=[[m]], K=[[k]], F=[[k]], H=[[k]])
+    for method in ("modal", "cq"):
+        ul.solve(model, lambda t: np.array([-m * 10.0]), dt=1e-2, t_end=0.1, method=method)
+    return time.perf_counter() - start

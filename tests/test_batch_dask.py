@@ -1,0 +1,221 @@
+"""Studies on a real Dask LocalCluster (2 worker processes): results equal the analyses run one by
+one bit for bit, failures are reported, a killed worker loses nothing, Ctrl-C and resume."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import unilateral as ul
+from test_batch import ROOT, ground_motion, record_files, tower, write_study
+from unilateral.batch import load_study, run_study
+from unilateral.modelfile import load_model_file
+
+distributed = pytest.importorskip("distributed")
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    import dask
+
+    with dask.config.set({"distributed.scheduler.allowed-failures": 3}):
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, silence_logs=40)
+    yield cluster
+    cluster.close()
+
+
+def _one_by_one(tmp_path, row, records) -> dict:
+    """The analysis of a table row run alone from a model file with its record and scale."""
+    record = records[str(row["record"])]
+    path = tmp_path / f"alone_{row['analysis']}.toml"
+    path.write_text(tower(k3=row["param.unilateral.soil3.k"], ground=ground_motion(record, row["scale"]),
+                          dt=2e-3, t_end=2.0))
+    spec = load_model_file(path)
+    a = spec.analysis
+    sol = ul.solve(spec.model, spec.load, dt=a["dt"], t_end=a["t_end"], method=a["method"], rule=a["rule"],
+                   lcp=a["lcp"], initial=a["initial"])
+    st = spec.structure
+    top = st.node_displacement(sol, 1, "ux")
+    return {"uplift": sol.v.max(), "uplift_each.soil3": sol.v[:, 0].max(), "force": (-sol.psi).max(),
+            "top": np.abs(top).max(), "drift": np.abs((top - st.node_displacement(sol, 2, "ux")) / 10.0).max(),
+            "residual": abs(st.node_displacement(sol, 3, "uy")[-1] - st.node_displacement(sol, 3, "uy")[0])}
+
+
+def test_a_study_equals_the_analyses_run_one_by_one_bit_for_bit(tmp_path, cluster):
+    records = record_files(3)
+    files = ", ".join(f'"{r.as_posix()}"' for r in records)
+    path = write_study(tmp_path, f"""
+title = "equality"
+[[models]]
+file = "tower.toml"
+[records]
+files = [{files}]
+direction = "ux"
+[scaling]
+measure = "sa"
+values = [0.5, 2.0]
+[[parameters]]
+key = "unilateral.soil3.k"
+values = [150e3, 200e3]
+[analysis]
+method = "modal"
+dt = 2e-3
+t_end = 2.0
+""")
+    result = run_study(path, tmp_path / "out", scheduler=cluster.scheduler_address, progress=False)
+    table = result.table
+    assert result.counts["ok"] == 12 and result.ran == 12
+    assert (table["uplift"].values > 0).any() and (table["uplift"].values == 0).any()   # some lift off
+    frame = table.to_dataframe().reset_index()
+    by_stem = {r.stem: r for r in records}
+    for _, row in frame.iterrows():
+        alone = _one_by_one(tmp_path, row, by_stem)
+        for name, value in alone.items():
+            assert row[name] == value, (name, row["record"], row["intensity"])       # bit for bit
+    # models and records are read once per worker, not once per task
+    import json
+
+    results = [json.loads(p.read_text()) for p in (tmp_path / "out" / "results").glob("*.json")]
+    workers = {r["pid"] for r in results}
+    assert len(workers) == 2
+    assert sum(r["cache"]["model"] == "miss" for r in results) <= 2 * len(workers)
+    assert sum(r["cache"]["record"] == "miss" for r in results) <= 3 * len(workers)
+    assert (tmp_path / "out" / "ida.png").stat().st_size > 0 and (tmp_path / "out" / "study.csv").exists()
+
+
+def test_an_lcp_failure_is_reported_and_the_rest_finish(tmp_path, cluster):
+    records = record_files(2)
+    path = write_study(tmp_path, f"""
+[[models]]
+file = "tower.toml"
+[records]
+files = ["{records[0].as_posix()}", "{records[1].as_posix()}"]
+direction = "ux"
+[scaling]
+values = [0.1, 0.2, 8.0]
+[analysis]
+method = "cq"
+dt = 4e-3
+t_end = 4.0
+lcp = "pgs"
+lcp_options = {{ max_iter = 1 }}
+""")
+    result = run_study(path, tmp_path / "out", scheduler=cluster.scheduler_address, progress=False)
+    status = result.table["status"].values
+    scale = result.table["intensity"].values
+    assert list(status[scale == 8.0]) == ["failed", "failed"] and (status[scale < 1] == "ok").all()
+    assert all("PGS did not converge" in m for m in result.table["message"].values[scale == 8.0])
+    assert len(list((tmp_path / "out" / "results").glob("*.json"))) == 6
+
+
+def test_a_worker_killed_mid_task_loses_nothing(tmp_path, cluster):
+    records = record_files(3)
+    files = ", ".join(f'"{r.as_posix()}"' for r in records)
+    path = write_study(tmp_path, f"""
+[[models]]
+file = "tower.toml"
+[records]
+files = [{files}]
+direction = "ux"
+[scaling]
+values = [0.5, 1.0]
+[analysis]
+method = "direct"
+dt = 2e-3
+t_end = 8.0
+""")
+    client = distributed.Client(cluster)
+    pids = client.run(os.getpid)                               # worker address -> pid
+    box = {}
+    thread = threading.Thread(target=lambda: box.setdefault("result", run_study(
+        path, tmp_path / "out", scheduler=cluster.scheduler_address, progress=False, figures=False)))
+    thread.start()
+    killed = None
+    deadline = time.monotonic() + 120
+    while killed is None and time.monotonic() < deadline and thread.is_alive():
+        busy = {w: tasks for w, tasks in client.processing().items() if tasks}
+        done = list((tmp_path / "out" / "results").glob("*.json"))
+        if done and busy:
+            address = next(iter(busy))
+            time.sleep(0.2)
+            if client.processing().get(address):
+                os.kill(pids[address], signal.SIGKILL)            # mid-task: nothing written for it
+                killed = address
+        time.sleep(0.05)
+    thread.join(300)
+    client.close()
+    assert killed is not None, "no worker was busy to kill"
+    result = box["result"]
+    assert result.counts == {"ok": 6, "failed": 0, "error": 0, "timeout": 0, "pending": 0}
+    assert len(list((tmp_path / "out" / "results").glob("*.json"))) == 6
+
+
+def _group(pgid) -> list[str]:
+    """Command lines of the live processes of process group ``pgid``."""
+    out = subprocess.run(["ps", "-o", "pid=,pgid=,stat=,args=", "-A"], capture_output=True, text=True).stdout
+    return [line for line in out.splitlines()
+            if line.split()[1] == str(pgid) and not line.split()[2].startswith("Z")]
+
+
+@pytest.mark.slow
+def test_ctrl_c_stops_cleanly_and_a_second_run_continues(tmp_path):
+    """Ctrl-C (SIGINT to the process group of `python -m unilateral.batch`) half-way; the same command
+    again ends the study with every analysis exactly once."""
+    records = record_files(3)
+    files = ", ".join(f'"{r.as_posix()}"' for r in records)
+    path = write_study(tmp_path, f"""
+[[models]]
+file = "tower.toml"
+[records]
+files = [{files}]
+direction = "ux"
+[scaling]
+values = [0.5, 1.0, 1.5]
+[analysis]
+method = "direct"
+dt = 2e-3
+t_end = 5.0
+""")
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "unilateral.batch", str(path), "--out", str(out), "--workers", "2",
+               "--no-figures"]
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
+    process = subprocess.Popen(command, env=env, start_new_session=True, stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 120
+    while len(list((out / "results").glob("*.json"))) < 2 and time.monotonic() < deadline:
+        time.sleep(0.1)
+    os.killpg(process.pid, signal.SIGINT)                   # Ctrl-C on a terminal: the whole process group
+    _, stderr = process.communicate(timeout=90)
+    assert process.returncode == 130, stderr
+    assert "interrupted" in stderr and "run the same command again" in stderr
+    assert "Traceback" not in stderr                         # the workers leave Ctrl-C to the study
+    left = _group(process.pid)
+    deadline = time.monotonic() + 15
+    while left and time.monotonic() < deadline:
+        time.sleep(0.2)
+        left = _group(process.pid)
+    assert not left, f"processes left behind: {left}"       # the workers are gone with the cluster
+    first = {p.name: p.read_text() for p in (out / "results").glob("*.json")}
+    assert 2 <= len(first) < 9
+    assert not list((out / "results").glob(".*tmp*"))
+    second = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
+    assert second.returncode == 0, second.stderr
+    after = {p.name: p.read_text() for p in (out / "results").glob("*.json")}
+    assert len(after) == 9                                    # every analysis exactly once
+    assert all(after[name] == text for name, text in first.items())   # the first run's results kept
+    study = load_study(path)
+    assert sorted(after) == sorted(f"{a.key}.json" for a in study.analyses)
+    import xarray as xr
+
+    with xr.open_dataset(out / "study.nc", engine="h5netcdf") as table:
+        assert (table["status"].values == "ok").all() and table.sizes["analysis"] == 9
+        assert len(set(table["run_id"].values)) == 2
