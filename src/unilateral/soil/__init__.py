@@ -10,7 +10,7 @@ Modules (one concept each):
 * :mod:`.impedances` - Veletsos & Verbic (1973) rational disc impedances.
 * :mod:`.cones` - Wolf (1994) cone models and cone-type coupled flexibility of patches.
 * :mod:`.fit` - AAA rational fits of tabulated data (``fit_rational``, ``read_table``).
-* :mod:`.timedomain` - a minimal convolution quadrature for checks (``step_response``).
+* :mod:`.timedomain` - step responses of soil kernels by convolution quadrature (``step_response``).
 
 Sign convention: vertical forces and displacements positive downward (into the soil); kernels are
 Laplace transforms, evaluated for ``Re s >= 0``, real for real ``s``.
@@ -23,7 +23,7 @@ from .impedances import VeletsosVerbic, veletsos_verbic
 from .patches import RectangularPatches, disc, grid, points, strips
 from .pekeris import arrival_times, lamb_step_vertical, pekeris_quarter
 from .statics import boussinesq, mean_inverse_distance, rectangle_corner_displacement
-from .timedomain import cq_points, cq_weights, step_response
+from .timedomain import step_response
 
 __all__ = [
     "Cone", "cone", "cone_flexibility",
@@ -33,5 +33,5 @@ __all__ = [
     "RectangularPatches", "disc", "grid", "points", "strips",
     "arrival_times", "lamb_step_vertical", "pekeris_quarter",
     "boussinesq", "mean_inverse_distance", "rectangle_corner_displacement",
-    "cq_points", "cq_weights", "step_response",
+    "step_response",
 ]
