@@ -162,7 +162,4 @@ class LoadHistory:
 def _piecewise(f):
     """The exact piecewise form of a time function, or None (a plain callable)."""
     form = getattr(f, "piecewise", None)
-    try:
-        return form() if callable(form) else None
-    except NotImplementedError:
-        return None
+    return form() if callable(form) else None

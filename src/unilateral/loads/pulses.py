@@ -55,22 +55,28 @@ class TimeFunction(ABC):
     def _evaluate(self, t: np.ndarray) -> np.ndarray:
         """Values at the float array of times ``t`` (any shape), same shape."""
 
-    def piecewise(self) -> Piecewise:
-        """The exact piecewise (polynomial + sinusoid) form of the function.
+    def piecewise(self) -> Piecewise | None:
+        """The exact piecewise (polynomial + sinusoid) form of the function, or None.
 
-        Subclasses defined outside the package may not have one: they raise
-        ``NotImplementedError`` and cannot be integrated exactly or sampled by averages.
+        Subclasses defined outside the package may have none: they are then point-sampled by
+        time stepping and refused by ``method="event"``.
         """
-        raise NotImplementedError(f"{type(self).__name__} has no piecewise form")
+        return None
+
+    def _form(self) -> Piecewise:
+        form = self.piecewise()
+        if form is None:
+            raise TypeError(f"{type(self).__name__} has no piecewise form (its piecewise() returns None)")
+        return form
 
     @property
     def breakpoints(self) -> np.ndarray:
         """Times (s) where the function jumps or has a kink, increasing."""
-        return self.piecewise().edges
+        return self._form().edges
 
     def limits(self, t) -> tuple[float, float]:
         """One-sided values ``(f(t-), f(t+))`` at time ``t``."""
-        return self.piecewise().limits(t)
+        return self._form().limits(t)
 
     def grid_samples(self, dt: float, N: int, sampling: str = "hat") -> np.ndarray:
         """Samples at ``t_k = k dt`` (k = 0..N) that keep a rule's order across jumps.
@@ -78,7 +84,7 @@ class TimeFunction(ABC):
         See :meth:`unilateral.loads.piecewise.Piecewise.grid_samples`; ``f(0-)`` (the static
         preload) is ``limits(0.0)[0]``.
         """
-        return self.piecewise().grid_samples(dt, N, sampling)
+        return self._form().grid_samples(dt, N, sampling)
 
 
 @dataclass(frozen=True)
