@@ -87,3 +87,14 @@ def test_load_history_errors_name_the_step():
     bad = LoadHistory(np.zeros(5), [(np.ones(5), lambda t: np.where(t > 0.04, np.nan, 0.0))])
     with pytest.raises(ValueError, match=r"load\(t\) returned a non-finite value at t=0.05 \(step 5\)"):
         run(load=bad)
+
+
+@pytest.mark.parametrize("kw, what", [
+    (dict(dt=1e-12, t_end=1.0), "the histories of u, udot"),
+    (dict(dt=1e-6, t_end=100.0, method="cq"), "the FFT of the weights"),
+])
+def test_a_run_that_cannot_fit_in_memory_is_refused_before_it_allocates(kw, what):
+    model = ul.Model(M=[[1.0]], K=[[1.0]], F=[[1.0]], H=[[1.0]])
+    with pytest.raises(MemoryError, match=rf"steps with method='\w+' would need about .* GiB \(.*{what}.*"
+                                          r"more than 50% of this machine's .*increase dt, shorten t_end"):
+        ul.solve(model, lambda t: np.zeros(1), **kw)
