@@ -16,15 +16,14 @@ import hashlib
 import itertools
 import json
 import math
-import re
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from pydantic import ValidationError
 
 from ..modelfile import ModelFileError, build_model_spec
-from ..modelfile.errors import did_you_mean, key_path, toml_value, translate, value_problem
+from ..modelfile.build import read_toml
+from ..modelfile.errors import Problems, did_you_mean, key_path, toml_value, translate, value_problem
 from .keypath import KeyPathError, parse_key_path, set_key_path
 from .schema import StudyFile
 
@@ -32,17 +31,10 @@ RECORD_SUFFIXES = (".at2", ".txt", ".dat", ".csv")
 """Files of a records folder that are read as records (any case); .AT2 files carry their units."""
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3}
-_TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
 
 
 class StudyFileError(ModelFileError):
     """An invalid study file; one line ``<file>: <problem>`` per problem (a ``ValueError``)."""
-
-
-class _Problems(Exception):
-    def __init__(self, problems):
-        self.problems = list(problems)
-        super().__init__("\n".join(self.problems))
 
 
 def package_version() -> str:
@@ -148,22 +140,11 @@ class Study:
 
 # ---------------------------------------------------------------------- reading
 def read_study_document(source: Path) -> tuple[StudyFile, dict]:
-    try:
-        text = source.read_bytes().decode("utf-8-sig")
-    except FileNotFoundError:
-        raise _Problems(["file not found"]) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise _Problems([f"cannot read the file ({exc})"]) from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        match = _TOML_POSITION.match(str(exc))
-        where = f"line {match[2]}, column {match[3]}: " if match else ""
-        raise _Problems([f"{where}invalid TOML: {match[1] if match else exc}"]) from None
+    data = read_toml(source)
     try:
         return StudyFile.model_validate(data), data
     except ValidationError as exc:
-        raise _Problems(translate(exc, data, StudyFile)) from None
+        raise Problems(translate(exc, data, StudyFile)) from None
 
 
 def load_study(path) -> Study:
@@ -178,7 +159,7 @@ def load_study(path) -> Study:
     try:
         document, _ = read_study_document(source)
         return _expand(document, source)
-    except _Problems as exc:
+    except Problems as exc:
         raise StudyFileError(path, exc.problems) from None
 
 
@@ -186,7 +167,7 @@ def _expand(doc: StudyFile, source: Path) -> Study:
     folder = source.parent
     problems = _static_problems(doc, folder)
     if problems:
-        raise _Problems(problems)
+        raise Problems(problems)
     records = _records(doc, folder)
     variants = _variants(doc, folder)
     _check_quantities(doc, variants)
@@ -375,7 +356,7 @@ def _check_quantities(doc: StudyFile, variants) -> None:
         problems.append(value_problem(("figures", "ida"), ida, f"no such quantity (valid: {', '.join(columns)})")
                         + did_you_mean(ida, columns))
     if problems:
-        raise _Problems(list(dict.fromkeys(problems)))
+        raise Problems(list(dict.fromkeys(problems)))
 
 
 # ---------------------------------------------------------------------- records
@@ -388,7 +369,7 @@ def _records(doc: StudyFile, folder: Path) -> list[Record]:
         files += sorted(p for p in (folder / rec.folder).iterdir()
                         if p.is_file() and p.suffix.lower() in RECORD_SUFFIXES and not p.name.startswith("."))
         if not files:
-            raise _Problems([value_problem(("records", "folder"), rec.folder,
+            raise Problems([value_problem(("records", "folder"), rec.folder,
                                            f"no records in the folder (files ending in "
                                            f"{', '.join(s.upper() if s == '.at2' else s for s in RECORD_SUFFIXES)})")])
     files += [folder / name for name in rec.files]
@@ -421,7 +402,7 @@ def _records(doc: StudyFile, folder: Path) -> list[Record]:
                             "different name: file stems and synthetic-<seed>)")
         seen.setdefault(record.name, k)
     if problems:
-        raise _Problems(problems)
+        raise Problems(problems)
     return out
 
 
@@ -478,9 +459,10 @@ def _variants(doc: StudyFile, folder: Path) -> list[Variant]:
         path = (folder / entry.file)
         name = entry.name or Path(entry.file).stem
         try:
-            base = tomllib.loads(path.read_bytes().decode("utf-8-sig"))
-        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
-            problems.append(value_problem(("models", k, "file"), entry.file, f"cannot read the model file ({exc})"))
+            base = read_toml(path)
+        except Problems as exc:
+            problems.append(value_problem(("models", k, "file"), entry.file,
+                                          f"cannot read the model file ({'; '.join(exc.problems)})"))
             continue
         ground = _ground_motion(doc, base, folder, path, k)
         if isinstance(ground, str):
@@ -543,7 +525,7 @@ def _variants(doc: StudyFile, folder: Path) -> list[Variant]:
                                     file_digest=file_digest, ground_motion=ground, settings=settings, T1=T1,
                                     constraint_names=list(spec.model.constraint_names), spec=spec))
     if problems:
-        raise _Problems(list(dict.fromkeys(problems)))
+        raise Problems(list(dict.fromkeys(problems)))
     return variants
 
 

@@ -1,10 +1,12 @@
-"""Figures of analyses: histories, openings and contact forces, force-deformation paths.
+"""Figures of analyses: histories, openings and contact forces, force-deformation paths, and more.
 
-Built on :class:`matplotlib.figure.Figure` with an Agg canvas (no pyplot); ``run`` and ``plot``
-on the command line draw them with the same functions. Import this package only when drawing:
+:func:`draw_figures` (``results``) draws every figure of a ``results.nc`` dataset; ``run`` and
+``plot`` on the command line both call it, so they write the same files. ``plots`` holds the house
+style, the Agg figure factory (no pyplot) and atomic saving. Import this package only when drawing:
 matplotlib takes a while to import.
 """
 
-from .plots import PAGE_WIDTH, plot_constraints, plot_displacement, plot_force_deformation, save_figure
+from .plots import PAGE_WIDTH, save_figure
+from .results import draw_figures
 
-__all__ = ["PAGE_WIDTH", "plot_constraints", "plot_displacement", "plot_force_deformation", "save_figure"]
+__all__ = ["PAGE_WIDTH", "draw_figures", "save_figure"]

@@ -121,7 +121,8 @@ def _build_spec(document: ModelFile, source: Path, path) -> ModelSpec:
 
 
 # ---------------------------------------------------------------------- reading
-def _read_document(source: Path) -> ModelFile:
+def read_toml(source: Path) -> dict:
+    """The TOML document at ``source`` as a dict; unreadable files and syntax errors raise :class:`Problems`."""
     try:
         text = source.read_bytes().decode("utf-8-sig")
     except FileNotFoundError:
@@ -129,11 +130,15 @@ def _read_document(source: Path) -> ModelFile:
     except (OSError, UnicodeDecodeError) as exc:
         raise Problems([f"cannot read the file ({exc})"]) from None
     try:
-        data = tomllib.loads(text)
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         match = _TOML_POSITION.match(str(exc))
         where = f"line {match[2]}, column {match[3]}: " if match else ""
         raise Problems([f"{where}invalid TOML: {match[1] if match else exc}"]) from None
+
+
+def _read_document(source: Path) -> ModelFile:
+    data = read_toml(source)
     try:
         return ModelFile.model_validate(data)
     except ValidationError as exc:
