@@ -387,7 +387,7 @@ lcp_options = {{ max_iter = 1 }}
     messages = dict(zip(table["status"].values, table["message"].values))
     assert "PGS did not converge" in messages["failed"] and "RecordFormatError" in messages["error"]
     assert np.isnan(table["uplift"].values[table["status"].values == "failed"]).all()
-    assert "energy_error" in table["notes"].values[0]
+    assert np.isfinite(table["energy_error"].values[table["status"].values == "ok"]).all()
     files = sorted((tmp_path / "out" / "results").glob("*.json"))
     assert len(files) == 6
     before = {p.name: p.read_text() for p in files}
@@ -413,3 +413,41 @@ timeout = 0.05
     result = run_study(path, tmp_path / "out", synchronous=True, progress=False, figures=False)
     assert list(result.table["status"].values) == ["timeout"]
     assert "stopped after 0.05 s" in result.table["message"].values[0]
+
+
+def test_base_shear_and_energy_error_of_a_study_equal_the_frame_results_of_the_same_run(tmp_path):
+    """The study's peak base shear and energy error are those of analysis.structure_results."""
+    from unilateral.analysis.results import ground_motions_of, structure_results
+
+    record = record_files(1)[0]
+    path = write_study(tmp_path, f"""
+[[models]]
+file = "tower.toml"
+[records]
+files = ["{record.as_posix()}"]
+direction = "ux"
+[scaling]
+values = [3.0]
+[analysis]
+t_end = 1.0
+[[quantities]]
+name = "base_shear"
+type = "base_shear"
+""")
+    table = run_study(path, tmp_path / "out", synchronous=True, progress=False, figures=False).table
+    assert table["status"].values[0] == "ok", table["message"].values[0]
+    alone = tmp_path / "alone.toml"
+    alone.write_text(tower(ground=ground_motion(record, 3.0), t_end=1.0))
+    spec = load_model_file(alone)
+    a = spec.analysis
+    sol = ul.solve(spec.model, spec.load, dt=a["dt"], t_end=a["t_end"], method=a["method"], rule=a["rule"])
+    samples = spec.load.grid_samples(a["dt"], len(sol.t) - 1)[0]
+    res = structure_results(spec.structure, spec.model, {"u": sol}, rule=a["rule"], load_samples=samples,
+                            ground_motions=ground_motions_of(spec.structure, spec.load))
+    shear = res["variables"]["base_shear"][1]["u"]
+    assert sol.v.max() > 0                                    # it lifts off
+    assert table["base_shear"].values[0] == pytest.approx(np.abs(shear).max(), rel=1e-12)
+    assert np.abs(shear).max() > 10.0                          # kN: a real response, not a zero column
+    error = res["peaks"]["u"]["energy"]["max_relative_error"]
+    assert table["energy_error"].values[0] == pytest.approx(error, rel=1e-12)
+    assert 0 < error < 0.05

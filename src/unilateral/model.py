@@ -21,6 +21,16 @@ import scipy.sparse as sp
 from . import _validate as V
 
 
+class ConstantStrain:
+    """Imposed strains that do not vary in time: ``theta(t) = value`` (ne,)."""
+
+    def __init__(self, value):
+        self.value = np.asarray(value, dtype=float)
+
+    def __call__(self, t) -> np.ndarray:
+        return self.value
+
+
 @dataclass(frozen=True)
 class NaturalForm:
     """The unassembled ("natural") description the model was built from (eqs. 1-9).
@@ -57,7 +67,11 @@ class NaturalForm:
         -------
         sigma : (N, ne)
         """
-        theta = np.array([self.theta(tk) for tk in np.atleast_1d(t)])
+        t = np.atleast_1d(t)
+        if isinstance(self.theta, ConstantStrain):
+            theta = self.theta.value
+        else:
+            theta = np.array([self.theta(tk) for tk in t])
         eps = (self.G.T @ u.T).T - (self.B @ v.T).T - theta
         sigma = (self.E @ eps.T).T
         if self.E_v is not None:

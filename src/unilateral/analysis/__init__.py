@@ -8,7 +8,18 @@ accelerations) are in :mod:`unilateral.analysis.results`, the energy balance in
 :mod:`unilateral.analysis.energy`, periods and mode shapes in :mod:`unilateral.analysis.modes`.
 """
 
-from .outputs import report, run_cases, write_outputs
-from .run import analyse, run_example, run_model_file
+from importlib import import_module
+
+# Exported lazily: importing ``unilateral.analysis.energy`` (a batch worker does) does not import
+# the writers of results.nc (xarray) and the figures.
+_EXPORTS = {"report": "outputs", "run_cases": "outputs", "write_outputs": "outputs",
+            "analyse": "run", "run_example": "run", "run_model_file": "run"}
+
+
+def __getattr__(name):
+    if name in _EXPORTS:
+        return getattr(import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = ["analyse", "report", "run_cases", "run_example", "run_model_file", "write_outputs"]

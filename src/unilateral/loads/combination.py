@@ -56,6 +56,7 @@ class LoadHistory:
             terms.append((V.as_vector(f"terms[{k}] vector", term[0], n), term[1]))
         object.__setattr__(self, "constant", constant)
         object.__setattr__(self, "terms", tuple(terms))
+        object.__setattr__(self, "_last_grid", None)     # the last grid_factors: ((dt, N, sampling), result)
 
     @property
     def n(self) -> int:
@@ -137,12 +138,16 @@ class LoadHistory:
         factors : (N+1, number of terms) ; before : (number of terms,) values at ``t = 0-``
 
         Terms whose time function has no piecewise form (a plain callable) are point-sampled, and
-        their value at t = 0 is taken as the value before it.
+        their value at t = 0 is taken as the value before it. The last result is kept (read-only
+        arrays): the post-processing of a run asks for the samples the solve used.
         """
         dt = V.positive_float("dt", dt)
         if isinstance(N, bool) or not isinstance(N, (int, np.integer)) or N < 0:
             raise ValueError(f"N must be an integer >= 0, got {N!r}")
         N = int(N)
+        key = (dt, N, sampling)
+        if self._last_grid is not None and self._last_grid[0] == key:
+            return self._last_grid[1]
         t = dt * np.arange(N + 1)
         factors = np.empty((N + 1, len(self.terms)))
         before = np.empty(len(self.terms))
@@ -156,6 +161,8 @@ class LoadHistory:
             else:
                 factors[:, k] = piecewise.grid_samples(dt, N, sampling)
                 before[k] = float(piecewise.evaluate(0.0, "left"))
+        factors.flags.writeable = before.flags.writeable = False
+        object.__setattr__(self, "_last_grid", (key, (factors, before)))
         return factors, before
 
 

@@ -46,7 +46,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.signal import lfilter
 
 from .elements import DOF_NAMES
 
@@ -120,6 +119,8 @@ def _trapezoidal(y, yd0, dt):
     out = np.empty_like(y)
     out[0] = yd0
     if len(dy):
+        from scipy.signal import lfilter      # imported here: scipy.signal takes seconds to import
+
         out[1:], _ = lfilter([1.0], [1.0, 1.0], dy, axis=0, zi=-yd0[None, :])
     return out
 

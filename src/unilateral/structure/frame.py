@@ -26,7 +26,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..loads.units import STANDARD_GRAVITY
-from ..model import Model, NaturalForm
+from ..model import ConstantStrain, Model, NaturalForm
 from . import elements as el
 from .dofs import DofMap, node_list
 
@@ -261,7 +261,7 @@ class Frame2D:
         K = (G @ E @ G.T).tocsr()
         _check_stiffness(K, dofs)
         C = self._damping(dofs, M)
-        natural = NaturalForm(G=G, E=E, B=B, A=np.zeros((m, m)), r=r, theta=lambda t: theta, E_v=E_v)
+        natural = NaturalForm(G=G, E=E, B=B, A=np.zeros((m, m)), r=r, theta=ConstantStrain(theta), E_v=E_v)
         return Structure(
             natural=natural, M=M, C=C, dofs=dofs,
             element_names=tuple(e.name for e in self._elements),
