@@ -1,6 +1,7 @@
 """The natural form (eqs. 1-16): imposed strains, resistances, the interaction matrix, Kelvin parts."""
 
 import numpy as np
+import pytest
 import scipy.sparse as sp
 
 import unilateral as ul
@@ -101,3 +102,35 @@ def test_sparse_and_dense_models_agree():
                                    A=A, r=r, E_v=sp.csr_matrix(E_v))
     s = np.array([0.5 + 3j, 20.0])
     np.testing.assert_allclose(ul.MatrixKernel(sparse)(s), ul.MatrixKernel(dense)(s), rtol=1e-10)
+
+
+def test_a_matrix_level_gap_equals_the_frame_gap_and_loads_the_structure_consistently():
+    """``gap=`` sets g = -H gap and q_imposed = -F gap: the Frame2D soil element with the same gap."""
+    from unilateral.structure import Frame2D
+
+    fr = Frame2D()
+    fr.node(1, 0.0, 0.0)
+    fr.support(1, ux=True, uy=False, rz=True)
+    fr.mass(1, 2.0)
+    fr.soil("s", 1, k=2000.0, c=5.0, gap=0.01)
+    fr.spring("h", 1, k=10.0)
+    frame = fr.build().to_model()
+    matrix = ul.Model(M=[[2.0]], K=[[2010.0]], F=[[2000.0]], H=[[2000.0]], C=[[5.0]], F_v=[[5.0]], H_v=[[5.0]],
+                      gap=[0.01])
+    assert np.allclose(matrix.g(0.0), frame.g(0.0), rtol=1e-15) and np.allclose(matrix.q_imposed(0.0),
+                                                                              frame.q_imposed(0.0), rtol=1e-15)
+    load = lambda t: np.array([-20.0 - 300.0 * np.sin(8.0 * t)])
+    a, b = (ul.solve(m, load, dt=1e-3, t_end=1.5, method="direct") for m in (frame, matrix))
+    assert a.success and b.success
+    assert np.abs(a.v).max() > 1e-3 and np.abs(a.psi).max() > 1.0         # it opens and closes
+    assert np.allclose(a.u, b.u, rtol=0, atol=1e-14) and np.allclose(a.psi, b.psi, rtol=0, atol=1e-10)
+    # g alone (without the load of the imposed strain) is another model: a force g acts on the mass
+    g_only = ul.Model(M=[[2.0]], K=[[2010.0]], F=[[2000.0]], H=[[2000.0]], C=[[5.0]], F_v=[[5.0]], H_v=[[5.0]],
+                      g=matrix.g(0.0))
+    c = ul.solve(g_only, load, dt=1e-3, t_end=1.5, method="direct")
+    assert np.abs(c.u - a.u).max() > 1e-3
+
+
+def test_a_negative_gap_is_refused_with_its_index():
+    with pytest.raises(ValueError, match=r"gap\[1\] = -0.5 is negative"):
+        ul.Model(M=np.eye(2), K=np.eye(2), F=np.eye(2), H=np.eye(2), gap=[0.0, -0.5])

@@ -99,18 +99,26 @@ class Model:
     C : (n, n), optional
         Damping, symmetric positive semidefinite (default zero).
     g : (m,) array_like or callable ``g(t) -> (m,)``, optional
-        Constraint offset ``B^T E theta + r`` (default zero).
+        Constraint offset ``B^T E theta + r`` (default zero). ``g`` alone shifts the constraint
+        law only (a resistance or capacity ``r``); an imposed strain ``theta`` (a gap, a
+        prestrain) also loads the structure by ``q_imposed = G E theta``, and the two must agree:
+        give gaps by ``gap``, which sets both.
     F_v : (n, m), optional
         Viscous coupling of Kelvin elements (``G E_v B``).
     H_v : (m, m), optional
         Viscous part of H (``B^T E_v B``), symmetric positive semidefinite.
     q_imposed : (n,) array_like or callable ``q(t) -> (n,)``, optional
         Load equivalent to imposed strains (``G E theta``), added to the applied load.
+    gap : (m,) array_like, optional
+        Initial opening of each unilateral element, m (>= 0): the imposed strain ``theta = -gap``
+        on the unilateral deformations, i.e. ``-H gap`` added to ``g`` and ``-F gap`` to
+        ``q_imposed``, as :class:`~unilateral.structure.Frame2D` builds a soil element or a gap
+        link with ``gap=`` (the element carries force only once the gap has closed).
     dof_names : sequence of n str, optional
     constraint_names : sequence of m str, optional
     """
 
-    def __init__(self, M, K, F, H, C=None, g=None, *, F_v=None, H_v=None, q_imposed=None,
+    def __init__(self, M, K, F, H, C=None, g=None, *, F_v=None, H_v=None, q_imposed=None, gap=None,
                  dof_names=None, constraint_names=None, natural: NaturalForm | None = None):
         self.K = V.as_matrix("K", K, (None, None))
         n = self.K.shape[0]
@@ -135,9 +143,27 @@ class Model:
         _check_definite("M", self.M, strict=False)
         self.g, self.g_is_constant = V.time_function("g", g, m)
         self.q_imposed, self.q_imposed_is_constant = V.time_function("q_imposed", q_imposed, n)
+        if gap is not None:
+            self._add_gap(V.as_vector("gap", gap, m))
         self.dof_names = _names("dof_names", dof_names, n, "u")
         self.constraint_names = _names("constraint_names", constraint_names, m, "c")
         self.natural = natural
+
+    def _add_gap(self, gap: np.ndarray) -> None:
+        """Add the imposed strain ``theta = -gap`` of the unilateral elements to ``g`` and ``q_imposed``."""
+        bad = np.flatnonzero(gap < 0)
+        if bad.size:
+            raise ValueError(f"gap[{bad[0]}] = {float(gap[bad[0]])!r} is negative; a gap is an opening >= 0 "
+                             "(an overlap is an imposed strain: give g and q_imposed)")
+        dg = -(self.H @ gap)
+        dq = -np.asarray(self.F @ gap, dtype=float).ravel()
+        for name, delta in (("g", dg), ("q_imposed", dq)):
+            f, constant = getattr(self, name), getattr(self, f"{name}_is_constant")
+            if constant:
+                value = f(0.0) + delta
+                setattr(self, name, lambda t, _v=value: _v)
+            else:
+                setattr(self, name, lambda t, _f=f, _d=delta: _f(t) + _d)
 
     # ------------------------------------------------------------------ sizes and flags
     @property
