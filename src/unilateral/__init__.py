@@ -29,6 +29,7 @@ _LAZY = {
                     "unilateral.kernels"),
     **dict.fromkeys(("LCP_SOLVERS", "LCPResult", "LCPSolver", "get_lcp_solver", "solve_lcp"), "unilateral.lcp"),
     "LoadHistory": "unilateral.loads",
+    **dict.fromkeys(("FoundationModel", "SoilFlexibility"), "unilateral.soil"),
     **dict.fromkeys(("METHODS", "solve_time_kernel"), "unilateral.methods"),
     **dict.fromkeys(("Model", "NaturalForm"), "unilateral.model"),
     "Solution": "unilateral.result",

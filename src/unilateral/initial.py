@@ -67,7 +67,20 @@ def static_lcp(Lambda0, psiL0, solver) -> tuple[np.ndarray, int, str]:
 
 
 def static_state(model, q0, solver) -> InitialState:
-    """Static unilateral equilibrium of a matrix model under the total load ``q0`` (n,)."""
+    """Static unilateral equilibrium of a matrix model under the total load ``q0`` (n,).
+
+    A model with penalty-stiff elements (known from its natural form) is solved in coordinates that
+    separate the stiff strains (:mod:`unilateral.methods.stiff`): the assembled ``K`` would keep the
+    soft stiffness only to ``eps`` times the stiffness ratio.
+    """
+    from .methods.stiff import StiffCoordinates     # lazily: methods imports this module
+
+    stiff = StiffCoordinates.of(model)
+    if stiff is not None:
+        T = stiff.split.T
+        state = static_state(stiff.conditioned, T.T @ np.asarray(q0, dtype=float), solver)
+        state.u, state.udot = T @ state.u, np.zeros(model.n)
+        return state
     try:
         K = Factorization(
             model.K, what="K (the structure with every constraint held bilateral must be stable)"

@@ -8,8 +8,10 @@ from . import _validate as V
 from .discretization import Discretization
 from .kernels import KernelModel, TimeKernelModel
 from .methods import METHODS, choose_method, fallback, get_method
+from .methods.stiff import StiffCoordinates
 from .model import Model
 from .result import Solution
+from .soil.foundation_model import FoundationModel
 from .run_context import RunContext
 
 __all__ = ["METHODS", "solve"]
@@ -69,9 +71,9 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
     Solution
     """
     disc = Discretization.from_user(dt, t_end, rule)
-    if not isinstance(model, (Model, KernelModel, TimeKernelModel)):
-        raise TypeError(
-            f"model must be a unilateral.Model, KernelModel or TimeKernelModel, got {V.describe(model)}")
+    if not isinstance(model, (Model, KernelModel, TimeKernelModel, FoundationModel)):
+        raise TypeError(f"model must be a unilateral.Model, KernelModel, TimeKernelModel or FoundationModel, "
+                        f"got {V.describe(model)}")
     options = {name: value for name, value in (("cq", cq_options), ("modal", modal_options))
                if value is not None}
     if isinstance(model, TimeKernelModel) and (method != "auto" or load is not None or options
@@ -80,6 +82,9 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
             "a TimeKernelModel is solved by product integration of its time-domain kernel: "
             "pass only dt, t_end, initial, lcp, lcp_options, bilateral (method='auto', load=None)")
     run = RunContext.from_user(lcp, lcp_options, bilateral, callback)
+    stiff = StiffCoordinates.of(model)      # penalty-stiff elements: solve in separated coordinates
+    if stiff is not None:
+        model, load, initial = stiff.conditioned, stiff.load(load, disc.N), stiff.initial(initial)
     auto = isinstance(method, str) and method.lower() == "auto"
     if auto:
         chosen, reason = choose_method(model, disc.rule, run.solver, options)
@@ -97,14 +102,15 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         run.stats["method_reason"] = reason
     run.timer.lap("setup")
     try:
-        return chosen.solve(model, load, initial, disc, run)
+        sol = chosen.solve(model, load, initial, disc, run)
     except ValueError as exc:
         other = fallback(exc) if auto else None
         if other is None:
             raise
         chosen, run.stats["method_reason"] = other[0], f"{reason}; {other[1]}"
         run.stats["method"] = chosen.name
-        return chosen.solve(model, load, initial, disc, run)
+        sol = chosen.solve(model, load, initial, disc, run)
+    return sol if stiff is None else stiff.solution(sol)
 
 
 #: A run may use at most this fraction of the machine's memory.

@@ -5,9 +5,10 @@ from __future__ import annotations
 from ..kernels import KernelModel, TimeKernelModel
 from ..lcp import BlockPrincipalPivoting
 from ..march.stepper import DENSE_STEPPING_MAX_N
+from ..soil.foundation_model import FoundationModel
 from .cq import CQ
 from .direct import FULL_SPACE_MIN_M, Direct
-from .modal import Modal, PolesRefused
+from .modal import FoundationPolesRefused, Modal, PolesRefused
 from .time_kernel import TimeKernelMethod
 
 
@@ -29,6 +30,8 @@ def choose_method(model, rule, solver, options):
         return TimeKernelMethod(), "a TimeKernelModel is solved by product integration of its Lambda(t)"
     if isinstance(model, KernelModel):
         return CQ(**options.get("cq", {})), "a KernelModel is solved by convolution quadrature of its Lambda(s)"
+    if isinstance(model, FoundationModel):
+        return _choose_foundation(model, rule, options)
     if "cq" in options:
         return CQ(**options["cq"]), "cq_options were given"
     if "modal" in options:
@@ -41,8 +44,22 @@ def choose_method(model, rule, solver, options):
     return Direct(), f"direct stepping ({space}) is the fastest end to end for this model"
 
 
+def _choose_foundation(model, rule, options):
+    """cq or modal for a FoundationModel (the dual CLCP in the contact forces)."""
+    if "cq" in options:
+        return CQ(**options["cq"]), "cq_options were given"
+    if "modal" in options:
+        return Modal(**options["modal"]), "modal_options were given"
+    if model.soil.is_rational and rule.supports_cq:
+        return Modal(), ("a foundation on a rational soil: the recursive history of the poles of the "
+                         "structure and the soil costs O(r m) per step")
+    return CQ(), "a foundation on a soil given by Phi(s): convolution quadrature of the dual kernel"
+
+
 def fallback(exc):
     """The method and reason to use when the auto choice was refused by ``exc``, or None."""
+    if isinstance(exc, FoundationPolesRefused):
+        return CQ(), f"modal refused ({exc}), cq used instead"
     if isinstance(exc, PolesRefused):
         return Direct(), f"modal refused ({exc}), direct used instead"
     return None

@@ -175,9 +175,123 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     else:
         success = True
         message = f"{N} steps, {stats['contact_changes']} contact changes"
+    warnings = _step_lcp_warnings(model, stats) + _chatter_warnings(model, stats, v)
+    if warnings:
+        stats["warnings"] = warnings
+        message = message + "; WARNING: " + "; ".join(warnings)
     return Solution(t=t, v=v, psi=psi, psiL=psiL, u=u, udot=udot, success=success,
                     message=message, stats=stats, dof_names=list(getattr(model, "dof_names", [])),
                     constraint_names=list(model.constraint_names))
+
+
+#: A constraint that switches and switches back on consecutive steps this often is chattering.
+CHATTER_MIN_ALTERNATIONS = 2
+#: Largest m whose every principal minor of the step LCP matrix is checked (2^m minors).
+PRINCIPAL_MINORS_MAX_M = 12
+
+
+def contact_alternations(v) -> np.ndarray:
+    """Per constraint (m,), how often its contact state changed at a step and back at the next.
+
+    ``v`` (N+1, m): a constraint is open where ``v > 0``. A genuine short flight gives one such
+    alternation; contact chatter (a dashpot rate that flips sign step to step) gives many.
+    """
+    open_ = np.asarray(v) > 0
+    if open_.shape[0] < 3:
+        return np.zeros(open_.shape[1], dtype=int)
+    flip = open_[1:] != open_[:-1]
+    return np.sum(flip[1:] & flip[:-1], axis=0).astype(int)
+
+
+def _chatter_warnings(model, stats, v) -> list:
+    """``stats["chatter"]`` and a warning when contacts switch back and forth step to step."""
+    counts = contact_alternations(v)
+    names = list(model.constraint_names)
+    stats["chatter"] = {"alternations": {names[i]: int(c) for i, c in enumerate(counts) if c},
+                        "total": int(counts.sum())}
+    bad = np.flatnonzero(counts >= CHATTER_MIN_ALTERNATIONS)
+    if bad.size == 0:
+        return []
+    which = ", ".join(f"{names[i]!r} ({counts[i]} times)" for i in bad[:5]) + (", ..." if bad.size > 5 else "")
+    rule = stats.get("rule", "")
+    kelvin = bool(getattr(model, "viscous", False))
+    if rule == "trapezoidal":
+        why = ("the trapezoidal rule has no numerical damping" + (
+            ": the dashpot rate of a Kelvin contact alternates in sign step to step after a contact "
+            "change" if kelvin else "") + "; the contact changes are artefacts that grow as dt "
+            "shrinks: use rule='bdf2' (L-stable)")
+    elif rule == "bdf2":
+        why = "the contact changes may be artefacts of the step: check them with a smaller dt"
+    else:
+        why = "the contact changes may be artefacts of the step: check with a smaller dt or rule='bdf2'"
+    return [f"contact chatter: constraint(s) {which} opened and closed again on consecutive steps; {why}"]
+
+
+def step_lcp_matrix(model, rule, dt):
+    """``W0 = Lambda(s*)`` (m, m) of a matrix model and a CQ rule, or None if it does not apply."""
+    from ..kernels import MatrixKernel
+    from ..rules import get_rule
+
+    try:
+        rule = get_rule(rule, cq=True)
+    except (ValueError, TypeError):
+        return None
+    if not hasattr(model, "K") or not model.m:
+        return None
+    W0 = MatrixKernel(model)(np.array([rule.s_star(dt)]))[0]
+    return 0.5 * (W0 + W0.T)
+
+
+def p_matrix_check(W) -> dict:
+    """Whether ``W`` (m, m) is a P-matrix (every principal minor > 0: each LCP has one solution).
+
+    Every principal minor for ``m <= PRINCIPAL_MINORS_MAX_M``; above, for the symmetric ``W`` only,
+    its smallest eigenvalue (P-matrix = positive definite). Returns ``P_matrix``, the smallest
+    relative principal minor or eigenvalue, and the rows of the worst minor.
+    """
+    m = W.shape[0]
+    scale = float(np.max(np.abs(np.diag(W)))) or 1.0
+    eig = float(np.linalg.eigvalsh(0.5 * (W + W.T)).min()) / scale
+    out = {"min_eigenvalue": eig}
+    if m <= PRINCIPAL_MINORS_MAX_M:
+        from itertools import combinations
+
+        worst, rows = np.inf, ()
+        d = np.sqrt(np.abs(np.diag(W)))
+        Ws = W / np.where(d > 0, d, 1.0)[:, None] / np.where(d > 0, d, 1.0)[None, :]
+        for size in range(1, m + 1):
+            for idx in combinations(range(m), size):
+                minor = float(np.linalg.det(Ws[np.ix_(idx, idx)]))
+                if minor < worst:
+                    worst, rows = minor, idx
+        out.update(min_principal_minor=worst, worst_minor_rows=list(rows))
+        out["P_matrix"] = bool(worst > 1e-12)
+    else:
+        out["P_matrix"] = bool(eig > 1e-12)
+    return out
+
+
+def _step_lcp_warnings(model, stats) -> list:
+    """``stats["step_lcp"]``: is the step LCP uniquely solvable (W0 a P-matrix)? Kelvin models only.
+
+    With Kelvin contacts the claim that cq, modal and direct solve the same discrete problem rests on
+    each step's LCP having one solution; it is checked here for the rules with a CQ form.
+    """
+    if not getattr(model, "viscous", False) or "dt" not in stats:
+        return []
+    W0 = step_lcp_matrix(model, stats.get("rule"), stats["dt"])
+    if W0 is None:
+        return []
+    check = p_matrix_check(W0)
+    stats["step_lcp"] = check
+    if check["P_matrix"]:
+        return []
+    names = list(model.constraint_names)
+    rows = [names[i] for i in check.get("worst_minor_rows", [])]
+    return [f"the step LCP matrix W0 = Lambda(s*) is not a P-matrix (smallest scaled principal minor "
+            f"{check.get('min_principal_minor', check['min_eigenvalue']):.3g}"
+            + (f", constraints {rows}" if rows else "") + "): a step's LCP may have several "
+            "solutions and the methods may pick different ones; use rule='bdf2' or a smaller dt"]
 
 
 def failed_at_start(model, init, run) -> Solution:

@@ -8,8 +8,9 @@ from .. import _validate as V
 from ..initial import InitialState, static_lcp
 from ..kernels import KernelModel, MatrixKernel, cq_weights
 from ..model import Model
+from ..soil.foundation_model import FoundationModel
 from .base import Method
-from .clcp_march import march_weights
+from .clcp_march import FFT_HISTORY_MIN_STEPS, march_weights
 from .common import clcp_on_matrix_model, failed_at_start, finish
 
 
@@ -21,6 +22,10 @@ class CQ(Method):
     are computed by FFT on a circle (:func:`~unilateral.kernels.cq_weights`); the history is summed
     directly or FFT-blocked; one LCP per step.
 
+    A :class:`~unilateral.soil.FoundationModel` (a structure on a soil given by ``Phi(s)``) is
+    solved in its dual form, in the contact forces, with the weights of
+    ``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)`` (:func:`unilateral.soil.foundation_solve.solve_foundation`).
+
     Options
     -------
     L, rho : FFT size and circle radius of the weights (see :func:`~unilateral.kernels.cq_weights`)
@@ -30,7 +35,7 @@ class CQ(Method):
     """
 
     name = "cq"
-    models = (Model, KernelModel)
+    models = (Model, KernelModel, FoundationModel)
     options = ("L", "rho", "history", "engine")
 
     def memory_estimate(self, model, disc) -> dict:
@@ -47,6 +52,8 @@ class CQ(Method):
             if load is not None:
                 raise ValueError("load is not used by a KernelModel: its psiL carries the loading; pass load=None")
             return self._solve_kernel_model(model, initial, disc, run, weight_options, march)
+        if isinstance(model, FoundationModel):
+            return self._solve_foundation(model, load, initial, disc, run, weight_options, march)
         run.stats["n"] = model.n
 
         def clcp(psiL, v_b):
@@ -55,6 +62,19 @@ class CQ(Method):
             return march_weights(W, psiL, v_b, disc, run, **march)
 
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
+
+    def _solve_foundation(self, model, load, initial, disc, run, weight_options, march):
+        from ..history import HISTORIES
+        from ..soil.foundation_solve import solve_foundation
+
+        def operators():
+            W = model.weights(disc.N, disc.dt, disc.rule, **weight_options)
+            name = march.get("history") or ("fft" if disc.N > FFT_HISTORY_MIN_STEPS else "naive")
+            name = V.choice("cq_options['history']", name, HISTORIES)
+            clcp = lambda psi_affine, c_b: march_weights(W, psi_affine, c_b, disc, run, **march)
+            return 0.5 * (W[0] + W[0].T), lambda: HISTORIES[name](W), clcp
+
+        return solve_foundation(model, load, initial, disc, run, operators=operators)
 
     def _solve_kernel_model(self, model, initial, disc, run, weight_options, march):
         N = disc.N

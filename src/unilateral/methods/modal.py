@@ -6,6 +6,7 @@ from .. import _validate as V
 from ..kernels import PoleResidueKernel
 from ..march.clcp import march_cq, march_cq_compiled
 from ..model import Model
+from ..soil.foundation_model import FoundationModel
 from .base import Method
 from .clcp_march import ENGINES, compiled_applies, use_compiled
 from .common import clcp_on_matrix_model
@@ -13,6 +14,10 @@ from .common import clcp_on_matrix_model
 
 class PolesRefused(ValueError):
     """The pole-residue form of a model's kernel was refused (``method="auto"`` then steps directly)."""
+
+
+class FoundationPolesRefused(PolesRefused):
+    """The pole-residue form of a foundation model was refused (``method="auto"`` then uses cq)."""
 
 
 class Modal(Method):
@@ -23,6 +28,13 @@ class Modal(Method):
     convolution integrals", one scalar recursion per pole, O(r m) per step. With every pole it
     equals ``method="cq"`` to round-off.
 
+    A :class:`~unilateral.soil.FoundationModel` with a rational soil (Kelvin elements, cones,
+    Veletsos-Verbic, AAA fits of flexibilities) is solved in its dual form with the poles of
+    ``T^T D(s)^-1 T`` and of ``Phi(s)`` (:meth:`~unilateral.soil.FoundationModel.modal_form`); a
+    structure resting only on Kelvin soil elements (``K`` singular) through the equivalent paper
+    model with Kelvin elements (:meth:`~unilateral.soil.FoundationModel.kelvin_model`), whose
+    solution has the same meaning.
+
     Options
     -------
     modes : None (every pole, exact, dense models) or an int (that many lowest modes plus the
@@ -31,11 +43,13 @@ class Modal(Method):
     """
 
     name = "modal"
-    models = (Model,)
+    models = (Model, FoundationModel)
     options = ("modes", "engine")
 
     def solve(self, model, load, initial, disc, run):
         engine = V.choice("modal_options['engine']", self.config.get("engine", "auto"), ENGINES)
+        if isinstance(model, FoundationModel):
+            return self._solve_foundation(model, load, initial, disc, run, engine)
         run.stats["n"] = model.n
         try:
             kernel = PoleResidueKernel.from_model(model, modes=self.config.get("modes"))
@@ -62,3 +76,45 @@ class Modal(Method):
                             callback=run.callback)
 
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
+
+    def _solve_foundation(self, model, load, initial, disc, run, engine):
+        from ..soil.foundation_solve import foundation_base_state, solve_foundation
+
+        if self.config.get("modes") is not None:
+            raise ValueError("modal_options['modes'] does not apply to a FoundationModel (every pole is used)")
+        try:
+            kernel = model.modal_form()
+        except ValueError as exc:
+            if model.soil.kelvin is not None:
+                run.stats["foundation_route"] = f"the equivalent Kelvin model (the paper's primal form): {exc}"
+                if not (isinstance(initial, str) and initial == "static"):
+                    # the foundation's own initial values (soil unloaded), as the Kelvin model's
+                    given = foundation_base_state(model, None, initial, run.solver)
+                    initial = {"u0": given.u, "udot0": given.udot, "v0": given.v}
+                sol = self.solve(model.kelvin_model(), load, initial, disc, run)
+                sol.stats["formulation"] = "primal CLCP in the openings (the paper's Kelvin soil elements)"
+                return sol
+            raise FoundationPolesRefused(str(exc)) from None
+        run.stats["modal"] = {key: value for key, value in kernel.info.items()
+                              if isinstance(value, (int, float, str))}
+        run.timer.lap("poles")
+
+        def operators():
+            W0 = kernel.W0(disc.dt, disc.rule)
+            new_history = lambda: kernel.history(disc.N, disc.dt, disc.rule)
+
+            def clcp(psi_affine, c_b):
+                history = new_history()
+                run.stats["history"] = history.name
+                solver = run.solver
+                if use_compiled(engine, compiled_applies(run), run, option="modal_options", needs="lcp='bpp'"):
+                    run.stats["engine"] = "compiled"
+                    return march_cq_compiled("recursive", (W0, *history.arrays(), psi_affine), c_b,
+                                             dt=disc.dt, tol=solver.tol,
+                                             max_iter=solver.max_iter or 10 * model.m + 10, callback=run.callback)
+                run.stats["engine"] = "python"
+                return march_cq(W0, history, psi_affine, c_b, solver, dt=disc.dt, callback=run.callback)
+
+            return W0, new_history, clcp
+
+        return solve_foundation(model, load, initial, disc, run, operators=operators)

@@ -11,27 +11,42 @@ Modules (one concept each):
 * :mod:`.cones` - Wolf (1994) cone models and cone-type coupled flexibility of patches.
 * :mod:`.fit` - AAA rational fits of tabulated data (``fit_rational``, ``read_table``).
 * :mod:`.timedomain` - step responses of soil kernels by convolution quadrature (``step_response``).
+* :mod:`.foundation_model` - ``FoundationModel``: a structure on the soil through unilateral contacts,
+  ``SoilFlexibility`` (``Phi(s)`` from any of the above), ``FoundationKernel`` (the dual kernel).
+* :mod:`.foundation_solve` - the route of ``method="cq"`` and ``"modal"`` for a ``FoundationModel``.
 
 Sign convention: vertical forces and displacements positive downward (into the soil); kernels are
 Laplace transforms, evaluated for ``Re s >= 0``, real for real ``s``.
 """
 
-from .cones import Cone, cone, cone_flexibility
-from .fit import RationalFit, fit_rational, read_table
-from .halfspace import HalfSpace
-from .impedances import VeletsosVerbic, veletsos_verbic
-from .patches import RectangularPatches, disc, grid, points, strips
-from .pekeris import arrival_times, lamb_step_vertical, pekeris_quarter
-from .statics import boussinesq, mean_inverse_distance, rectangle_corner_displacement
-from .timedomain import step_response
+from importlib import import_module
 
-__all__ = [
-    "Cone", "cone", "cone_flexibility",
-    "RationalFit", "fit_rational", "read_table",
-    "HalfSpace",
-    "VeletsosVerbic", "veletsos_verbic",
-    "RectangularPatches", "disc", "grid", "points", "strips",
-    "arrival_times", "lamb_step_vertical", "pekeris_quarter",
-    "boussinesq", "mean_inverse_distance", "rectangle_corner_displacement",
-    "step_response",
-]
+#: Public name -> the submodule that defines it. Imported on first use, so that importing
+#: :mod:`unilateral.soil.foundation_model` (done by the solvers) does not import scipy.special or
+#: scipy.interpolate.
+_LAZY = {
+    **dict.fromkeys(("Cone", "cone", "cone_flexibility"), "cones"),
+    **dict.fromkeys(("FoundationKernel", "FoundationModel", "SoilFlexibility", "SoilPoles"), "foundation_model"),
+    **dict.fromkeys(("RationalFit", "fit_rational", "read_table"), "fit"),
+    "HalfSpace": "halfspace",
+    **dict.fromkeys(("VeletsosVerbic", "veletsos_verbic"), "impedances"),
+    **dict.fromkeys(("RectangularPatches", "disc", "grid", "points", "strips"), "patches"),
+    **dict.fromkeys(("arrival_times", "lamb_step_vertical", "pekeris_quarter"), "pekeris"),
+    **dict.fromkeys(("boussinesq", "mean_inverse_distance", "rectangle_corner_displacement"), "statics"),
+    "step_response": "timedomain",
+}
+
+__all__ = list(_LAZY)
+
+
+def __getattr__(name):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'unilateral.soil' has no attribute {name!r}")
+    value = getattr(import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value         # later lookups skip __getattr__
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

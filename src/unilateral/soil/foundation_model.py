@@ -1,0 +1,765 @@
+"""A linear structure resting on a soil given in the Laplace domain, through unilateral contacts.
+
+    M u'' + C u' + K u = q + T c                       (n DOFs, m contact points)
+    v = T^T u + (Phi * c) + gap  >= 0,   c >= 0,   v^T c = 0
+
+``T`` (n, m) maps the displacements to the *upward* displacement of the foundation at each contact
+point, ``c`` are the compressive contact forces (they push the foundation up and the soil down),
+``Phi(s)`` (m, m) is the soil's dynamic flexibility (downward surface displacement per unit downward
+force, any of :mod:`unilateral.soil`), ``v`` the openings (uplift) and ``gap`` the opening at
+``u = 0, c = 0`` (negative: an initial penetration). The solvers march the *dual* CLCP in the contact
+forces, whose kernel is ``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)``, ``D(s) = K + s C + s^2 M``
+(``docs/theory.md``, section 12).
+
+:class:`SoilFlexibility` wraps the soil kernels; :class:`FoundationModel` is the problem;
+:class:`FoundationKernel` is ``Lambda_D(s)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from .. import _validate as V
+from ..kernels.base import Kernel
+from ..linalg import Factorization, dense
+from ..model import Model, _names
+
+__all__ = ["FoundationKernel", "FoundationModel", "SoilFlexibility", "SoilPoles"]
+
+#: Structures with at most this many DOFs are evaluated by batched dense solves.
+_DENSE_BATCH_MAX_N = 64
+#: Structures with at most this many DOFs are checked for massless zero-stiffness modes.
+_CHECK_MAX_N = 2000
+
+
+# ====================================================================== rational soils
+@dataclass
+class SoilPoles:
+    """Pole-residue form ``Phi(s) = P0 + sum_k b_k c_k^T / (s - p_k)`` of a rational soil.
+
+    A pole with ``Im p > 0`` stands for itself and its conjugate (factors ``conj b_k, conj c_k``);
+    real poles have real factors (the convention of
+    :class:`~unilateral.kernels.PoleResidueKernel`).
+
+    Attributes
+    ----------
+    poles : (r,) complex, ``Re p < 0``, ``Im p >= 0``, 1/s
+    B, Cf : (r, m) complex, residue factors (m/N per second)
+    P0 : (m, m) real, ``Phi(inf)``, m/N
+    """
+
+    poles: np.ndarray
+    B: np.ndarray
+    Cf: np.ndarray
+    P0: np.ndarray
+
+    def evaluate(self, s) -> np.ndarray:
+        """``Phi(s)`` for ``s`` of shape (L,): (L, m, m) complex."""
+        s = np.atleast_1d(np.asarray(s, dtype=complex))
+        out = np.broadcast_to(self.P0, (s.size,) + self.P0.shape).astype(complex)
+        if self.poles.size:
+            mult = np.where(self.poles.imag > 0, 2.0, 1.0)
+            for p, b, c, k in zip(self.poles, self.B, self.Cf, mult):
+                term = np.outer(b, c)[None] / (s - p)[:, None, None]
+                if k == 2.0:
+                    term = term + np.outer(b.conj(), c.conj())[None] / (s - np.conj(p))[:, None, None]
+                out = out + term
+        return out
+
+    def static(self) -> np.ndarray:
+        """``Phi(0)`` (m, m) real."""
+        return self.evaluate(np.zeros(1))[0].real
+
+
+def _scalar_poles(num, den, where):
+    """Poles, residues and constant of ``den(s)/num(s)`` (coefficients lowest power first).
+
+    Returns None if ``num`` has a multiple root (no simple pole-residue form); raises if a root
+    lies in ``Re s >= 0`` (the impedance has no static stiffness or is unstable).
+    """
+    num = np.trim_zeros(np.asarray(num, dtype=float), "b")
+    den = np.trim_zeros(np.asarray(den, dtype=float), "b")
+    if num.size == 0 or not np.all(np.isfinite(num)):
+        raise ValueError(f"{where}: the impedance is zero or not finite")
+    if den.size > num.size:
+        return None                         # the flexibility grows with s: not a soil
+    roots = np.roots(num[::-1]) if num.size > 1 else np.zeros(0, complex)
+    if np.any(roots.real >= 0):
+        bad = roots[np.argmax(roots.real)]
+        raise ValueError(f"{where}: the impedance vanishes at s = {bad:.6g} in Re s >= 0 (no static "
+                         "stiffness or an unstable soil); a soil impedance needs E(s) != 0 there")
+    scale = max(np.abs(roots).max(initial=0.0), 1e-300)
+    if roots.size > 1 and np.min(np.abs(roots[:, None] - roots[None, :])
+                                 + np.eye(roots.size) * scale) < 1e-7 * scale:
+        return None
+    dnum = np.polynomial.polynomial.polyder(num)
+    res = np.polynomial.polynomial.polyval(roots, den) / np.polynomial.polynomial.polyval(roots, dnum)
+    const = den[-1] / num[-1] if den.size == num.size else 0.0
+    return roots.astype(complex), res.astype(complex), float(const)
+
+
+def _impedance_polynomials(E):
+    """``(num, den)`` of a recognised rational impedance ``E(s) = num/den``, or None."""
+    from .cones import Cone
+    from .impedances import VeletsosVerbic
+
+    if isinstance(E, Cone):
+        if E.M_int:
+            a = E.z0 / E.c                            # q = a s
+            return [E.K, E.K * a, E.dM + E.C * a, E.dM * a], [1.0, a]
+        return [E.K, E.C, E.dM], [1.0]
+    if isinstance(E, VeletsosVerbic):
+        T, b = E.T, E.g2 * E.T
+        poly = np.polynomial.polynomial.polymul([1.0, E.c4 * T, E.m3 * T ** 2], [1.0, b])
+        poly = poly + np.array([0.0, 0.0, E.g1 * (E.g2 * T) ** 2, 0.0])[: poly.size]
+        return E.K0 * poly, [1.0, b]
+    if isinstance(E, tuple):
+        return [E[0], E[1]], [1.0]
+    if isinstance(E, (int, float, np.floating, np.integer)) and not isinstance(E, bool):
+        return [float(E)], [1.0]
+    return None
+
+
+def _impedance_callable(E, where):
+    """``E(s)`` as a vectorised function returning (L,) complex."""
+    if isinstance(E, tuple):
+        if len(E) != 2:
+            raise ValueError(f"{where}: a Kelvin impedance is a pair (k, c), got {E!r}")
+        k = V.positive_float(f"{where} k", E[0])
+        c = float(E[1])
+        if not (np.isfinite(c) and c >= 0):
+            raise ValueError(f"{where}: the dashpot c must be >= 0, got {E[1]!r}")
+        return lambda s: k + c * s
+    if isinstance(E, (int, float, np.floating, np.integer)) and not isinstance(E, bool):
+        k = V.positive_float(where, E)
+        return lambda s: np.full(s.shape, k, dtype=complex)
+    if callable(E):
+        return lambda s: np.asarray(E(s), dtype=complex).reshape(s.shape)
+    raise TypeError(f"{where} must be a number k, a pair (k, c), a Cone, a VeletsosVerbic or a "
+                    f"callable E(s); got {V.describe(E)}")
+
+
+# ====================================================================== the soil
+class SoilFlexibility:
+    """The soil's dynamic flexibility ``Phi(s)`` (m, m) at the contact points.
+
+    ``Phi_ij(s)``: Laplace transform of the downward displacement of the soil surface under contact
+    ``i`` per unit downward (compressive) force at contact ``j`` (m/N, or m/kN in kN units).
+    Build it with one of the constructors:
+
+    * :meth:`halfspace` - the rigorous (visco)elastic half-space under rectangular patches;
+    * :meth:`cones` - cone-type coupled flexibility of patches (delays: not rational);
+    * :meth:`impedances` - one impedance ``E_i(s)`` per contact, ``Phi = diag(1/E_i(s))``;
+    * :meth:`kelvin` - ``E_i = k_i + s c_i`` (the paper's soil elements);
+    * :meth:`rational` - AAA fits (:class:`~unilateral.soil.RationalFit`) of flexibilities;
+    * :meth:`callable` - any ``Phi(s)``.
+
+    Parameters
+    ----------
+    func : callable
+        ``func(s)`` for ``s`` (L,) complex, ``Re s > 0``, returns (L, m, m) (or (L,) if m = 1).
+    m : int
+        Number of contacts.
+    static : callable, optional
+        ``static() -> (m, m)``: ``Phi(0)``; default ``func(0)``.
+    poles : SoilPoles, optional
+        The exact pole-residue form of a rational soil (enables ``method="modal"``).
+    kelvin : tuple of (m,) arrays, optional
+        ``(k, c)`` when ``Phi = diag(1/(k + s c))``.
+    description : str
+
+    Attributes
+    ----------
+    m : int
+    is_rational : bool
+        The exact pole-residue form is known (``method="modal"`` applies).
+    poles : SoilPoles or None
+    kelvin : (k, c) or None
+    description : str
+    """
+
+    def __init__(self, func, m, *, static=None, poles=None, kelvin=None, description="Phi(s)"):
+        if not callable(func):
+            raise TypeError(f"func must be callable Phi(s) -> (L, m, m), got {V.describe(func)}")
+        m = int(m)
+        if m < 1:
+            raise ValueError(f"m (the number of contacts) must be >= 1, got {m}")
+        self._func, self.m, self._static = func, m, static
+        self.poles, self.kelvin, self.description = poles, kelvin, description
+
+    # ------------------------------------------------------------------ evaluation
+    def evaluate(self, s) -> np.ndarray:
+        """``Phi(s)`` for ``s`` (L,) complex with ``Re s >= 0``: (L, m, m) complex, m/N."""
+        s = np.atleast_1d(np.asarray(s, dtype=complex))
+        out = np.asarray(self._func(s))
+        if self.m == 1 and out.shape == s.shape:
+            out = out.reshape(-1, 1, 1)
+        if out.shape != (s.size, self.m, self.m):
+            raise ValueError(f"the soil flexibility ({self.description}) returned shape {out.shape} for "
+                             f"{s.size} values of s; expected ({s.size}, {self.m}, {self.m})")
+        if not np.all(np.isfinite(out)):
+            k = int(np.argmax(~np.all(np.isfinite(out), axis=(1, 2))))
+            raise ValueError(f"the soil flexibility ({self.description}) is not finite at s = {s[k]!r}")
+        return out
+
+    __call__ = evaluate
+
+    def static(self) -> np.ndarray:
+        """``Phi(0)`` (m, m) real symmetric positive definite: the static flexibility.
+
+        Raises ``ValueError`` if the soil has none (e.g. constant-Q damping creeps: ``G(0) = 0``).
+        """
+        try:
+            value = self._static() if self._static is not None else self.evaluate(np.zeros(1))[0]
+        except (ValueError, ZeroDivisionError, FloatingPointError) as exc:
+            raise ValueError(f"the soil ({self.description}) has no static flexibility Phi(0): {exc}; "
+                             "start from initial='rest' or given values, or use a soil with a finite "
+                             "static flexibility") from None
+        value = np.asarray(value)
+        if value.shape != (self.m, self.m) or not np.all(np.isfinite(value)):
+            raise ValueError(f"the soil ({self.description}) has no finite static flexibility Phi(0) "
+                             f"(got {V.describe(value)})")
+        scale = np.abs(value).max(initial=0.0)
+        if np.iscomplexobj(value):
+            if np.abs(value.imag).max(initial=0.0) > 1e-10 * scale:
+                raise ValueError(f"Phi(0) of the soil ({self.description}) is not real")
+            value = value.real
+        value = 0.5 * (value + value.T)
+        eig = np.linalg.eigvalsh(value)
+        if eig[0] <= 1e-12 * max(scale, 1e-300):
+            raise ValueError(f"the static flexibility Phi(0) of the soil ({self.description}) must be "
+                             f"positive definite; its smallest eigenvalue is {eig[0]:.3g}")
+        return value
+
+    @property
+    def is_rational(self) -> bool:
+        """True if the exact pole-residue form is known (``method="modal"`` applies)."""
+        return self.poles is not None
+
+    def __repr__(self) -> str:
+        return f"SoilFlexibility(m={self.m}, {self.description}{', rational' if self.is_rational else ''})"
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def halfspace(cls, halfspace, patches, *, kmax_factor=1.0) -> SoilFlexibility:
+        """The rigorous flexibility of rectangular patches on a :class:`~unilateral.soil.HalfSpace`.
+
+        ``Phi = halfspace.surface_flexibility(patches, s)`` (each distinct pair geometry computed
+        once). One contact per patch, in the order of ``patches``; the contact force of a patch is
+        its uniform pressure times its area. Not rational: ``method="cq"``.
+        """
+        from .halfspace import HalfSpace
+        from .patches import RectangularPatches
+
+        if not isinstance(halfspace, HalfSpace):
+            raise TypeError(f"halfspace must be a unilateral.soil.HalfSpace, got {V.describe(halfspace)}")
+        if not isinstance(patches, RectangularPatches):
+            raise TypeError(f"patches must be RectangularPatches (strips, grid, disc), got {V.describe(patches)}")
+        if np.any(patches.sizes <= 0):
+            raise ValueError("patches must have positive sides (a point contact has an infinite "
+                             "self-flexibility on a half-space)")
+        func = lambda s: halfspace.surface_flexibility(patches, s, kmax_factor=kmax_factor)
+        return cls(func, patches.m, description=f"half-space G={halfspace.G:g}, nu={halfspace.nu:g}, "
+                                                 f"rho={halfspace.rho:g}, {patches.m} patches")
+
+    @classmethod
+    def cones(cls, patches, G, nu, rho, *, wave="rayleigh") -> SoilFlexibility:
+        """Cone-type coupled flexibility of patches (:func:`~unilateral.soil.cone_flexibility`).
+
+        Diagonal: Wolf's vertical cone of the equal-area disc; coupling: Boussinesq decay with a
+        wave delay. Rational (``method="modal"``) only for one patch (no coupling, no delay).
+        """
+        from .cones import cone, cone_flexibility
+
+        func = lambda s: cone_flexibility(patches, G, nu, rho, s, wave=wave)
+        func(np.ones(1))                                        # validates the arguments
+        if patches.m == 1:
+            single = cls.impedances([cone("vertical", G, nu, rho, float(np.sqrt(patches.areas[0] / np.pi)))])
+            single.description = f"vertical cone, G={G:g}, nu={nu:g}, rho={rho:g}"
+            return single
+        return cls(func, patches.m, description=f"cones, G={G:g}, nu={nu:g}, rho={rho:g}, {patches.m} patches")
+
+    @classmethod
+    def impedances(cls, impedances) -> SoilFlexibility:
+        """One impedance per contact, uncoupled: ``Phi(s) = diag(1 / E_i(s))``.
+
+        Parameters
+        ----------
+        impedances : sequence of m items, each
+            a number ``k`` (a spring, N/m), a pair ``(k, c)`` (a Kelvin element ``k + s c``), a
+            :class:`~unilateral.soil.Cone`, a :class:`~unilateral.soil.VeletsosVerbic` (all
+            rational: ``method="modal"`` applies), or a callable ``E(s)`` for (L,) complex ``s``
+            returning (L,) (e.g. a :class:`~unilateral.soil.RationalFit` of an impedance).
+        """
+        pair = (isinstance(impedances, tuple) and len(impedances) == 2
+                and all(isinstance(x, (int, float)) for x in impedances))
+        if callable(impedances) or pair or not isinstance(impedances, (list, tuple)):
+            raise TypeError("impedances must be a list with one impedance per contact, e.g. [(k, c)] "
+                            f"for one contact; got {V.describe(impedances)}")
+        items = list(impedances)
+        if not items:
+            raise ValueError("impedances must hold at least one impedance (one per contact)")
+        funcs = [_impedance_callable(E, f"impedances[{i}]") for i, E in enumerate(items)]
+        m = len(items)
+
+        def func(s):
+            out = np.zeros((s.size, m, m), dtype=complex)
+            for i, f in enumerate(funcs):
+                out[:, i, i] = 1.0 / f(s)
+            return out
+
+        polys = [_impedance_polynomials(E) for E in items]
+        poles = None
+        if all(p is not None for p in polys):
+            parts = [_scalar_poles(num, den, f"impedances[{i}]") for i, (num, den) in enumerate(polys)]
+            if all(part is not None for part in parts):
+                poles = _diagonal_poles(parts, m)
+        kelvin = None
+        if all(isinstance(E, tuple) or (isinstance(E, (int, float)) and not isinstance(E, bool))
+               for E in items):
+            kc = [(float(E[0]), float(E[1])) if isinstance(E, tuple) else (float(E), 0.0) for E in items]
+            kelvin = (np.array([x[0] for x in kc]), np.array([x[1] for x in kc]))
+        return cls(func, m, poles=poles, kelvin=kelvin, description=f"{m} impedances")
+
+    @classmethod
+    def kelvin(cls, k, c=0.0) -> SoilFlexibility:
+        """Kelvin soil elements, ``Phi = diag(1/(k_i + s c_i))``: the paper's soil model.
+
+        Parameters
+        ----------
+        k : (m,) array_like, > 0, N/m (a scalar with ``c`` of length m is broadcast)
+        c : (m,) array_like or float, >= 0, N s/m
+        """
+        k = np.atleast_1d(np.asarray(k, dtype=float))
+        c = np.atleast_1d(np.asarray(c, dtype=float))
+        size = max(k.size, c.size)
+        k = V.as_vector("k", k if k.size > 1 else k[0], size)
+        c = V.as_vector("c", c if c.size > 1 else c[0], size)
+        if np.any(k <= 0):
+            i = int(np.argmax(k <= 0))
+            raise ValueError(f"k must be > 0 (soil springs); k[{i}] = {float(k[i])!r}")
+        if np.any(c < 0):
+            i = int(np.argmax(c < 0))
+            raise ValueError(f"c must be >= 0 (soil dashpots); c[{i}] = {float(c[i])!r}")
+        soil = cls.impedances([(float(a), float(b)) for a, b in zip(k, c)])
+        soil.description = f"{size} Kelvin elements"
+        return soil
+
+    @classmethod
+    def rational(cls, fits) -> SoilFlexibility:
+        """Rational fits of *flexibilities* (m/N) in pole-residue form (``method="modal"`` applies).
+
+        Parameters
+        ----------
+        fits : RationalFit, a sequence of m fits (diagonal ``Phi``) or an m x m nested sequence
+            (entry by entry; ``None`` for a zero entry). Anything with ``poles``, ``residues``
+            (``Re poles < 0``, conjugate-closed), ``constant`` and ``linear = 0``
+            (e.g. :func:`~unilateral.soil.fit_rational` with ``linear=False``).
+        """
+        if hasattr(fits, "poles"):
+            grid = [[fits]]
+        else:
+            rows = list(fits)
+            if rows and all(hasattr(f, "poles") or f is None for f in rows):
+                grid = [[f if i == j else None for j in range(len(rows))] for i, f in enumerate(rows)]
+            else:
+                grid = [list(r) for r in rows]
+        m = len(grid)
+        if m == 0 or any(len(r) != m for r in grid):
+            raise ValueError(f"fits must be one fit, m fits or an m x m table of fits; got {len(grid)} rows "
+                             f"of lengths {[len(r) for r in grid]}")
+        poles, B, Cf = [], [], []
+        P0 = np.zeros((m, m))
+        for i in range(m):
+            for j in range(m):
+                f = grid[i][j]
+                if f is None:
+                    continue
+                for name in ("poles", "residues", "constant", "linear"):
+                    if not hasattr(f, name):
+                        raise TypeError(f"fits[{i}][{j}] has no attribute {name!r}: give a RationalFit")
+                if f.linear != 0.0:
+                    raise ValueError(f"fits[{i}][{j}] has a linear term {f.linear:.3g} s: a flexibility "
+                                     "cannot grow like s; fit it with linear=False (or pass an impedance "
+                                     "fit to SoilFlexibility.impedances)")
+                p = np.asarray(f.poles, dtype=complex)
+                r = np.asarray(f.residues, dtype=complex)
+                if np.any(p.real >= 0):
+                    raise ValueError(f"fits[{i}][{j}] has a pole in Re s >= 0: {p[np.argmax(p.real)]}")
+                P0[i, j] = f.constant
+                keep = p.imag >= 0
+                for pk, rk in zip(p[keep], r[keep]):
+                    b, cf = np.zeros(m, complex), np.zeros(m, complex)
+                    b[i], cf[j] = rk, 1.0
+                    poles.append(pk if pk.imag > 0 else complex(pk.real, 0.0))
+                    B.append(b if pk.imag > 0 else b.real.astype(complex))
+                    Cf.append(cf)
+        sp_ = SoilPoles(np.array(poles, dtype=complex), np.array(B, dtype=complex).reshape(-1, m),
+                        np.array(Cf, dtype=complex).reshape(-1, m), P0)
+        return cls(sp_.evaluate, m, static=sp_.static, poles=sp_, description=f"rational fit, m={m}")
+
+    @classmethod
+    def callable(cls, func, m, *, static=None) -> SoilFlexibility:
+        """Any ``Phi(s)``: ``func(s)`` for (L,) complex ``s`` returns (L, m, m) (or (L,) if m = 1).
+
+        ``static`` (m, m), optional: ``Phi(0)`` if ``func`` cannot be evaluated at ``s = 0``.
+        """
+        if static is not None:
+            value = V.as_matrix("static", static, (int(m), int(m)), allow_sparse=False)
+            return cls(func, m, static=lambda: value, description="user's Phi(s)")
+        return cls(func, m, description="user's Phi(s)")
+
+
+def _diagonal_poles(parts, m) -> SoilPoles:
+    poles, B, Cf = [], [], []
+    P0 = np.zeros((m, m))
+    for i, (roots, res, const) in enumerate(parts):
+        P0[i, i] = const
+        for p, r in zip(roots, res):
+            if p.imag < -1e-12 * abs(p):
+                continue
+            real = abs(p.imag) <= 1e-12 * abs(p)
+            b, c = np.zeros(m, complex), np.zeros(m, complex)
+            b[i], c[i] = (r.real if real else r), 1.0
+            poles.append(complex(p.real, 0.0) if real else p)
+            B.append(b)
+            Cf.append(c)
+    return SoilPoles(np.array(poles, dtype=complex), np.array(B, dtype=complex).reshape(-1, m),
+                     np.array(Cf, dtype=complex).reshape(-1, m), P0)
+
+
+# ====================================================================== the model
+class FoundationModel:
+    """A linear structure on a soil given in the Laplace domain, through unilateral contacts.
+
+    ::
+
+        M u'' + C u' + K u = q + T c
+        v = T^T u + (Phi * c) + gap,     v >= 0,  c >= 0,  v^T c = 0
+
+    Solved by :func:`unilateral.solve` with ``method="cq"`` (any soil), ``"modal"`` (a rational
+    soil, see :meth:`modal_form`) or ``"auto"``. The result's ``v`` are the openings (uplift,
+    >= 0) and ``psi = -c`` (<= 0, compression), the meaning of the paper's Kelvin soil elements;
+    ``psiL`` is ``-c`` with every contact held at its initial opening (the bilateral case).
+
+    Parameters
+    ----------
+    M, K : (n, n) array_like or sparse
+        Mass and stiffness of the structure *without* the soil; symmetric positive semidefinite.
+        ``K`` may be singular (a footing resting only on the soil): every zero-stiffness mode
+        must then carry mass or damping.
+    T : (n, m) array_like or sparse
+        Upward displacement of the foundation at each contact, ``z_f = T^T u`` (a contact force
+        ``c_j`` acts on the structure as the load ``T[:, j] c_j``).
+    soil : SoilFlexibility
+        ``Phi(s)`` (m, m), downward soil displacement per unit compressive contact force.
+    C : (n, n), optional
+        Damping of the structure (symmetric PSD; default zero).
+    gap : (m,) array_like or float, optional
+        Opening at ``u = 0`` with the soil unloaded (default 0; negative: a penetration).
+    dof_names : sequence of n str, optional
+    contact_names : sequence of m str, optional
+
+    Attributes
+    ----------
+    n, m : int
+    M, K, C, T : the matrices (dense or CSR), ``C`` None if undamped
+    soil : SoilFlexibility
+    gap : (m,)
+    dof_names, constraint_names : list of str (``contact_names``)
+
+    Notes
+    -----
+    Units: any consistent set (e.g. kN, m, s: then ``Phi`` is in m/kN).
+    Initial states (``initial=`` of :func:`unilateral.solve`): ``"static"`` - the static
+    unilateral equilibrium with the soil's static flexibility ``Phi(0)`` (the structure with
+    ``K + T Phi(0)^-1 T^T`` must be stable); ``"rest"`` - ``u = 0``, soil unloaded (needs
+    ``gap >= 0``); ``{"u0": ..., "udot0": ...}`` - given values, soil unloaded (``T^T u0 + gap >= 0``).
+    """
+
+    def __init__(self, M, K, T, soil, *, C=None, gap=None, dof_names=None, contact_names=None):
+        self.K = V.as_matrix("K", K, (None, None))
+        n = self.K.shape[0]
+        if self.K.shape != (n, n) or n == 0:
+            raise ValueError(f"K must be square (n, n) with n >= 1, got shape {self.K.shape}")
+        self.M = V.as_matrix("M", M, (n, n))
+        self.C = None if C is None else V.as_matrix("C", C, (n, n))
+        self.T = V.as_matrix("T", T, (n, None))
+        m = self.T.shape[1]
+        if m == 0:
+            raise ValueError("T must have at least one column (one contact point)")
+        for name in ("M", "K", "C"):
+            if getattr(self, name) is not None:
+                V.check_symmetric(name, getattr(self, name))
+                _check_psd(name, getattr(self, name))
+        if not isinstance(soil, SoilFlexibility):
+            raise TypeError("soil must be a SoilFlexibility (SoilFlexibility.halfspace, .cones, .impedances, "
+                            f".kelvin, .rational or .callable), got {V.describe(soil)}")
+        if soil.m != m:
+            raise ValueError(f"soil has m = {soil.m} contacts but T has {m} columns (one per contact); "
+                             "give T of shape (n, soil.m)")
+        self.soil = soil
+        self.gap = V.as_vector("gap", 0.0 if gap is None else gap, m)
+        self.dof_names = _names("dof_names", dof_names, n, "u")
+        self.constraint_names = _names("contact_names", contact_names, m, "c")
+        self._check_rigid_modes()
+
+    # ------------------------------------------------------------------ sizes and flags
+    @property
+    def n(self) -> int:
+        """Number of structural DOFs."""
+        return self.K.shape[0]
+
+    @property
+    def m(self) -> int:
+        """Number of contacts."""
+        return self.T.shape[1]
+
+    @property
+    def contact_names(self) -> list:
+        return self.constraint_names
+
+    @property
+    def sparse(self) -> bool:
+        return sp.issparse(self.K)
+
+    #: The foundation model has no imposed-strain load (the gap is in the contact law).
+    q_imposed_is_constant = True
+
+    def q_imposed(self, t) -> np.ndarray:
+        """Zero: loads are applied through ``load`` only (the interface of ``Model``)."""
+        return np.zeros(self.n)
+
+    def damping(self):
+        """C, or a zero matrix of the right kind if the structure is undamped."""
+        if self.C is not None:
+            return self.C
+        return sp.csr_matrix((self.n, self.n)) if self.sparse else np.zeros((self.n, self.n))
+
+    def D(self, s):
+        """``D(s) = K + s C + s^2 M`` of the structure alone, for a scalar ``s``."""
+        out = self.K + (s * s) * self.M
+        return out if self.C is None else out + s * self.C
+
+    def __repr__(self) -> str:
+        return f"FoundationModel(n={self.n}, m={self.m}, soil={self.soil!r})"
+
+    # ------------------------------------------------------------------ kernels
+    def kernel(self) -> FoundationKernel:
+        """``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)``: the kernel of the dual CLCP."""
+        return FoundationKernel(self)
+
+    def structure_flexibility(self, s) -> np.ndarray:
+        """``T^T D(s)^-1 T`` for ``s`` (L,) (``s != 0`` if ``K`` is singular): (L, m, m)."""
+        s = np.atleast_1d(np.asarray(s))
+        dtype = float if np.isrealobj(s) else complex
+        out = np.empty((s.size, self.m, self.m), dtype=dtype)
+        if self.n <= _DENSE_BATCH_MAX_N:
+            K, M, T = dense(self.K), dense(self.M), dense(self.T)
+            Cd = None if self.C is None else dense(self.C)
+            for lo in range(0, s.size, 2048):
+                sl = s[lo:lo + 2048]
+                D = K[None] + (sl * sl)[:, None, None] * M[None]
+                if Cd is not None:
+                    D = D + sl[:, None, None] * Cd[None]
+                out[lo:lo + 2048] = np.swapaxes(T, 0, 1)[None] @ np.linalg.solve(D, np.broadcast_to(T, D.shape[:1] + T.shape))
+            return out
+        Td = dense(self.T)
+        for k, sk in enumerate(s):
+            lu = Factorization(self.D(sk), what=f"D(s) = K + s C + s^2 M of the structure at s = {sk}")
+            out[k] = Td.T @ lu.solve(Td.astype(dtype))
+        return out
+
+    def weights(self, N: int, dt: float, rule, **cq_options) -> np.ndarray:
+        """Convolution-quadrature weights ``W_0 .. W_N`` of ``Lambda_D(s)``: (N+1, m, m).
+
+        The structure's part ``T^T D(s)^-1 T`` is computed exactly as the impulse responses of the
+        rule applied to the structure (one linear sweep per contact): these *are* its CQ weights
+        (zero initial data), without the round-off that the FFT on a circle suffers where
+        ``D(s)`` is ill-conditioned at small ``|s|`` (a footing resting only on the soil has a
+        pole of ``D(s)^-1`` at ``s = 0``; axially rigid members add stiffness 1e7 times larger).
+        The soil's part is :func:`~unilateral.kernels.cq_weights` of ``Phi(s)`` (``cq_options``:
+        ``L``, ``rho``).
+        """
+        from ..kernels.cq_weights import cq_weights
+        from ..march.direct import sweep_direct
+        from ..march.stepper import StructureStepper
+        from ..rules import get_rule
+
+        rule = get_rule(rule, cq=True)
+        N, m, n = int(N), self.m, self.n
+        free = self.stepping_model()
+        zeros_n, zeros_m = np.zeros((N + 2, n)), np.zeros((N + 2, m))
+        W = np.empty((N + 1, m, m))
+        for j in range(m):
+            stepper = StructureStepper(free, rule, dt, zeros_n, zeros_m, None, condensed=False)
+            impulse = np.zeros((N + 2, m))
+            impulse[1, j] = 1.0
+            _, _, _, opening, _ = sweep_direct(stepper, N + 1, np.zeros(m), np.zeros(m), impulse)
+            W[:, :, j] = opening[1:]
+        soil = cq_weights(self.soil.evaluate, N, dt, rule, **cq_options)
+        return W + (np.real_if_close(soil) if np.iscomplexobj(soil) else soil)
+
+    # ------------------------------------------------------------------ equivalent matrix models
+    def static_model(self) -> Model:
+        """The static problem as a paper :class:`~unilateral.model.Model` (openings ``v``).
+
+        With ``S0 = Phi(0)^-1`` the soil is a set of springs in series with the contacts:
+        ``K + T S0 T^T``, ``F = T S0``, ``H = S0``, ``g = -S0 gap``, imposed load ``-T S0 gap``;
+        its static state is the static state of this model (``psi = -c``).
+        """
+        S0 = np.linalg.inv(self.soil.static())
+        S0 = 0.5 * (S0 + S0.T)
+        return self._spring_model(S0, None)
+
+    def kelvin_model(self) -> Model:
+        """The paper's Model with Kelvin soil elements, when ``Phi = diag(1/(k + s c))``.
+
+        ``K + T k T^T``, ``C + T c T^T``, ``F = T k``, ``F_v = T c``, ``H = k``, ``H_v = c``,
+        ``g = -k gap``: the same problem in the openings (the paper's primal form).
+        """
+        if self.soil.kelvin is None:
+            raise ValueError(f"kelvin_model needs a soil of Kelvin elements (SoilFlexibility.kelvin), "
+                             f"not {self.soil.description}")
+        k, c = self.soil.kelvin
+        return self._spring_model(np.diag(k), np.diag(c) if np.any(c) else None)
+
+    def _spring_model(self, S, Cs) -> Model:
+        T = dense(self.T) if self.n <= _CHECK_MAX_N else self.T
+        TS = T @ S
+        add = lambda A, B: (A + B) if not sp.issparse(A) else (A + sp.csr_matrix(B))
+        K = add(self.K, TS @ T.T)
+        C, F_v, H_v = self.C, None, None
+        if Cs is not None:
+            C = add(self.damping(), T @ Cs @ T.T)
+            F_v, H_v = T @ Cs, Cs
+        q_imp = -(TS @ self.gap)
+        try:
+            return Model(self.M, K, TS, S, C=C, g=-(S @ self.gap), F_v=F_v, H_v=H_v,
+                         q_imposed=q_imp if np.any(q_imp) else None,
+                         dof_names=self.dof_names, constraint_names=self.constraint_names)
+        except ValueError as exc:
+            raise ValueError(f"the structure on the soil's static springs is not stable ({exc}): "
+                             "K + T Phi(0)^-1 T^T must be positive definite; support the structure or "
+                             "connect every free DOF to the foundation") from None
+
+    def modal_form(self, *, tol: float = 1e-8):
+        """``Lambda_D(s)`` as a :class:`~unilateral.kernels.PoleResidueKernel` (rational soils).
+
+        The structure's poles and residues of ``T^T D(s)^-1 T`` (every pole, dense state-space form)
+        plus the soil's :class:`SoilPoles`. Needs a rational soil and a structure whose ``K`` is
+        positive definite (``D(s)^-1`` without a pole at ``s = 0``).
+
+        Raises
+        ------
+        ValueError
+            Saying which condition fails.
+        """
+        from ..kernels.pole_residue import PoleResidueKernel
+        from ..kernels.poles_dense import check_points, dense_poles
+
+        if not self.soil.is_rational:
+            raise ValueError(f"the soil ({self.soil.description}) has no pole-residue form; "
+                             "use method='cq'")
+        try:
+            bare = Model(self.M, self.K, self.T, np.zeros((self.m, self.m)), C=self.C)
+        except ValueError as exc:
+            raise ValueError("the structure without the soil has a zero-stiffness mode (K is singular: "
+                             f"{exc}), so T^T D(s)^-1 T has a pole at s = 0 that the recursive history "
+                             "does not take; use method='cq'") from None
+        parts = dense_poles(bare)                  # Lambda of the bare model = -T^T D^-1 T
+        sp_ = self.soil.poles
+        poles = np.concatenate([parts["poles"], sp_.poles])
+        B = np.vstack([-parts["B"], sp_.B])
+        Cf = np.vstack([parts["Cf"], sp_.Cf])
+        Lambda0 = -parts["Lambda0"] + sp_.static()
+        info = dict(parts["info"], soil_poles=int(np.where(sp_.poles.imag > 0, 2, 1).sum()))
+        kernel = PoleResidueKernel(poles, B, Cf, Lambda0=0.5 * (Lambda0 + Lambda0.T), info=info)
+        err = kernel.relative_error(self.kernel(), check_points(kernel.poles))
+        kernel.info["reconstruction_error"] = err
+        if not err <= tol:
+            raise ValueError(f"the pole-residue form reproduces Lambda_D(s) only to {err:.2e} relative "
+                             f"(tol = {tol:.0e}); use method='cq'")
+        return kernel
+
+    def stepping_model(self):
+        """The structure alone, for :class:`~unilateral.march.stepper.StructureStepper`.
+
+        ``F = T``, ``H = 0``: a sweep with prescribed "increments" ``dc`` loads the structure with
+        ``T dc`` and returns ``offset + T^T du`` (the structural part of the opening).
+        """
+        return _FreeStructure(self)
+
+    # ------------------------------------------------------------------ checks
+    def _check_rigid_modes(self):
+        if self.n > _CHECK_MAX_N:
+            return
+        K = dense(self.K)
+        w, X = np.linalg.eigh(K)
+        scale = max(abs(w).max(initial=0.0), 1e-300)
+        Z = X[:, w <= 1e-10 * scale]
+        if Z.shape[1] == 0:
+            return
+        inertia = Z.T @ (dense(self.M) + (0 if self.C is None else dense(self.C))) @ Z
+        size = np.abs(dense(self.M)).max(initial=0.0) + (0 if self.C is None else np.abs(dense(self.C)).max())
+        e, Y = np.linalg.eigh(0.5 * (inertia + inertia.T))
+        if e[0] <= 1e-10 * max(size, 1e-300):
+            mode = Z @ Y[:, 0]
+            moved = [self.dof_names[i] for i in np.flatnonzero(np.abs(mode) > 1e-6 * np.abs(mode).max())]
+            raise ValueError("the structure without the soil has a zero-stiffness mode without mass or "
+                             f"damping (moving DOFs {', '.join(moved[:10])}): it cannot be stepped; give "
+                             "those DOFs mass, stiffness or supports")
+
+
+class _FreeStructure:
+    """The structure without the soil, in the interface StructureStepper reads (F = T, H = 0)."""
+
+    viscous = False
+    F_v = None
+    H_v = None
+
+    def __init__(self, model: FoundationModel):
+        self.M, self.K, self.C, self.F = model.M, model.K, model.C, model.T
+        self.H = np.zeros((model.m, model.m))
+        self.n, self.m = model.n, model.m
+        self._model = model
+
+    def damping(self):
+        return self._model.damping()
+
+    def H_of(self, s):
+        return self.H
+
+
+class FoundationKernel(Kernel):
+    """``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)`` of a :class:`FoundationModel` (dual kernel).
+
+    ``kernel(s)`` for ``s`` (L,) returns (L, m, m): the opening at the contacts per unit
+    compressive contact force (m/N). Real for real ``s``.
+    """
+
+    def __init__(self, model: FoundationModel):
+        self.model = model
+        self.m = model.m
+
+    def evaluate(self, s: np.ndarray) -> np.ndarray:
+        s = np.atleast_1d(np.asarray(s))
+        out = self.model.structure_flexibility(s) + self.model.soil.evaluate(s)
+        return out.real if np.isrealobj(s) else out
+
+
+def _check_psd(name, A):
+    """Symmetric positive semidefinite (dense check up to a size)."""
+    d = A.diagonal() if sp.issparse(A) else np.diag(A)
+    if np.any(d < 0):
+        i = int(np.argmax(d < 0))
+        raise ValueError(f"{name} must be positive semidefinite; {name}[{i}, {i}] = {float(d[i])!r}")
+    if A.shape[0] <= _CHECK_MAX_N:
+        eig = np.linalg.eigvalsh(dense(A))
+        limit = 10 * A.shape[0] * np.finfo(float).eps * max(np.abs(eig).max(initial=0.0), 1e-300)
+        if eig[0] < -limit:
+            raise ValueError(f"{name} must be symmetric positive semidefinite; its smallest eigenvalue is "
+                             f"{eig[0]:.3g} (largest {eig[-1]:.3g})")
