@@ -1,9 +1,11 @@
 """Wall time of the command line: ``--help``, ``example liolios1990``, ``run examples/pounding.toml``.
 
-Each command runs in a fresh process, ``--repeat`` times after one warm-up run (numba's disk
-cache filled); the table shows the best and the median. Outputs go to a temporary directory.
+Each command runs in a fresh process, ``--repeat`` times (default 3) after one warm-up run (numba's
+disk cache filled); the table shows the best and the median, and the targets. The two analyses
+also run with ``--figures none``: the difference is the time of the figures. Outputs go to a
+temporary directory; the table is also written as JSON (``--out``, default in that directory).
 
-    python benchmarks/cli_timing.py [--repeat 3] [--out timing.json]
+    python benchmarks/cli_timing.py [--repeat 3] [--out timing.json] [--only example]
 """
 
 from __future__ import annotations
@@ -21,7 +23,10 @@ ROOT = Path(__file__).resolve().parents[1]
 COMMANDS = {
     "--help": ["--help"],
     "example liolios1990": ["example", "liolios1990"],
+    "example liolios1990 --figures none": ["example", "liolios1990", "--figures", "none"],
     "run examples/pounding.toml": ["run", str(ROOT / "examples" / "pounding.toml")],
+    "run examples/pounding.toml --figures none": ["run", str(ROOT / "examples" / "pounding.toml"),
+                                                  "--figures", "none"],
 }
 TARGETS = {"example liolios1990": 3.0, "run examples/pounding.toml": 4.0}
 
@@ -30,11 +35,14 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--repeat", type=int, default=3)
     p.add_argument("--out", type=Path, default=None, help="JSON results (default: in a temporary directory)")
+    p.add_argument("--only", default=None, help="Time only the commands whose label contains this text.")
     args = p.parse_args(argv)
     work = Path(tempfile.mkdtemp(prefix="unilateral-cli-timing-"))
     rows = {}
-    for label, command in COMMANDS.items():
-        extra = [] if command == ["--help"] else ["--out", str(work / label.split()[-1].replace("/", "_"))]
+    for k, (label, command) in enumerate(COMMANDS.items()):
+        if args.only is not None and args.only not in label:
+            continue
+        extra = [] if command == ["--help"] else ["--out", str(work / f"out{k}")]
         argv_ = [sys.executable, "-m", "unilateral", *command, *extra]
         subprocess.run(argv_, check=True, capture_output=True)          # warm-up
         times = []
@@ -44,12 +52,12 @@ def main(argv=None) -> int:
             times.append(time.perf_counter() - start)
         rows[label] = {"best_s": min(times), "median_s": statistics.median(times), "runs": times,
                        "target_s": TARGETS.get(label)}
-    print(f"{'command':<30} {'best [s]':>9} {'median [s]':>11} {'target [s]':>11}")
+    print(f"{'command':<42} {'best [s]':>9} {'median [s]':>11} {'target [s]':>11}")
     for label, row in rows.items():
         target = "" if row["target_s"] is None else f"{row['target_s']:.1f}"
-        print(f"{label:<30} {row['best_s']:>9.2f} {row['median_s']:>11.2f} {target:>11}")
+        print(f"{label:<42} {row['best_s']:>9.2f} {row['median_s']:>11.2f} {target:>11}")
     out = args.out or work / "cli_timing.json"
-    out.write_text(json.dumps({"python": sys.version, "rows": rows}, indent=2))
+    out.write_text(json.dumps({"python": sys.version, "repeat": args.repeat, "rows": rows}, indent=2))
     print(f"\nresults: {out}")
     return 0
 

@@ -81,4 +81,4 @@ def test_bad_options_name_the_option():
     result = CliRunner().invoke(main, ["example", "liolios1990", "--rule", "rk4"])
     assert result.exit_code == 2 and "--rule" in result.output
     result = CliRunner().invoke(main, ["example", "liolios1990", "--dt", "-1", "--out", "/tmp/unused-unilateral"])
-    assert result.exit_code == 1 and "dt must be a positive finite number, got -1.0" in result.output
+    assert result.exit_code == 2 and "Invalid value for '--dt': -1 is not a positive finite number" in result.output

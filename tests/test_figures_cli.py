@@ -113,7 +113,7 @@ def test_plot_formats_and_a_file_that_is_not_results_nc(pounding, tmp_path):
                                        "--figures", "pdf"])
     assert result.exit_code == 0 and (tmp_path / "fig2.pdf").exists() and not (tmp_path / "fig2.png").exists()
     result = CliRunner().invoke(main, ["plot", str(out / "summary.json")])
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "not a results.nc" in result.output
 
 

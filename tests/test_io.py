@@ -153,10 +153,10 @@ def test_save_netcdf_is_atomic(tmp_path, sol, monkeypatch):
     uio.save_netcdf(sol, target)
     good = target.read_bytes()
 
-    def broken(self, path, **kw):
+    def broken(path, data):                     # the netCDF bytes are encoded in memory, then written
         half_then_fail(path)
 
-    monkeypatch.setattr(xr.Dataset, "to_netcdf", broken)
+    monkeypatch.setattr("unilateral.io.results._write_bytes", broken)
     with pytest.raises(RuntimeError):
         uio.save_netcdf(uio.to_dataset(sol, units=UNITS), target)
     assert target.read_bytes() == good and listing(tmp_path) == ["run.nc"]

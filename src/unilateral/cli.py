@@ -8,6 +8,7 @@ them against the registries) so that a wrong ``--lcp`` fails before anything hea
 
 from __future__ import annotations
 
+import math
 import sys
 import time
 from pathlib import Path
@@ -59,6 +60,24 @@ def _method(ctx, param, value):
     return value
 
 
+class PositiveFinite(click.ParamType):
+    """A click parameter: a finite number > 0 (a time step, an end time)."""
+
+    name = "positive number"
+
+    def __init__(self, example: str):
+        self.example = example
+
+    def convert(self, value, param, ctx):
+        try:
+            x = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number; give a positive finite number, e.g. {self.example}", param, ctx)
+        if not math.isfinite(x) or x <= 0.0:
+            self.fail(f"{value} is not a positive finite number; give a number > 0, e.g. {self.example}", param, ctx)
+        return x
+
+
 def _analysis_options(function):
     options = [
         click.option("--method", default=None, callback=_method, metavar="[" + "|".join(METHOD_NAMES) + "|...]",
@@ -67,8 +86,8 @@ def _analysis_options(function):
                           "Default: cq for examples, the model file's [analysis] method for run."),
         click.option("--rule", type=click.Choice(RULE_NAMES), default=None,
                      help="Time discretisation (default bdf2; newmark and hht need --method direct)."),
-        click.option("--dt", type=float, default=None, help="Time step [time unit of the model]."),
-        click.option("--t-end", "t_end", type=float, default=None, help="End time."),
+        click.option("--dt", type=PositiveFinite("0.001"), default=None, help="Time step [time unit of the model]."),
+        click.option("--t-end", "t_end", type=PositiveFinite("1.0"), default=None, help="End time."),
         click.option("--lcp", type=click.Choice(LCP_NAMES), default=None, help="LCP solver (default bpp)."),
         click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=None,
                      help="Output directory."),
@@ -115,21 +134,20 @@ def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral):
               help="Figure formats: png (default), pdf, svg, comma-separated, or none.")
 def plot(results, out, formats):
     """Draw the figures of a results.nc written by `run` or `example` (the same files they drew)."""
-    head = results.read_bytes()[:8]
-    if not (head.startswith(b"\x89HDF\r\n\x1a\n") or head.startswith(b"CDF")):
-        raise click.ClickException(
-            f"{results} is not a results.nc (netCDF) file; give the results.nc that `unilateral run` "
-            f"or `unilateral example` wrote, e.g. `unilateral plot {results.parent / 'results.nc'}`")
+    from .analysis.outputs import figure_view
     from .figures.results import draw_figures
-    from .io import load_netcdf
+    from .io.atomic import WriteError
+    from .io.results import ResultsFileError, open_results
 
     try:
-        ds = load_netcdf(results)
-    except (OSError, ValueError) as exc:
-        raise click.ClickException(f"{results}: cannot read it as a results.nc ({exc})") from None
-    if "time" not in ds.coords:
-        raise click.ClickException(f"{results} is a netCDF file but not a results.nc of unilateral (no time axis)")
-    for path in draw_figures(ds, out or results.parent, formats):
+        ds = open_results(results)
+    except ResultsFileError as exc:
+        raise _UsageFailure(str(exc)) from None
+    try:
+        paths = draw_figures(figure_view(ds), out or results.parent, formats)
+    except (WriteError, OSError) as exc:
+        raise click.ClickException(f"cannot write the figures to {out or results.parent}: {exc}") from None
+    for path in paths:
         click.echo(path)
 
 
@@ -168,10 +186,19 @@ def _run(call, out, overrides):
     """Run an analysis with a progress bar, print the report; exit 1 if a case failed."""
     started = time.perf_counter()
     bar = _ProgressBar() if sys.stderr.isatty() else None
+    from .io.atomic import WriteError
+    from .io.folder import OutputFolderError
+
     try:
         result = call(bar)
+    except OutputFolderError as exc:
+        raise click.BadParameter(str(exc), param_hint="'--out'") from None
+    except WriteError as exc:
+        raise click.ClickException(f"{exc}; the previous outputs in {out} are unchanged") from None
     except (ValueError, TypeError) as exc:
         raise click.ClickException(str(exc)) from None
+    except MemoryError as exc:                  # solve() refuses runs that would not fit, with the figures
+        raise click.ClickException(str(exc) or "out of memory: increase --dt or shorten --t-end") from None
     finally:
         if bar is not None:
             bar.close()
@@ -180,6 +207,12 @@ def _run(call, out, overrides):
     click.echo(f"results in {out}/ ({time.perf_counter() - started:.2f} s)")
     if not result.get("success_all", True):
         sys.exit(1)
+
+
+class _UsageFailure(click.ClickException):
+    """An error in what the user gave (a wrong file): exit code 2, like click's usage errors."""
+
+    exit_code = 2
 
 
 class _ProgressBar:

@@ -18,7 +18,9 @@ _EXPORTS = {"report": "outputs", "run_cases": "outputs", "write_outputs": "outpu
 
 def __getattr__(name):
     if name in _EXPORTS:
-        return getattr(import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+        value = getattr(import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+        globals()[name] = value         # later lookups (and pdoc) find it in the module
+        return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 

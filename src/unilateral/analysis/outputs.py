@@ -1,6 +1,10 @@
 """A structural analysis from start to finish: solve with and without uplift, write every output.
 
-Outputs in the output directory, each written atomically (a failed run leaves what was there):
+Outputs in the output directory, replaced as a set (:class:`unilateral.io.folder.OutputFolder`):
+every file is written into a staging folder next to it, which is then swapped in, so the folder
+holds the complete files of one run at every instant and a failed or killed run leaves what was
+there. A case that stopped early (``success=False``) is written up to where it stopped: its CSV
+tables end there, and in ``results.nc`` its values after that are NaN.
 
 =========================  ================================================================
 ``results.nc``             all cases (dims ``case x time x dof``, ``case x time x constraint``,
@@ -28,11 +32,16 @@ import numpy as np
 import xarray as xr
 
 from ..io import format_summary, save_csv, save_netcdf, summary, to_dataset, write_json_atomic
-from ..io.atomic import to_jsonable, write_text_atomic
+from ..io.atomic import WriteError, to_jsonable, write_text_atomic
+from ..io.folder import OutputFolder
+from ..result import Solution
 from ..solve import solve
 from .results import ground_motions_of, structure_results
 
 COMPONENTS = ("ux", "uy", "rz")
+#: What to try when a case fails (printed under its message).
+FAILURE_HINT = ("  what to try: a smaller time step (--dt), another LCP solver (--lcp bpp or lemke), or "
+                "--method direct; the outputs hold the case up to where it stopped")
 
 
 def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", initial="static",
@@ -57,9 +66,11 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
                   point=None, storeys=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
+    The files replace those of the previous run in ``out_dir`` as a set (see the module's doc).
+
     Parameters
     ----------
-    out_dir : path, created if needed
+    out_dir : path, created if needed, or a prepared :class:`unilateral.io.folder.OutputFolder`
     cases : dict of name -> Solution ("unilateral", "bilateral")
     structure : Structure, optional
         Gives node displacements (slave nodes included) and, with ``model``, the structure's
@@ -76,13 +87,34 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     point : (x0, y0) of the overturning moment (default: the lowest, leftmost node)
     storeys : ``[(lower_node, upper_node)]`` storeys for drifts (default: levels by elevation)
     """
+    folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir)
+    try:
+        staging = folder.prepare()
+        result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
+                            meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
+                            point=point, storeys=storeys)
+        final = folder.commit()
+    except WriteError as exc:                   # name the output folder, not the staging folder
+        raise WriteError(folder.path / exc.path.name, exc) from exc
+    except OSError as exc:                      # the swap (a rename)
+        raise WriteError(folder.path, exc) from exc
+    finally:
+        folder.close()
+    result["figures"] = [str(final / Path(p).name) for p in result["figures"]]
+    return result
+
+
+def _write_all(out, cases: dict, *, structure, units, figure, title, meta, labels, model, load, rule, formats,
+               point, storeys) -> dict:
+    """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
     from ..figures.results import draw_figures
 
     labels = labels or {}
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    computed = cases
+    cases = _on_common_axis(cases)
     meta = dict(meta or {})
-    main = cases.get("unilateral") or cases["bilateral"]
+    main_name = "unilateral" if "unilateral" in cases else "bilateral"
+    main = cases[main_name]
     if figure is not None:
         meta.update(figure_node=str(figure["node"]), figure_dof=figure["dof"],
                     figure_text=_strip_unit(figure.get("label") or f"{figure['dof']} of node {figure['node']}"))
@@ -95,35 +127,86 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
         ds = _with_node_displacements(ds, cases, structure, units)
         ds = _with_constraint_coords(ds, structure)
         if model is not None:
-            extra_results = _structure_results(structure, model, cases, load=load, units=units,
+            extra_results = _structure_results(structure, model, computed, load=load, units=units,
                                                rule=rule or main.stats.get("rule", "bdf2"), point=point,
                                                storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
     save_netcdf(ds, out / "results.nc")
-    for name, sol in cases.items():
-        save_csv(sol, out, prefix="" if sol is main else f"{name}_")
+    for name, sol in computed.items():
+        save_csv(sol, out, prefix="" if name == main_name else f"{name}_")
     if extra_results is not None:
-        _save_result_tables(ds, out, main_name=next(name for name, sol in cases.items() if sol is main))
+        _save_result_tables(ds, out, main_name=main_name)
 
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
     if figure is not None and structure is not None:
         histories = {labels.get(name, name): structure.node_displacement(sol, figure["node"], figure["dof"])
-                     for name, sol in cases.items()}
+                     for name, sol in computed.items()}
         extra["figure"] = {
             "node": figure["node"], "dof": figure["dof"],
             "static": float(next(iter(histories.values()))[0]),
             "peak": {label: float(np.max(y)) for label, y in histories.items()},
             "minimum": {label: float(np.min(y)) for label, y in histories.items()},
         }
-    if len(cases) > 1:
-        extra["cases"] = {name: {"success": sol.success, "message": sol.message}
-                          for name, sol in cases.items()}
-    result = summary(main, units=units, extra=extra)
+    if len(cases) > 1 or not main.success:
+        extra["cases"] = {name: {"success": sol.success, "message": sol.message,
+                                 "steps_computed": len(sol.t) - 1, "t_reached": float(sol.t[-1])}
+                          for name, sol in computed.items()}
+    result = summary(computed[main_name], units=units, extra=extra)
     if extra_results is not None:
         result["results"] = to_jsonable(extra_results["peaks"])
     write_json_atomic(out / "summary.json", result)
-    result["figures"] = [str(p) for p in draw_figures(ds, out, formats)]
+    result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]
     return result
+
+
+def figure_view(ds: xr.Dataset) -> xr.Dataset:
+    """The part of a ``results.nc`` Dataset the figures show: every case where all have values.
+
+    A case that stopped early is NaN after its last step (:func:`write_outputs`); the figures
+    then show all cases up to that time. A Dataset without NaN is returned as it is.
+    """
+    finite = None
+    for name in ("v", "u"):
+        if name in ds.data_vars and "time" in ds[name].dims:
+            values = ds[name].transpose("time", ...).values
+            ok = np.isfinite(values.reshape(values.shape[0], -1)).all(axis=1)
+            finite = ok if finite is None else finite & ok
+    if finite is None or finite.all():
+        return ds
+    return ds.isel(time=slice(0, max(int(np.argmin(finite)), 1)))
+
+
+def _on_common_axis(cases: dict) -> dict:
+    """The cases on the longest time axis: one that stopped early is padded with NaN.
+
+    A failed case (``success=False``) ends where its march stopped; ``results.nc`` holds all cases
+    on one time axis, so its values after that are NaN, and every case gets the statistic
+    ``steps_computed`` (a variable along ``case`` in ``results.nc``).
+    """
+    longest = max(cases.values(), key=lambda sol: len(sol.t))
+    t = np.asarray(longest.t)
+    if all(len(sol.t) == len(t) for sol in cases.values()):
+        return cases
+    out = {}
+    for name, sol in cases.items():
+        k = len(sol.t)
+        if not np.array_equal(np.asarray(sol.t), t[:k]):
+            out[name] = sol                     # another grid: to_dataset says so
+            continue
+        padded = {key: _pad(getattr(sol, key), len(t)) for key in ("v", "psi", "psiL", "u", "udot")}
+        out[name] = Solution(t=t, **padded, success=sol.success, message=sol.message,
+                             stats={**sol.stats, "steps_computed": k - 1}, dof_names=sol.dof_names,
+                             constraint_names=sol.constraint_names)
+    return out
+
+
+def _pad(values, rows: int):
+    if values is None:
+        return None
+    values = np.asarray(values, dtype=float)
+    padded = np.full((rows, *values.shape[1:]), np.nan)
+    padded[: len(values)] = values
+    return padded
 
 
 def _strip_unit(label: str) -> str:
@@ -135,7 +218,7 @@ def _strip_unit(label: str) -> str:
 
 
 def _structure_results(structure, model, cases, *, load, units, rule, point, storeys):
-    main = next(iter(cases.values()))
+    main = max(cases.values(), key=lambda sol: len(sol.t))        # the longest time axis
     samples = None
     if load is not None:
         t = main.t
@@ -161,7 +244,9 @@ def _with_results(ds, res, multi, names):
         if not all(case in per_case for case in names):
             continue
         if multi:
-            data = np.stack([per_case[case] for case in names])
+            rows = ds.sizes["time"]             # a case that stopped early: NaN after its last step
+            data = np.stack([_pad(per_case[case], rows) if dims[0] == "time" else per_case[case]
+                             for case in names])
             new[name] = xr.DataArray(data, dims=("case", *dims), attrs=attrs)
         else:
             new[name] = xr.DataArray(per_case[names[0]], dims=dims, attrs=attrs)
@@ -175,6 +260,8 @@ def _with_results(ds, res, multi, names):
 
 def _with_constraint_coords(ds, structure):
     """Position, kind and gap of each unilateral element, as coordinates along ``constraint``."""
+    if getattr(structure, "foundation", None) is not None and "constraint" in ds.dims:
+        return ds.assign_coords(structure.foundation.constraint_coords())      # the footing's patches
     if not structure.m:
         return ds
     by_name = {e.name: e for e in structure.elements}
@@ -248,7 +335,8 @@ def report(result: dict) -> str:
         text += "\n\n" + "\n".join(_result_lines(results, units))
     for name, case in extra.get("cases", {}).items():
         if not case["success"]:
-            text += f"\n{name} case FAILED: {case['message']}"
+            text += (f"\n{name} case FAILED at t = {case.get('t_reached', float('nan')):.4g} "
+                     f"(step {case.get('steps_computed', '?')}): {case['message']}\n{FAILURE_HINT}")
     return text
 
 

@@ -89,10 +89,17 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         entry = variables.setdefault(name, (dims, {}, {"long_name": long_name} | ({"units": unit} if unit else {})))
         entry[1][case] = np.asarray(array, dtype=float)
 
+    foundation = getattr(structure, "foundation", None)
     for case, sol in cases.items():
         if sol.u is None or len(sol.t) < 2:
             continue
-        q0 = None if load_samples is None else load_samples[0]
+        contact = None
+        if foundation is not None:          # the frame alone, loaded by q + T c (contact forces c = -psi)
+            from ..structure.foundation import structural_solution
+
+            contact = foundation.contact_load(structure, sol)
+            contact_sol, sol = sol, structural_solution(sol)
+        q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
         h = F.Histories.from_solution(structure, sol, rule, load0=q0)
         t = h.t
         put("acceleration", ("time", "dof"), case, h.uddot, "acceleration relative to the ground (of the time rule)",
@@ -117,6 +124,10 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
             "(moment of a rotational spring)", Fu)
         reaction = F.reactions(structure, h)
+        if foundation is not None:          # the soil's contact forces are ground reactions at the footing
+            forces, at = foundation.ground_reactions(structure, contact_sol)
+            reaction["ground_elements"].update(forces)
+            reaction["at"].update(at)
         base = F.base_forces(structure, reaction, point)
         if reaction["support"]:
             coords["support"] = list(reaction["support"])
@@ -147,13 +158,22 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         energy = None
         if load_samples is not None:
             energy = energy_balance(structure, h, np.asarray(load_samples)[: len(t)])
+            if contact is not None:         # the work of the contact forces went into the soil
+                from ..structure.foundation import add_soil_energy
+
+                energy = add_soil_energy(energy, contact, h.u)
             for key in ENERGY_KEYS:
                 put(f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
                     "1" if key == "relative_error" else moment_unit)
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
     static = {}
-    if model.n <= MODES_MAX_N:
+    if foundation is not None:              # the bilateral structure: on the soil's static springs
+        try:
+            model = model.static_model()
+        except ValueError:                  # a soil without static flexibility (creep): no modes
+            model = None
+    if model is not None and model.n <= MODES_MAX_N:
         info = modes(model, count=10, influence={"x": structure.influence("ux"), "y": structure.influence("uy")})
         if info["period"].size:
             coords["mode"] = np.arange(1, info["period"].size + 1)

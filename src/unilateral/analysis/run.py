@@ -86,24 +86,39 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
 
     ``progress(done, total)`` is called with work units over the whole run: ``N`` per case (step
     by step where the march reports) and ``N`` for writing the outputs and figures.
+
+    The output folder is checked (and its staging folder created) before anything is solved, so a
+    read-only folder or a path through a file fails at once
+    (:class:`~unilateral.io.folder.OutputFolderError`). A case that fails (``success=False``) does
+    not stop the run: every case is written as far as it got, and ``success_all`` is False.
     """
+    from .._validate import positive_float
+    from ..io.folder import OutputFolder
     from ..solve import solve
     from .outputs import write_outputs
 
-    N = int(round(settings["t_end"] / settings["dt"]))
+    dt = positive_float("dt", settings["dt"])
+    t_end = positive_float("t_end", settings["t_end"])
+    N = max(int(round(t_end / dt)), 1)
     total = N * (len(cases) + 1)
     kw = {key: settings[key] for key in SETTINGS}
-    solved = {}
-    for k, name in enumerate(cases):
-        done = k * N
-        callback = None if progress is None else (lambda step, _N, done=done: progress(done + step, total))
-        solved[name] = solve(model, load, callback=callback, bilateral=(name == "bilateral"), **kw)
-        if progress is not None:
-            progress((k + 1) * N, total)
-    result = write_outputs(out, solved, structure=structure, units=units, figure=figure, title=title,
-                           meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
-                           formats=formats, point=point, storeys=storeys)
+    folder = OutputFolder(out)
+    folder.prepare()
+    try:
+        solved = {}
+        for k, name in enumerate(cases):
+            done = k * N
+            callback = None if progress is None else (lambda step, _N, done=done: progress(done + step, total))
+            solved[name] = solve(model, load, callback=callback, bilateral=(name == "bilateral"), **kw)
+            if progress is not None:
+                progress((k + 1) * N, total)
+        result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
+                               meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
+                               formats=formats, point=point, storeys=storeys)
+    finally:
+        folder.close()
     if progress is not None:
         progress(total, total)
     result["success_all"] = all(sol.success for sol in solved.values())
     return result
+

@@ -32,5 +32,7 @@ def __getattr__(name):
     if name in _EXPORTS:
         from importlib import import_module
 
-        return getattr(import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+        value = getattr(import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+        globals()[name] = value         # later lookups (and pdoc) find it in the module
+        return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -123,9 +123,10 @@ def quantity_units(study) -> dict:
 def write_table(study, results, out) -> "xarray.Dataset":  # noqa: F821
     """Write ``study.nc`` and ``study.csv`` to ``out`` atomically; return the dataset."""
     out = Path(out)
+    from ..io.results import write_netcdf
+
     ds = study_table(study, results)
-    with atomic_path(out / "study.nc") as tmp:
-        ds.to_netcdf(tmp, engine="h5netcdf")
+    write_netcdf(ds, out / "study.nc")          # a full disk is a clean WriteError, not a crash of HDF5
     frame = ds.to_dataframe()
     with atomic_path(out / "study.csv") as tmp:
         frame.to_csv(tmp)

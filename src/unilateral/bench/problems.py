@@ -17,8 +17,6 @@ Every factory returns a :class:`Problem` ``(model, load, dt, N, output, descript
     ``winkler100`` and ``winkler1000``.
 """
 
-from __future__ import annotations
-
 import re
 from collections.abc import Callable
 from typing import NamedTuple

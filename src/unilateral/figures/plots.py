@@ -2,8 +2,17 @@
 
 The figures are built on :class:`matplotlib.figure.Figure` with an Agg canvas, without pyplot:
 no backend is switched, no window opens and nothing is registered globally. The house style
-(font sizes for print, constrained layout, TrueType fonts in PDF) applies only while a figure is
+(font sizes for print, TrueType fonts in PDF, path simplification) applies only while a figure is
 built or saved. Widths suit a journal page (6.3 in, about 16 cm).
+
+Drawing is kept fast for long runs (10^5 steps and more):
+
+* the axes are placed with fixed margins in inches (:func:`_figure`), not by constrained or tight
+  layout, which measure every text twice per save;
+* a line never gets more than about :data:`MAX_POINTS` points: :func:`envelope` keeps, in each of
+  ``MAX_POINTS / 2`` time buckets, the samples where the curve is lowest and highest, so peaks and
+  the envelope of oscillations drawn at the figure's resolution are kept exactly;
+* the figure's dpi is the saving dpi, so text extents are measured once.
 """
 
 from __future__ import annotations
@@ -14,6 +23,7 @@ import sys
 from pathlib import Path
 
 import matplotlib as mpl
+import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
@@ -21,12 +31,15 @@ from ..io.atomic import atomic_write
 
 PAGE_WIDTH = 6.3            # inches
 DPI = 150
+MAX_POINTS = 2000
+"""Most points drawn per line (2 per time bucket: the bucket's minimum and maximum)."""
 
 _STYLE = {
     "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "xtick.labelsize": 8, "ytick.labelsize": 8,
     "legend.fontsize": 8, "figure.titlesize": 10, "lines.linewidth": 1.2, "axes.linewidth": 0.6,
     "axes.grid": True, "grid.linewidth": 0.4, "grid.alpha": 0.6, "axes.formatter.use_mathtext": False,
     "legend.framealpha": 0.9, "pdf.fonttype": 42, "ps.fonttype": 42,
+    "path.simplify": True, "path.simplify_threshold": 0.2, "agg.path.chunksize": 20000,
 }
 
 
@@ -68,8 +81,77 @@ def save_figure(fig: Figure, path_without_suffix: str | os.PathLike, formats=("p
     return paths
 
 
-def _figure(size, **subplots):
-    """A constrained-layout Figure on an Agg canvas, and its subplots."""
-    fig = Figure(figsize=size, layout="constrained")
+def _figure(size, *, margins=(0.8, 0.2, 0.5, 0.35), gaps=(0.8, 0.35), **subplots):
+    """A Figure on an Agg canvas with fixed margins, and its subplots.
+
+    Parameters
+    ----------
+    size : (width, height)
+        Figure size, inches.
+    margins : (left, right, bottom, top)
+        Space around the grid of axes, inches: room for tick labels and axis labels (left,
+        bottom), a right-hand twin axis (right) and a title (top).
+    gaps : (horizontal, vertical)
+        Space between neighbouring axes, inches.
+    **subplots
+        Passed to :meth:`matplotlib.figure.Figure.subplots` (``nrows``, ``ncols``, ``sharex``,
+        ``squeeze``, ``height_ratios``, ...).
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+    axes : Axes or array of Axes
+    """
+    width, height = size
+    left, right, bottom, top = margins
+    nrows, ncols = subplots.get("nrows", 1), subplots.get("ncols", 1)
+    grid_w = max(width - left - right, 0.1 * width)
+    grid_h = max(height - bottom - top, 0.1 * height)
+    axes_w = max(grid_w - (ncols - 1) * gaps[0], 0.1) / ncols
+    axes_h = max(grid_h - (nrows - 1) * gaps[1], 0.1) / nrows
+    fig = Figure(figsize=size, dpi=DPI)
     FigureCanvasAgg(fig)
+    fig.subplots_adjust(left=left / width, right=1.0 - right / width, bottom=bottom / height,
+                        top=1.0 - top / height, wspace=gaps[0] / axes_w, hspace=gaps[1] / axes_h)
     return fig, fig.subplots(**subplots)
+
+
+def envelope(x, *ys, max_points: int = MAX_POINTS):
+    """Samples of a curve to draw: every sample, or per bucket the extreme ones.
+
+    With ``n = len(x) <= max_points`` the inputs are returned as they are. Otherwise the samples
+    are cut into ``max_points // (2 * len(ys))`` buckets of consecutive samples and, in each
+    bucket, the samples where each ``y`` is lowest and highest are kept (with the first and the
+    last sample), in their order. The global extremes of every ``y`` are therefore kept exactly,
+    and the drawn line covers the same band as the full one at the figure's resolution.
+
+    Parameters
+    ----------
+    x : (n,) array
+        Abscissae (times; or the first coordinate of a parametric curve, then also pass it in ``ys``).
+    *ys : (n,) arrays
+        Ordinates sharing ``x``; the extremes of each are kept.
+    max_points : int
+        Most samples returned (>= 4 per series).
+
+    Returns
+    -------
+    tuple of arrays
+        ``(x_kept, *ys_kept)``, each ``(k,)`` with ``k <= max_points + 2``.
+    """
+    x = np.asarray(x)
+    ys = tuple(np.asarray(y) for y in ys)
+    n = len(x)
+    per_bucket = 2 * max(len(ys), 1)
+    if n <= max_points or max_points < 2 * per_bucket:
+        return (x, *ys)
+    buckets = max_points // per_bucket
+    size = -(-n // buckets)
+    keep = [np.array([0, n - 1])]
+    offsets = np.arange(buckets) * size
+    for y in ys:
+        padded = np.concatenate([y, np.full(buckets * size - n, y[-1])]).reshape(buckets, size)
+        finite = np.where(np.isnan(padded), 0.0, padded)
+        keep += [offsets + np.argmin(finite, axis=1), offsets + np.argmax(finite, axis=1)]
+    index = np.unique(np.minimum(np.concatenate(keep), n - 1))
+    return (x[index], *(y[index] for y in ys))

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .plots import PAGE_WIDTH, _figure, _styled, save_figure
+from .plots import PAGE_WIDTH, _figure, _styled, envelope, save_figure
 
 MAX_PANELS = 6
 FORMATS = ("png", "pdf")
@@ -62,12 +62,52 @@ def force_scale(unit: str, peak: float) -> tuple[str, float]:
     return unit, 1.0
 
 
+#: Variables whose ``units`` attribute gives a base unit, in order of preference.
+_UNIT_SOURCES = {"time": ("time",), "length": ("v", "constraint_deformation", "storey_drift"),
+                 "force": ("psi", "base_shear", "axial_force")}
+
+
 def _unit(ds, key):
-    return str(ds.attrs.get(f"units_{key}", ""))
+    """The base unit ``key`` (``time``, ``length``, ``force``) of the Dataset, or ``""``.
+
+    From the attribute ``units_<key>`` if present, else from the ``units`` of a variable that has
+    that unit (``time``; ``v``; ``psi``), as :func:`unilateral.io.to_dataset` writes them.
+    """
+    unit = ds.attrs.get(f"units_{key}")
+    if unit:
+        return str(unit)
+    for name in _UNIT_SOURCES.get(key, ()):
+        if name in ds.variables and ds[name].attrs.get("units"):
+            return str(ds[name].attrs["units"])
+    return ""
 
 
 def _axis(text, unit):
     return f"{text} [{unit}]" if unit else text
+
+
+_SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079")
+
+
+def _power_of_ten(value, _position=None) -> str:
+    """Tick label ``10⁻⁶`` of a logarithmic axis, in plain text (mathtext is slow to lay out)."""
+    if value <= 0:
+        return ""
+    exponent = np.log10(value)
+    if abs(exponent - round(exponent)) > 1e-9:
+        return ""
+    return "10" + str(int(round(exponent))).translate(_SUPERSCRIPT)
+
+
+def _map_rows(n: int, max_rows: int = 1000):
+    """Start indices of time buckets for a space-time map with more than ``max_rows`` rows.
+
+    None when every row is drawn; otherwise bucket starts plus ``n``, for
+    ``np.maximum.reduceat`` (the peak opening of each bucket is drawn, so no peak is lost).
+    """
+    if n <= max_rows:
+        return None
+    return np.append(np.linspace(0, n, max_rows, endpoint=False).astype(int), n)
 
 
 def draw_figures(ds, out_dir, formats=("png",)) -> list[Path]:
@@ -104,9 +144,9 @@ def history_figure(ds):
               if "case" in nd.dims else {"": nd.values})
     peak = max(float(np.max(np.abs(y))) for y in curves.values())
     unit, factor = ("rad", 1.0) if dof == "rz" else length_scale(_unit(ds, "length"), peak)
-    fig, ax = _figure((PAGE_WIDTH, 3.0))
+    fig, ax = _figure((PAGE_WIDTH, 3.0), margins=(0.8, 0.2, 0.5, 0.35 if ds.attrs.get("title") else 0.15))
     for k, (label, y) in enumerate(curves.items()):
-        ax.plot(t, factor * y, ("-", "--", "-.", ":")[k % 4], color=f"C{k}", label=label or None)
+        ax.plot(*envelope(t, factor * y), ("-", "--", "-.", ":")[k % 4], color=f"C{k}", label=label or None)
     ax.margins(x=0)
     ax.set(xlabel=_axis("time t", _unit(ds, "time")),
            ylabel=_axis(ds.attrs.get("figure_text") or f"{dof} of node {node}", unit))
@@ -145,11 +185,12 @@ def _contact_panels(d):
         shown = np.sort(np.argsort(-v.max(axis=0), kind="stable")[:MAX_PANELS])
     lunit, lf = length_scale(_unit(d, "length"), float(np.max(v[:, shown], initial=0.0)))
     funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, shown], initial=0.0)))
-    fig, axes = _figure((PAGE_WIDTH, 0.6 + 1.45 * len(shown)), nrows=len(shown), sharex=True, squeeze=False)
+    fig, axes = _figure((PAGE_WIDTH, 0.9 + 1.45 * len(shown)), margins=(0.8, 0.8, 0.5, 0.55), gaps=(0.0, 0.3),
+                        nrows=len(shown), sharex=True, squeeze=False)
     for ax, i in zip(axes[:, 0], shown):
-        ax.plot(t, lf * v[:, i], color="C0")
+        ax.plot(*envelope(t, lf * v[:, i]), color="C0")
         twin = ax.twinx()
-        twin.plot(t, -ff * psi[:, i], color="C3", linestyle="--")
+        twin.plot(*envelope(t, -ff * psi[:, i]), color="C3", linestyle="--")
         twin.grid(False)
         ax.set_ylim(0.0, 1.08 * lf * float(v[:, i].max()) or 1.0)
         twin.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
@@ -174,8 +215,12 @@ def _contact_map(d):
     lunit, lf = length_scale(_unit(d, "length"), float(np.max(v, initial=0.0)))
     funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi, initial=0.0)))
     xunit = _unit(d, "length")
-    fig, (top, mid, low) = _figure((PAGE_WIDTH, 6.2), nrows=3, height_ratios=(2.2, 1, 1))
-    image = top.pcolormesh(x, t, lf * v, shading="nearest", cmap="viridis", vmin=0.0)
+    fig, (top, mid, low) = _figure((PAGE_WIDTH, 6.2), margins=(0.8, 0.2, 0.5, 0.35), gaps=(0.0, 0.6),
+                                   nrows=3, height_ratios=(2.2, 1, 1))
+    rows = _map_rows(len(t))
+    tm = t[rows[:-1]] if rows is not None else t
+    vm = np.maximum.reduceat(v, rows[:-1], axis=0) if rows is not None else v
+    image = top.pcolormesh(x, tm, lf * vm, shading="nearest", cmap="viridis", vmin=0.0, rasterized=True)
     fig.colorbar(image, ax=top, label=_axis("opening v", lunit))
     top.set(xlabel=_axis("position x", xunit), ylabel=_axis("time t", _unit(d, "time")),
             title=f"Opening of {len(x)} unilateral elements over time")
@@ -192,6 +237,8 @@ def _contact_map(d):
 @_styled
 def force_deformation_figure(ds):
     """Force (compression positive) against deformation of the unilateral elements."""
+    from matplotlib.ticker import MaxNLocator
+
     d = _constraint_data(ds)
     if d is None or "constraint_deformation" not in d:
         return None
@@ -204,13 +251,16 @@ def force_deformation_figure(ds):
     funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, shown], initial=0.0)))
     ncols = min(3, len(shown))
     nrows = -(-len(shown) // ncols)
-    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), 0.5 + 2.0 * nrows), nrows=nrows, ncols=ncols,
-                        squeeze=False)
+    title = 0.4 if len(shown) < len(names) else 0.25
+    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), 0.5 + title + 2.0 * nrows), nrows=nrows, ncols=ncols,
+                        margins=(0.7, 0.4, 0.5, title), gaps=(0.75, 0.75), squeeze=False)
     for ax in axes.flat[len(shown):]:
         ax.remove()
     for ax, i in zip(axes.flat, shown):
-        ax.plot(lf * e[:, i], -ff * psi[:, i], color="C0", marker="o", markevery=[0], markersize=3)
+        ax.plot(*envelope(lf * e[:, i], lf * e[:, i], -ff * psi[:, i])[1:], color="C0", marker="o",
+                markevery=[0], markersize=3)
         ax.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
         ax.set_title(names[i], loc="left")
         ax.set(xlabel=_axis("deformation", lunit), ylabel=_axis("compression", funit))
     if len(shown) < len(names):
@@ -234,20 +284,21 @@ def gaps_figure(ds):
     names = [str(c) for c in d["constraint"].values]
     lunit, lf = length_scale(_unit(d, "length"), max(float(np.max(np.abs(e[:, gaps]))), float(np.max(gap[gaps]))))
     funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, gaps], initial=0.0)))
-    fig, axes = _figure((PAGE_WIDTH, 0.6 + 2.4 * len(gaps)), nrows=2 * len(gaps), sharex=True, squeeze=False,
-                        height_ratios=[2, 1] * len(gaps))
+    fig, axes = _figure((PAGE_WIDTH, 0.6 + 2.6 * len(gaps)), margins=(0.8, 0.2, 0.5, 0.3), gaps=(0.0, 0.3),
+                        nrows=2 * len(gaps), sharex=True, squeeze=False, height_ratios=[2, 1.2] * len(gaps))
     for k, i in enumerate(gaps):
         ax, low = axes[2 * k, 0], axes[2 * k + 1, 0]
-        ax.plot(t, lf * e[:, i], color="C0", label="relative displacement (opening +)")
+        ax.plot(*envelope(t, lf * e[:, i]), color="C0", label="relative displacement (opening +)")
         ax.axhline(-lf * gap[i], color="C3", linestyle="--", linewidth=0.9,
                    label=f"contact: gap {lf * gap[i]:g} {lunit} closed")
         ax.margins(x=0)
         ax.set_title(names[i], loc="left")
         ax.set_ylabel(_axis("opening", lunit))
         ax.legend(loc="best")
-        low.plot(t, -ff * psi[:, i], color="C3")
+        low.plot(*envelope(t, -ff * psi[:, i]), color="C3")
         low.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
-        low.set_ylabel(_axis("contact force", funit))
+        low.margins(x=0)
+        low.set_ylabel(_axis("contact\nforce", funit))
     axes[-1, 0].set_xlabel(_axis("time t", _unit(d, "time")))
     return fig
 
@@ -263,10 +314,10 @@ def ground_motion_figure(ds):
     unit = str(d["ground_acceleration"].attrs.get("units", ""))
     fig, ax = _figure((PAGE_WIDTH, 2.4))
     for k, label in enumerate(d["excitation"].values):
-        ax.plot(t, a[:, k], color=f"C{k}", linewidth=0.8, label=f"{label}")
+        ax.plot(*envelope(t, a[:, k]), color=f"C{k}", linewidth=0.8, label=f"{label}")
     ax.margins(x=0)
-    ax.set(xlabel=_axis("time t", _unit(d, "time")), ylabel=_axis("ground acceleration a_g", unit),
-           title="Input record")
+    ax.set(xlabel=_axis("time t", _unit(d, "time")), ylabel=_axis("a_g", unit),
+           title="Input record: ground acceleration a_g")
     ax.legend(loc="upper right")
     return fig
 
@@ -283,15 +334,17 @@ def base_forces_figure(ds):
     moment = [_case(ds, c)["overturning_moment"].values for c in cases]
     funit, ff = force_scale(_unit(ds, "force"), max(float(np.max(np.abs(s))) for s in shear))
     munit = f"{funit} {_unit(ds, 'length')}".strip()
-    fig, (top, low) = _figure((PAGE_WIDTH, 4.2), nrows=2, sharex=True)
+    fig, (top, low) = _figure((PAGE_WIDTH, 4.4), margins=(0.8, 0.2, 0.5, 0.15), gaps=(0.0, 0.3), nrows=2,
+                              sharex=True)
     for k, c in enumerate(cases):
         label = labels.get(c, c) if c else None
-        top.plot(t, ff * shear[k], ("-", "--")[k % 2], color=f"C{k}", label=label)
-        low.plot(t, ff * moment[k], ("-", "--")[k % 2], color=f"C{k}", label=label)
+        top.plot(*envelope(t, ff * shear[k]), ("-", "--")[k % 2], color=f"C{k}", label=label)
+        low.plot(*envelope(t, ff * moment[k]), ("-", "--")[k % 2], color=f"C{k}", label=label)
     point = ds.attrs.get("overturning_point")
     where = f" about ({point[0]:g}, {point[1]:g})" if point is not None and len(point) == 2 else ""
     top.set(ylabel=_axis("base shear", funit))
-    low.set(ylabel=_axis(f"overturning moment{where}", munit), xlabel=_axis("time t", _unit(ds, "time")))
+    low.set(ylabel=_axis("moment", munit), xlabel=_axis("time t", _unit(ds, "time")))
+    low.set_title(f"overturning moment{where}", loc="left")
     top.margins(x=0)
     if len(cases) > 1:
         top.legend(loc="best")
@@ -301,12 +354,15 @@ def base_forces_figure(ds):
 @_styled
 def energy_figure(ds):
     """Energies of the main case and the relative error of their balance."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+
     d = _case(ds, main_case(ds))
     if "energy_input_work" not in d:
         return None
     t = d["time"].values
     unit = str(d["energy_input_work"].attrs.get("units", ""))
-    fig, (top, low) = _figure((PAGE_WIDTH, 4.2), nrows=2, sharex=True, height_ratios=(2.2, 1))
+    fig, (top, low) = _figure((PAGE_WIDTH, 4.2), margins=(0.8, 0.2, 0.5, 0.35), gaps=(0.0, 0.15), nrows=2,
+                              sharex=True, height_ratios=(2.2, 1))
     for key, label in (("input_work", "input work"), ("kinetic", "kinetic"),
                        ("elastic_structure", "elastic (structure, change)"),
                        ("elastic_unilateral", "elastic (unilateral, change)"),
@@ -315,10 +371,12 @@ def energy_figure(ds):
         if key.startswith("elastic"):
             y = y - y[0]
         if np.any(y):
-            top.plot(t, y, label=label)
+            top.plot(*envelope(t, y), label=label)
     top.set(ylabel=_axis("energy", unit), title="Energy balance")
     top.legend(loc="best", ncols=2)
     top.margins(x=0)
-    low.semilogy(t, np.maximum(d["energy_relative_error"].values, 1e-17), color="0.3")
+    low.semilogy(*envelope(t, np.maximum(d["energy_relative_error"].values, 1e-17)), color="0.3")
+    low.yaxis.set_major_formatter(FuncFormatter(_power_of_ten))
+    low.yaxis.set_minor_formatter(NullFormatter())
     low.set(ylabel="relative error [1]", xlabel=_axis("time t", _unit(d, "time")))
     return fig

@@ -3,7 +3,9 @@
 Every writer gets a temporary path in the target's directory (same file system, so the final
 :func:`os.replace` is atomic). The temporary file is flushed to disk with ``fsync`` and renamed
 over the target only when the writer returns; if it raises, the temporary file is removed and a
-previous file at the target is left untouched.
+previous file at the target is left untouched. An ``OSError`` on the way (a full disk, a
+read-only folder) is raised as :class:`WriteError`, whose message names the file, the folder and
+the cause: ``could not write results.nc to out: No space left on device``.
 """
 
 from __future__ import annotations
@@ -12,10 +14,28 @@ import json
 import os
 import secrets
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from pathlib import Path
 
 import numpy as np
+
+
+class WriteError(OSError):
+    """A file that could not be written: ``could not write NAME to FOLDER: cause``.
+
+    ``errno`` is that of the underlying error (e.g. ``errno.ENOSPC``); the target is untouched and
+    no temporary file is left.
+    """
+
+    def __init__(self, path, cause: BaseException):
+        path = Path(path)
+        reason = getattr(cause, "strerror", None) or str(cause) or type(cause).__name__
+        super().__init__(getattr(cause, "errno", None), reason)
+        self.path = path
+        self.reason = reason
+
+    def __str__(self) -> str:
+        return f"could not write {self.path.name} to {self.path.parent}: {self.reason}"
 
 
 @contextmanager
@@ -33,19 +53,30 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
         An empty file next to the target, named ``.<name>.<random>.tmp<suffix>`` (it keeps the
         target's suffix for writers that infer the format from it). Write it by name.
 
+    Raises
+    ------
+    WriteError
+        An ``OSError`` while the file was reserved, written, flushed or renamed.
+
     Examples
     --------
     >>> with atomic_path("results.nc") as tmp:      # doctest: +SKIP
     ...     dataset.to_netcdf(tmp)
     """
     target = Path(path)
-    tmp = _reserve(target)
+    try:
+        tmp = _reserve(target)
+    except OSError as exc:
+        raise WriteError(target, exc) from exc
     try:
         yield tmp
         _fsync(tmp, os.O_RDWR)
         os.replace(tmp, target)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
+    except BaseException as exc:
+        with suppress(OSError):
+            tmp.unlink(missing_ok=True)
+        if isinstance(exc, OSError) and not isinstance(exc, WriteError):
+            raise WriteError(target, exc) from exc
         raise
     if os.name == "posix":          # make the rename itself durable
         _fsync(target.parent, os.O_RDONLY)

@@ -18,9 +18,11 @@ that differ (``success``, ``message``, ``stats``, timings, ...) become variables
 from __future__ import annotations
 
 import csv
+import errno
 import io
 import json
 import os
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -28,7 +30,8 @@ import xarray as xr
 
 from .. import __version__
 from ..result import Solution
-from .atomic import atomic_write, to_jsonable, write_text_atomic
+from .atomic import WriteError, atomic_write, to_jsonable, write_text_atomic
+from .files import file_problem, size_text
 
 ENGINE = "h5netcdf"
 
@@ -129,12 +132,113 @@ def save_netcdf(data: Solution | dict[str, Solution] | xr.Dataset, path: str | o
         ds = data
     else:
         ds = to_dataset(data, units=units, attrs=attrs)
+    return write_netcdf(ds, path)
+
+
+#: Datasets up to this size [bytes] are encoded in memory and written by Python, so that a full
+#: disk is a clean :class:`~unilateral.io.atomic.WriteError`: HDF5 crashes the process
+#: (segmentation fault) when the disk fills while it writes. Larger ones are written by HDF5
+#: after a check of the free space.
+IN_MEMORY_LIMIT = 1 << 30
+
+
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write the Dataset ``ds`` to the netCDF-4 file ``path``, atomically.
+
+    Raises
+    ------
+    unilateral.io.atomic.WriteError
+        ``could not write results.nc to DIR: No space left on device`` (or another cause); the
+        previous file at ``path`` is intact and no temporary file is left.
+    """
+    path = Path(path)
+    if ds.nbytes <= IN_MEMORY_LIMIT:
+        data = ds.to_netcdf(engine=ENGINE)
+        return atomic_write(path, lambda tmp: _write_bytes(tmp, data))
+    _check_free_space(path, int(ds.nbytes))
     return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
+
+
+def _write_bytes(path: Path, data) -> None:
+    with open(path, "wb") as fh:
+        fh.write(data)
+
+
+def _check_free_space(path: Path, nbytes: int) -> None:
+    need = int(1.05 * nbytes) + (16 << 20)
+    free = shutil.disk_usage(path.parent).free
+    if free < need:
+        raise WriteError(path, OSError(errno.ENOSPC, f"{os.strerror(errno.ENOSPC)} ({size_text(need)} needed, "
+                                                     f"{size_text(free)} free)"))
 
 
 def load_netcdf(path: str | os.PathLike) -> xr.Dataset:
     """Read a netCDF file written by :func:`save_netcdf` into memory (the file is closed)."""
     return xr.load_dataset(path, engine=ENGINE, decode_times=False, decode_timedelta=False)
+
+
+class ResultsFileError(ValueError):
+    """A file that is not a ``results.nc`` written by unilateral (empty, truncated, foreign, ...)."""
+
+    def __init__(self, path, problem: str):
+        self.path = str(path)
+        self.problem = problem
+        super().__init__(f"{self.path} is not a results.nc written by unilateral: {problem}")
+
+
+_HDF5 = b"\x89HDF\r\n\x1a\n"
+
+
+def open_results(path: str | os.PathLike) -> xr.Dataset:
+    """Check and read a ``results.nc`` written by unilateral (:func:`save_netcdf`, ``unilateral run``).
+
+    Returns
+    -------
+    xarray.Dataset
+        In memory; the file is closed.
+
+    Raises
+    ------
+    ResultsFileError
+        ``<path> is not a results.nc written by unilateral: <why>``: not a regular file, empty, not
+        netCDF-4, truncated or damaged, or a netCDF file another program wrote.
+    """
+    path = Path(path)
+    problem = file_problem(path)
+    if problem is not None:
+        raise ResultsFileError(path, problem)
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(8)
+    except OSError as exc:
+        raise ResultsFileError(path, f"cannot read it ({exc.strerror or exc})") from None
+    if not head.startswith(_HDF5):
+        raise ResultsFileError(path, _not_hdf5(path, head))
+    try:
+        ds = load_netcdf(path)
+    except Exception as exc:                    # h5py and h5netcdf raise many kinds on a damaged file
+        raise ResultsFileError(path, f"it cannot be read, is it truncated or damaged? ({type(exc).__name__}: "
+                                     f"{exc})") from None
+    source = str(ds.attrs.get("source", ""))
+    if not source.startswith("unilateral"):
+        said = f"source = {source!r}" if source else "no source attribute"
+        raise ResultsFileError(path, f"it is a netCDF file another program wrote ({said}; unilateral writes "
+                                     "source = 'unilateral <version>')")
+    missing = [name for name in ("time", "v", "psi") if name not in ds.variables]
+    if missing:
+        raise ResultsFileError(path, f"it lacks {', '.join(missing)}")
+    return ds
+
+
+def _not_hdf5(path: Path, head: bytes) -> str:
+    if not head:
+        return "the file is empty"
+    if head.startswith(b"CDF"):
+        return "it is a netCDF-3 file; unilateral writes netCDF-4 (HDF5)"
+    if head.lstrip()[:1] in (b"{", b"["):
+        return (f"it looks like JSON; give the results.nc that `unilateral run` wrote, e.g. "
+                f"{path.parent / 'results.nc'}")
+    return f"it is not a netCDF-4 (HDF5) file (it starts with {head!r})"
 
 
 def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "") -> list[Path]:

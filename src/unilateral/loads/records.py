@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from unilateral._validate import as_vector, positive_float
+from unilateral.io.files import TABLE_LIMIT, read_input_text
 from unilateral.loads.units import acceleration_factor
 
 UNIFORM_STEP_RTOL = 1e-6
@@ -373,10 +374,19 @@ def read_record(path, **kwargs) -> GroundMotion:
     """Read a record, choosing the reader by the file suffix.
 
     ``.at2`` (any case) is read by :func:`read_at2`, anything else by
-    :func:`read_text_record`; ``kwargs`` are passed on to the reader.
+    :func:`read_text_record`; ``kwargs`` are passed on to the reader. An ``.AT2`` file takes
+    only ``units``: other options (``dt``, ``skip_header``, ...) raise ``ValueError``.
     """
-    reader = read_at2 if Path(path).suffix.lower() == ".at2" else read_text_record
-    return reader(path, **kwargs)
+    if Path(path).suffix.lower() != ".at2":
+        return read_text_record(path, **kwargs)
+    text_only = sorted(set(kwargs) - {"units"})
+    if text_only:
+        raise ValueError(
+            f"{path}: {', '.join(text_only)} {'is' if len(text_only) == 1 else 'are'} for plain-text records "
+            f"only; a PEER .AT2 file has "
+            f"{AT2_HEADER_LINES} header lines that give NPTS and DT (only units may be given, to check its header)"
+        )
+    return read_at2(path, **kwargs)
 
 
 def read_table(path, *, skip_header: int | None = 0, columns: int | None = None) -> Table:
@@ -419,6 +429,8 @@ def read_table(path, *, skip_header: int | None = 0, columns: int | None = None)
             continue
         if not text:
             continue
+        if not rows and not _is_numeric(text):
+            raise RecordFormatError(path, _header_hint(text, lineno, skip), lineno)
         row = _parse_row(path, text, lineno)
         ncols = len(row) if ncols is None else ncols
         if len(row) != ncols:
@@ -428,6 +440,16 @@ def read_table(path, *, skip_header: int | None = 0, columns: int | None = None)
     if not rows:
         raise RecordFormatError(path, "no data rows")
     return Table(path, np.array(rows), np.array(line_numbers), tuple(header))
+
+
+def _header_hint(text: str, lineno: int, skip: int) -> str:
+    """Message for a first data line that is not all numbers: most likely a header."""
+    token = next(field for field in _fields(text) if not _NUMBER.fullmatch(field))
+    shown = text if len(text) <= 60 else text[:57] + "..."
+    told = f" (after skipping {skip} line(s))" if skip else ""
+    return (f"{token!r} is not a number: is {shown!r}{told} a header? Skip it with skip_header={lineno} "
+            f"(in a model file: skip_header = {lineno}), or with skip_header=None every leading line that "
+            "is not all numbers")
 
 
 def _read_only_view(array: np.ndarray) -> np.ndarray:
@@ -442,7 +464,7 @@ def _read_only_view(array: np.ndarray) -> np.ndarray:
 
 
 def _read_lines(path: Path) -> list[str]:
-    text = path.read_text(encoding="utf-8-sig", errors="replace")
+    text = read_input_text(path, limit=TABLE_LIMIT, errors="replace")   # regular files only (a FIFO blocks)
     if not text.strip():
         raise RecordFormatError(path, "empty file")
     return text.splitlines()

@@ -1,7 +1,7 @@
 """Conversion factors from engineering units to SI.
 
 Each ``*_factor(unit)`` returns the number that multiplies a value in ``unit`` to give it in
-the SI base unit (m/s^2, m or N). Unit names are case-insensitive and spaces are ignored;
+the SI base unit (m/s^2, m, N or kg). Unit names are case-insensitive and spaces are ignored;
 acceleration units also accept the spellings found in PEER and COSMOS headers: ``sec`` for
 ``s``, ``/s/s``, ``^2`` and ``**2`` (so ``"CM/S/S"``, ``"cm/sec/sec"`` and ``"cm/sec^2"`` all
 mean cm/s^2). Because matching ignores case, ``"MN"`` and ``"mn"`` both mean meganewton.
@@ -27,6 +27,7 @@ _ACCELERATION = {
 }
 _LENGTH = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "in": _INCH, "ft": _FOOT}
 _FORCE = {"N": 1.0, "kN": 1e3, "MN": 1e6, "lbf": _POUND_FORCE, "kip": 1e3 * _POUND_FORCE}
+_MASS = {"kg": 1.0, "t": 1e3, "Mg": 1e3}
 
 # Spelling variants, applied in order to the lower-cased name without spaces.
 _SPELLINGS = (("sec", "s"), ("**2", "2"), ("^2", "2"), ("/s/s", "/s2"))
@@ -69,6 +70,20 @@ def force_factor(unit: str) -> float:
     Raises ``ValueError`` listing the valid units if ``unit`` is unknown.
     """
     return _factor("force", unit, _FORCE)
+
+
+def mass_factor(unit: str) -> float:
+    """Factor converting a mass in ``unit`` (``kg``, ``t`` = tonne, ``Mg`` = megagram = t) to kg.
+
+    Unlike the other units, case matters (spaces are ignored): ``"mg"`` would be a milligram
+    and is refused, as is any unknown unit, with a ``ValueError`` listing the valid units.
+    """
+    if not isinstance(unit, str):
+        raise TypeError(f"mass unit must be a string, got {unit!r}")
+    key = "".join(unit.split())
+    if key in _MASS:
+        return _MASS[key]
+    raise ValueError(f"unknown mass unit {unit!r}; valid units: {', '.join(_MASS)} (case matters: t = Mg = 1000 kg)")
 
 
 def _factor(kind: str, unit: str, table: dict[str, float]) -> float:

@@ -18,7 +18,9 @@ import numpy as np
 from pydantic import ValidationError
 
 from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Rectangular, Tabulated,
-                     Triangular, length_factor, read_record)
+                     Triangular, force_factor, length_factor, read_record)
+from ..loads.units import mass_factor
+from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
 from ..model import Model
 from ..structure import Frame2D, Structure
 from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
@@ -123,8 +125,13 @@ def _build_spec(document: ModelFile, source: Path, path) -> ModelSpec:
 # ---------------------------------------------------------------------- reading
 def read_toml(source: Path) -> dict:
     """The TOML document at ``source`` as a dict; unreadable files and syntax errors raise :class:`Problems`."""
+    problem = file_problem(source)              # before opening: a FIFO would block
+    if problem is not None:
+        raise Problems([problem])
     try:
-        text = source.read_bytes().decode("utf-8-sig")
+        text = read_input_text(source, limit=TOML_LIMIT)
+    except InputFileError as exc:
+        raise Problems([exc.problem]) from None
     except FileNotFoundError:
         raise Problems(["file not found"]) from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -135,6 +142,9 @@ def read_toml(source: Path) -> dict:
         match = _TOML_POSITION.match(str(exc))
         where = f"line {match[2]}, column {match[3]}: " if match else ""
         raise Problems([f"{where}invalid TOML: {match[1] if match else exc}"]) from None
+    except RecursionError:
+        raise Problems(["invalid TOML: arrays or tables nested too deeply to be read (hundreds of levels; "
+                        "a model or study file needs a few)"]) from None
 
 
 def _read_document(source: Path) -> ModelFile:
@@ -228,8 +238,8 @@ def _reference_problems(document: ModelFile, folder: Path) -> list[str]:
         if NODE_REF in info.metadata and document.matrices is None and value not in known:
             problems.append(value_problem(parts, value, f"no node {toml_value(value)} (nodes are {compact_ids(ids)})")
                             + did_you_mean(value, ids))
-        if FILE_REF in info.metadata and not (folder / value).is_file():
-            problems.append(value_problem(parts, value, f"file not found (looked for {folder / value})"))
+        if FILE_REF in info.metadata and (problem := file_problem(folder / value)) is not None:
+            problems.append(value_problem(parts, value, f"{problem} (looked for {folder / value})"))
     return problems
 
 
@@ -263,9 +273,10 @@ def _build_structure(document: ModelFile) -> Structure:
         for k, element in enumerate(getattr(document, section)):
             with _at(key_path((section, k))):
                 _add_element(fr, element)
+    to_mass = _mass_factor(document.units)
     for k, mass in enumerate(document.masses):
         with _at(key_path(("masses", k))):
-            fr.mass(mass.node, mass.m, J=mass.J)
+            fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass)
     rayleigh = document.damping.rayleigh if document.damping is not None else None
     if rayleigh is not None:
         with _at("damping.rayleigh"):
@@ -275,6 +286,14 @@ def _build_structure(document: ModelFile) -> Structure:
                 fr.rayleigh(rayleigh.a0 or 0.0, rayleigh.a1 or 0.0)
     with _at("structure"):
         return fr.build()
+
+
+def _mass_factor(units) -> float:
+    """Factor from ``units.mass`` to the consistent mass unit force time^2/length (1 without it)."""
+    if units.mass is None:
+        return 1.0
+    consistent_kg = force_factor(units.force) * TIME_UNITS[units.time] ** 2 / length_factor(units.length)
+    return mass_factor(units.mass) / consistent_kg
 
 
 def _add_element(fr: Frame2D, e) -> None:
@@ -322,7 +341,8 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
             r = np.array([1.0 if dof == motion.direction else 0.0 for _, dof in structure.dofs.free])
         else:
             r = read_vector((*parts, "influence"), motion.influence, folder, model.n)
-        options = {key: getattr(motion, key) for key in ("units", "dt") if getattr(motion, key) is not None}
+        options = {key: getattr(motion, key) for key in ("units", "dt", "skip_header")
+                   if getattr(motion, key) is not None}
         with _at(key_path((*parts, "file"))):
             record = read_record(folder / motion.file, **options)
         a_g = Tabulated(record.time / seconds, record.acceleration * (motion.scale * to_model))
@@ -346,7 +366,8 @@ def _time_function(spec, parts, folder: Path):
                 return Ramp(spec.t_ramp, 1.0)
             case TableLoad():
                 return Tabulated.from_csv(folder / spec.file, time_column=spec.time_column,
-                                          value_column=spec.value_column, outside=spec.outside)
+                                          value_column=spec.value_column, outside=spec.outside,
+                                          skip_header=spec.skip_header)
 
 
 def _figure(document: ModelFile) -> dict | None:

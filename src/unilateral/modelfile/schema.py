@@ -28,6 +28,8 @@ LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
 TIME_UNITS = {"s": 1.0, "ms": 1e-3}
 """Time units and their factors to seconds."""
+MASS_UNITS = ("kg", "t", "Mg")
+"""Mass units of ``[units] mass``; without it masses are in force time^2 / length."""
 
 
 class _Marker:
@@ -114,6 +116,9 @@ class Units(Table):
     length: Literal[LENGTH_UNITS] = Field(title="length unit")
     force: Literal[FORCE_UNITS] = Field(title="force unit")
     time: Literal[tuple(TIME_UNITS)] = Field(title="time unit")
+    mass: Literal[MASS_UNITS] | None = Field(None, title="mass unit", description=(
+        "Unit of the masses m [mass] and inertias J [mass length^2] in [[masses]] (t = Mg = 1000 kg); "
+        "default: the consistent unit force time^2/length (kN s^2/m = t with kN, m, s)."))
 
 
 class Node(Table):
@@ -142,8 +147,10 @@ class RigidLink(Table):
 
 
 class Mass(Table):
-    """[[masses]]: lumped mass m on ux and uy [force time^2/length], rotational inertia J on rz
-    [force time^2 length]."""
+    """[[masses]]: lumped mass m on ux and uy [mass], rotational inertia J on rz [mass length^2].
+
+    The mass unit is ``[units] mass`` if given (``kg``, ``t``, ``Mg``), else force time^2/length.
+    """
 
     node: NodeRef
     m: NonNegative
@@ -317,6 +324,8 @@ class TableLoad(Table):
     time_column: int = Field(0, ge=0)
     value_column: int = Field(1, ge=0)
     outside: Literal["zero", "hold"] = Field("zero", title="value outside the table")
+    skip_header: int | None = Field(None, ge=0, description=(
+        "Lines to skip at the top of the file; default: the leading lines that are not all numbers."))
 
 
 TimeFunction = Annotated[Union[RectangularPulse, HalfSinePulse, TriangularPulse, ConstantLoad, RampLoad, TableLoad],
@@ -364,6 +373,8 @@ class GroundMotion(Table):
     scale: float = Field(1.0, description="Factor on the record.")
     units: str | None = Field(None, description="Units of a plain-text record, e.g. \"g\" or \"cm/s2\".")
     dt: Positive | None = Field(None, description="Time step of a one-column text record [s].")
+    skip_header: int | None = Field(None, ge=0, description=(
+        "Plain-text records: header lines to skip at the top of the file (default 0)."))
 
 
 class Loads(Table):
@@ -434,6 +445,15 @@ class ModelFile(Table):
     loads: Loads = Loads()
     analysis: Analysis
     output: Output = Output()
+
+
+    @model_validator(mode="after")
+    def _mass_unit_for_frames(self):
+        if self.units.mass is not None and self.matrices is not None:
+            raise PydanticCustomError("mass_unit", (
+                "units.mass applies to the [[masses]] of a frame; the M of a matrix-level model is in "
+                "force time^2/length: remove units.mass"))
+        return self
 
 
 FRAME_SECTIONS = ("nodes", "supports", "rigid_links", "elements", "unilateral", "masses", "damping")
