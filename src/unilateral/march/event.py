@@ -37,7 +37,6 @@ import math
 
 import numpy as np
 import scipy.linalg as sla
-from scipy.optimize import brentq
 
 from unilateral.linalg import dense
 from unilateral.march.event_config import Config
@@ -264,6 +263,8 @@ class _March:
                 r = 0.0
             else:
                 f = lambda s: float(Ei @ (sla.expm(cfg.A * s) @ Y_left))
+                from scipy.optimize import brentq   # here: scipy.optimize takes 0.2-0.4 s to import
+
                 r = brentq(f, 0.0, h, xtol=min(self.tol, h) * 0.25, rtol=4 * np.finfo(float).eps,
                            maxiter=200)
             roots[i] = r
