@@ -83,6 +83,22 @@ def test_run_one(tmp_path, method):
         assert record["status"] == "skipped" and "modal" in record["reason"]
 
 
+def test_direct_and_event_rows(tmp_path):
+    """``direct`` runs compiled, ``direct python`` the Python loop (the same numbers), and
+    ``event`` the exact reference; the event method refuses the Winkler problems' plain-function
+    load, and the run is skipped with the reason."""
+    runs = {method: run_one("paper", method, steps=100, output=tmp_path / f"{method}.npz")
+            for method in ("direct", "direct python", "event")}
+    assert all(r["status"] == "ok" and r["N"] == 100 and r["steps_s"] > 0 for r in runs.values())
+    assert runs["direct"]["engine"] == "compiled" and runs["direct python"]["engine"] == "python"
+    y = {method: np.load(tmp_path / f"{method}.npz")["y"] for method in runs}
+    assert np.max(np.abs(y["direct"] - y["direct python"])) <= 1e-12 * np.max(np.abs(y["direct"]))
+    assert 0 < np.max(np.abs(y["event"] - y["direct"])) < 0.05 * np.max(np.abs(y["event"]))
+    assert runs["event"]["contact_changes"] == 8                # the exact events of the example
+    skipped = run_one("winkler10", "event", steps=30)
+    assert skipped["status"] == "skipped" and "plain callable" in skipped["reason"]
+
+
 def test_command_line(tmp_path):
     out = tmp_path / "b.json"
     args = [sys.executable, "-m", "unilateral.bench", "--quick", "--problems", "paper",
@@ -112,8 +128,9 @@ def test_command_line(tmp_path):
 
 
 def test_scaling_figure(tmp_path):
-    config = ScalingConfig(steps=(32, 64), steps_methods=("direct",), sizes=(4, 8),
-                           sizes_steps=20, sizes_methods=("direct",))
+    # the Python loop: these short runs in fresh processes would mostly time numba's start
+    config = ScalingConfig(steps=(32, 64), steps_methods=("direct python",), sizes=(4, 8),
+                           sizes_steps=20, sizes_methods=("direct python",))
     records = run_scaling(config, limits=Limits(timeout=120.0))
     assert [(r["sweep"], r["N"], r["m"]) for r in records] == [("N", 32, 3), ("N", 64, 3),
                                                                 ("m", 20, 4), ("m", 20, 8)]

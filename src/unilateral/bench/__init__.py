@@ -2,7 +2,8 @@
 
 ``python -m unilateral.bench [--quick]`` runs the problems of :mod:`~unilateral.bench.problems`
 with ``method="cq"`` (naive and FFT-blocked history), ``"modal"`` (where :func:`unilateral.solve`
-offers it) and ``"direct"``, each in its own subprocess (:mod:`~unilateral.bench.suite`), prints
+offers it), ``"direct"`` (compiled, and its Python loop) and ``"event"`` (the exact reference,
+where the load has an exact form), each in its own subprocess (:mod:`~unilateral.bench.suite`), prints
 a table of time per step, peak memory and error against a converged reference, writes the
 results as JSON and draws the scaling figure (:mod:`~unilateral.bench.report`).
 """

@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..methods import Direct
 from ..solve import solve
 from .problems import build, refined
 
@@ -34,8 +35,15 @@ METHODS = {
     "cq fft": {"method": "cq", "cq_options": {"history": "fft", "engine": "auto"}},
     "modal": {"method": "modal"},
     "direct": {"method": "direct"},
+    "direct python": {"method": Direct(engine="python")},
+    "event": {"method": "event"},
 }
-"""Benchmarked methods: name -> keyword arguments of :func:`unilateral.solve`."""
+"""Benchmarked methods: name -> keyword arguments of :func:`unilateral.solve`.
+
+``"direct"`` is what ``method="direct"`` does (compiled where it applies, see
+:class:`~unilateral.methods.Direct`), ``"direct python"`` its Python loop (the same operations);
+``"event"`` the exact event-driven reference (loads with an exact piecewise form only: the Winkler
+problems' moving load is a plain function, and the run is skipped with the reason)."""
 
 REFERENCE = "reference"
 REFERENCE_ATTEMPTS = ({"method": "direct", "rule": "bdf2"},

@@ -7,7 +7,9 @@ symmetric positive definite ``W0`` of the CLCP, warm-started from the previous s
 Compiled code is cached on disk (``cache=True``), so a second process does not compile again.
 
 The results equal the Python march with ``lcp="bpp"`` (the same pivoting rule, exact linear
-solves), which the tests check.
+solves), which the tests check. :func:`direct_steps` is the direct march of ``method="direct"``
+(every rule, the condensed LCP on ``W0`` with :func:`bpp`), :func:`sweep` the linear sweep of the
+CLCP methods.
 """
 
 from __future__ import annotations
@@ -17,6 +19,10 @@ from numba import njit
 
 #: Number of non-improving block pivots before Murty's single pivot (Judice & Pires 1994).
 _BLOCK_TRIES = 3
+#: Floating-point liberties of the loops of matrix-vector products and triangular solves: sums
+#: may be reassociated (vectorised, several accumulators) and multiply-adds fused. Results change
+#: at round-off only; NaN and infinity keep their meaning (no "fast" flags beyond these).
+REASSOCIATE = {"reassoc", "contract"}
 
 
 @njit(cache=True)
@@ -302,7 +308,7 @@ def recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, carry, steps):
     return 0
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=REASSOCIATE)
 def _lu_solve(lu, piv, b, x):
     """Solve with LAPACK-style LU factors (``scipy.linalg.lu_factor``) into ``x``."""
     n = b.shape[0]
@@ -362,7 +368,8 @@ def sweep(kind, dt, c1, c0, lu, piv, M, C, Fp, F_v, Hs, H_v, viscous, f, offset,
 
     Parameters
     ----------
-    lu, piv : LU factors of ``D_eff``;  M, C : (n, n);  Fp, F_v : (n, m);  Hs, H_v : (m, m)
+    lu, piv : LU factors of ``D_eff``;  M, C : operands of :func:`_matvec_add` (CSR or dense);
+    Fp, F_v : (n, m);  Hs, H_v : (m, m)
     viscous : bool, Kelvin terms present;  f : (N+1, n) load increments;  offset : (N+1, m)
     dv : (N+1, m) prescribed increments;  start : (5, n) the u-state ``y0, y1, yd0, yd1, ydd0``
 
@@ -385,11 +392,11 @@ def sweep(kind, dt, c1, c0, lu, piv, M, C, Fp, F_v, Hs, H_v, viscous, f, offset,
             _history(kind, dt, v0, v1, vd0, vd1, vdd0, k1, k2)
         for i in range(n):
             t = f[k, i]
-            for j in range(n):
-                t += M[i, j] * h2[j] + C[i, j] * h1[j]
             for b in range(m):
                 t += Fp[i, b] * dv[k, b] - F_v[i, b] * k1[b]
             rhs[i] = t
+        _matvec_add(M, h2, 1.0, rhs)
+        _matvec_add(C, h1, 1.0, rhs)
         _lu_solve(lu, piv, rhs, x)
         for b in range(m):
             t = offset[k, b]
@@ -410,3 +417,199 @@ def sweep(kind, dt, c1, c0, lu, piv, M, C, Fp, F_v, Hs, H_v, viscous, f, offset,
                 vdd[b] = c0 * dv[k, b] - k2[b]
             _advance(v0, v1, vd0, vd1, vdd0, dv[k], vd, vdd)
     return du, dud, psi
+
+
+# ---------------------------------------------------------------------- direct stepping
+#: Rule kinds of the compiled direct march: BDF1, BDF2 and Newmark (trapezoidal, HHT-alpha).
+RULE_BDF1, RULE_BDF2, RULE_NEWMARK = 0, 1, 2
+
+
+@njit(cache=True)
+def _rule_history(kind, rp, y0, y1, yd0, yd1, ydd0, h1, h2):
+    """``h1, h2`` of :meth:`unilateral.rules.Rule.history` from the state, in place.
+
+    ``rp`` holds ``dt`` and, for Newmark, the coefficients ``h1 = rp[1] y + rp[2] y' + rp[3] y''``
+    and ``h2 = (y + rp[4] y' + rp[5] y'') rp[6]`` (those of :meth:`Newmark.history`).
+    """
+    dt = rp[0]
+    for i in range(y0.shape[0]):
+        if kind == RULE_BDF1:
+            h1[i] = y0[i] / dt
+            h2[i] = (h1[i] + yd0[i]) / dt
+        elif kind == RULE_BDF2:
+            h1[i] = (2.0 * y0[i] - 0.5 * y1[i]) / dt
+            h2[i] = (1.5 * h1[i] + 2.0 * yd0[i] - 0.5 * yd1[i]) / dt
+        else:
+            h1[i] = rp[1] * y0[i] + rp[2] * yd0[i] + rp[3] * ydd0[i]
+            h2[i] = (y0[i] + rp[4] * yd0[i] + rp[5] * ydd0[i]) * rp[6]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _matvec_add(A, x, scale, out):
+    """``out += scale * A x`` for ``A = (indptr, indices, data, full)``: CSR, or ``full`` (n, n) if
+    it has rows (a dense matrix, whose rows vectorise)."""
+    indptr, indices, data, full = A
+    if full.shape[0]:
+        for i in range(out.shape[0]):
+            t = 0.0
+            for j in range(full.shape[1]):
+                t += full[i, j] * x[j]
+            out[i] += scale * t
+        return
+    for i in range(out.shape[0]):
+        t = 0.0
+        for p in range(indptr[i], indptr[i + 1]):
+            t += data[p] * x[indices[p]]
+        out[i] += scale * t
+
+
+@njit(cache=True)
+def direct_start(N1, n, m, v_b, psi0, ustart):
+    """The state a chunked direct march carries (see :func:`direct_steps`).
+
+    Returns ``(du, dud, v, psi, stats, active, previous, ustate, vstate, dv_prev)``: the
+    histories (N1 rows) with row 0 set, the statistics of :func:`march_naive`, the contact sets,
+    the rule states of ``du`` (5, n: ``y0, y1, y0', y1', y0''``) and of ``dv`` (5, m) and the
+    previous increment ``dv``.
+    """
+    du, dud = np.empty((N1, n)), np.empty((N1, n))        # every row is written by the steps
+    v, psi = np.empty((N1, m)), np.empty((N1, m))
+    du[0] = 0.0
+    v[0] = v_b
+    psi[0] = psi0
+    ustate = ustart.copy()
+    dud[0] = ustate[2]
+    active = v_b > 0.0
+    return (du, dud, v, psi, np.zeros(4), active, active.copy(), ustate, np.zeros((5, m)),
+            np.zeros(m))
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, carry, steps):
+    """Steps ``steps[0] <= k < steps[1]`` of the direct march, compiled; the failed step or 0.
+
+    The operations of :func:`unilateral.march.direct.march_direct` with
+    :class:`~unilateral.march.stepper.StructureStepper` (``predict``, the condensed LCP on
+    ``W0`` by :func:`bpp` warm-started from the previous contact set, ``correct``), for every
+    rule: ``kind`` :data:`RULE_BDF1`, :data:`RULE_BDF2` or :data:`RULE_NEWMARK` (trapezoidal,
+    Newmark, HHT-alpha).
+
+    Parameters
+    ----------
+    kind : int;  rp : (8,) ``dt``, the Newmark coefficients of :func:`_rule_history`, ``c1``
+        (rp[7]) -- ``c0``, ``alpha`` follow in ``flags``
+    mats : ``(lu, piv, FpT, F, F_v, F_vT, H_v, X, W0)``: LU factors of ``D_eff`` (n, n), (n,);
+        ``FpT = (F + c1 F_v)^T`` (m, n); ``F``, ``F_v`` (n, m) and ``F_vT`` (m, n); ``H_v``, ``W0``
+        (m, m); ``X`` (n, m)
+    sparse : ``(M, C, K)`` each ``(indptr, indices, data, full)``, see :func:`_matvec_add`
+    tables : ``(f, offset, base)``: load increments (N+1, n), reaction offsets (N+1, m),
+        ``W0 v_b`` (m,)
+    v_b : (m,) base deformations
+    flags : ``(c0, alpha, viscous, bilateral, max_iter, tol)``
+    carry : the state of :func:`direct_start`, updated in place
+    steps : ``(first, stop)``
+    """
+    lu, piv, FpT, F, F_v, F_vT, H_v, X, W0 = mats
+    M, C, K = sparse
+    f, offset, base = tables
+    c0, alpha, viscous, bilateral, max_iter, tol = flags
+    du, dud, v, psi, stats, active, previous, us, vs, dv_prev = carry
+    n, m = f.shape[1], offset.shape[1]
+    c1 = rp[7]
+    a = 1.0 - alpha
+    h1, h2, k1, k2 = np.empty(n), np.empty(n), np.zeros(m), np.zeros(m)
+    rhs, x, acc = np.empty(n), np.empty(n), np.empty(n)
+    c, dv, dvd, dvdd = np.empty(m), np.zeros(m), np.empty(m), np.empty(m)
+    q, vn, wn, idx, S, work_rhs, work_x = _workspace(m)
+    for k in range(steps[0], steps[1]):
+        _rule_history(kind, rp, us[0], us[1], us[2], us[3], us[4], h1, h2)
+        if viscous:
+            _rule_history(kind, rp, vs[0], vs[1], vs[2], vs[3], vs[4], k1, k2)
+        for i in range(n):                  # free_terms: rhs = a f + M h2 + a C h1 ...
+            rhs[i] = a * f[k, i]
+        _matvec_add(M, h2, 1.0, rhs)
+        _matvec_add(C, h1, a, rhs)
+        if alpha != 0.0:                    # HHT: alpha (f_prev - C u' - K u + F dv + F_v dv')
+            for i in range(n):
+                acc[i] = f[k - 1, i]
+                for b in range(m):
+                    acc[i] += F[i, b] * dv_prev[b] + F_v[i, b] * vs[2, b]
+            _matvec_add(C, us[2], -1.0, acc)
+            _matvec_add(K, us[0], -1.0, acc)
+            for i in range(n):
+                rhs[i] += alpha * acc[i]
+        for b in range(m):
+            c[b] = offset[k, b]
+        if viscous:
+            for i in range(n):
+                t = 0.0
+                for b in range(m):
+                    t += F_v[i, b] * k1[b]
+                rhs[i] -= a * t
+            for b in range(m):
+                t = 0.0
+                for i in range(n):
+                    t += F_vT[b, i] * h1[i]
+                for e in range(m):
+                    t -= H_v[b, e] * k1[e]
+                c[b] -= t
+        _lu_solve(lu, piv, rhs, x)          # predict: du_free, psi_free
+        for b in range(m):
+            t = c[b]
+            for i in range(n):
+                t += FpT[b, i] * x[i]
+            c[b] = t
+        if bilateral:
+            for b in range(m):
+                vn[b] = v_b[b]
+                dv[b] = 0.0
+        else:
+            q_min = 0.0
+            for b in range(m):
+                q[b] = -(c[b] + base[b])
+                q_min = min(q_min, q[b])
+            if q_min >= 0.0:                # v = 0 solves it (no linear solve), as in LCPSolver.solve
+                for b in range(m):
+                    vn[b] = 0.0
+                    wn[b] = q[b]
+                    active[b] = False
+                it, err = 0, 0.0
+            else:
+                it = bpp(W0, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x)
+                err = lcp_error(vn, wn, q)
+            if it < 0 or err > tol:
+                return k
+            stats[0] += it
+            stats[1] = max(stats[1], it)
+            stats[3] = max(stats[3], err)
+            nonzero = False
+            for b in range(m):
+                if active[b] != previous[b]:
+                    stats[2] += 1
+                previous[b] = active[b]
+                dv[b] = vn[b] - v_b[b]
+                nonzero = nonzero or dv[b] != 0.0
+            if nonzero:                     # correct: du = du_free + X dv
+                for i in range(n):
+                    t = x[i]
+                    for b in range(m):
+                        t += X[i, b] * dv[b]
+                    x[i] = t
+        for i in range(n):
+            du[k, i] = x[i]
+            dud[k, i] = c1 * x[i] - h1[i]
+            acc[i] = c0 * x[i] - h2[i]
+        _advance(us[0], us[1], us[2], us[3], us[4], x, dud[k], acc)
+        if viscous:
+            for b in range(m):
+                dvd[b] = c1 * dv[b] - k1[b]
+                dvdd[b] = c0 * dv[b] - k2[b]
+            _advance(vs[0], vs[1], vs[2], vs[3], vs[4], dv, dvd, dvdd)
+        for b in range(m):
+            t = c[b]
+            for e in range(m):
+                t -= W0[b, e] * dv[e]
+            psi[k, b] = t
+            v[k, b] = vn[b]
+            dv_prev[b] = dv[b]
+    return 0

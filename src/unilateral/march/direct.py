@@ -1,11 +1,15 @@
 """Direct time stepping of the full model: one LCP per step on the condensed matrix.
 
 :func:`march_direct` is the exact reference of the CQ march (the same rule gives the same
-discrete solution); :func:`sweep_direct` is the linear sweep with prescribed increments ``dv``
-that gives the bilateral response ``psiL`` and recovers ``u`` after a CLCP march.
+discrete solution); :func:`march_direct_compiled` performs its operations in compiled code
+(:func:`unilateral.march.compiled.direct_steps`); :func:`sweep_direct` is the linear sweep with
+prescribed increments ``dv`` that gives the bilateral response ``psiL`` and recovers ``u`` after
+a CLCP march.
 """
 
 from __future__ import annotations
+
+import time
 
 import numpy as np
 
@@ -61,6 +65,88 @@ def march_direct(stepper, N, v_b, psi0, solver, *, dt, bilateral=False, callback
         if callback is not None:
             callback(k, N)
     return du, dud, v, psi, log
+
+
+#: A compiled march with a progress callback reports after a first chunk of this many steps, then
+#: after chunks sized to last about :data:`PROGRESS_SECONDS` each (a call into the compiled loop
+#: costs tens of microseconds, the cost of about a hundred steps of a small model).
+PROGRESS_CHUNK = 1024
+PROGRESS_SECONDS = 0.1
+
+
+def march_direct_compiled(stepper, N, v_b, psi0, *, dt, max_iter, tol, bilateral=False,
+                          callback=None):
+    """:func:`march_direct` with block principal pivoting, compiled; None if it does not apply.
+
+    The same operations (:func:`unilateral.march.compiled.direct_steps`): the free step, the
+    condensed LCP on ``W0`` (factorised once, warm-started from the previous contact set) and the
+    correction, for every rule of :mod:`unilateral.rules`. It applies to a fresh condensed
+    ``stepper`` (:meth:`~unilateral.march.stepper.StructureStepper.march_arrays`).
+
+    Parameters
+    ----------
+    stepper : StructureStepper (condensed, fresh)
+    N : int;  v_b : (m,) base deformations;  psi0 : (m,) initial reactions
+    dt : float (for messages)
+    max_iter : int, linear solves per LCP at most
+    tol : float, largest acceptable LCP error of a step
+    bilateral : bool, hold every constraint (``dv = 0``)
+    callback : callable ``callback(k, N)``, optional
+        Progress: the loop runs in chunks of steps (:data:`PROGRESS_CHUNK`, then about
+        :data:`PROGRESS_SECONDS` each) with its state carried across, and ``callback`` is called
+        after each chunk: the same operations as one call.
+
+    Returns
+    -------
+    The same ``(du, dudot, v, psi, log)`` as :func:`march_direct`, or None.
+    """
+    arrays = stepper.march_arrays(N)
+    if arrays is None:
+        return None
+    from . import compiled
+
+    n, m = stepper.model.n, stepper.model.m
+    v_b = np.ascontiguousarray(v_b, dtype=float)
+    mats = arrays["mats"]
+    tables = (arrays["f"], arrays["offset"], mats[-1] @ v_b)
+    flags = (float(arrays["c0"]), arrays["alpha"], bool(arrays["viscous"]), bool(bilateral),
+             int(max_iter), float(tol))
+    carry = compiled.direct_start(N + 1, n, m, v_b, np.ascontiguousarray(psi0, dtype=float),
+                                  arrays["ustart"])
+    run = lambda n0, n1: compiled.direct_steps(arrays["kind"], arrays["rp"], mats, arrays["sparse"],
+                                               tables, v_b, flags, carry, (n0, n1))
+    if callback is None:
+        failed = run(1, N + 1)
+    else:
+        failed = _chunked(run, N, callback)
+    du, dud, v, psi, stats = carry[:5]
+    log = StepLog(m, v_b > 0)
+    log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
+    log.contact_changes, log.max_error = int(stats[2]), float(stats[3])
+    if failed:
+        log.failure = (
+            f"the LCP of step {failed} (t = {failed * dt:.6g}) failed: block principal pivoting "
+            f"found a principal submatrix of W0 that is not positive definite, did not converge in "
+            f"{max_iter} solves, or left an LCP error above tol = {tol:g}; try lcp='lemke'")
+        du, dud, v, psi = du[:failed], dud[:failed], v[:failed], psi[:failed]
+    log.active = v[-1] > 0
+    return du, dud, v, psi, log
+
+
+def _chunked(run, N, callback):
+    """``run(n0, n1)`` over chunks of steps 1..N, ``callback(n1 - 1, N)`` after each; the failed step or 0."""
+    n0, chunk = 1, PROGRESS_CHUNK
+    while n0 <= N:
+        n1 = min(n0 + chunk, N + 1)
+        start = time.perf_counter()
+        failed = run(n0, n1)
+        if failed:
+            return failed
+        callback(n1 - 1, N)
+        elapsed = max(time.perf_counter() - start, 1e-6)
+        chunk = int(min(8 * chunk, max(PROGRESS_CHUNK, chunk * PROGRESS_SECONDS / elapsed)))
+        n0 = n1
+    return 0
 
 
 def sweep_direct(stepper, N, v_b, psi0, dv=None, *, callback=None, compiled=True):

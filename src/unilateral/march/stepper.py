@@ -26,6 +26,9 @@ from ..linalg import Factorization, SingularMatrixError, dense, transpose_times
 
 #: Models with at most this many DOFs are stepped with dense arrays.
 DENSE_STEPPING_MAX_N = 64
+#: Models with at most this many DOFs may be stepped by compiled code with a dense LU of ``D_eff``
+#: (:meth:`StructureStepper.march_arrays`, :meth:`StructureStepper.sweep_arrays`).
+COMPILED_MAX_N = 400
 
 
 class StructureStepper:
@@ -121,14 +124,16 @@ class StructureStepper:
     def sweep_arrays(self, N):
         """Arguments of :func:`unilateral.march.compiled.sweep` for N steps, or None if it does not apply.
 
-        It applies to small dense models stepped by a rule with a convolution-quadrature form
-        (BDF1, BDF2, trapezoidal) from a fresh stepper. The loads and offsets of all steps are
-        taken from the arrays given, or evaluated here step by step.
+        It applies to models of at most :data:`COMPILED_MAX_N` DOFs (``D_eff`` factorised densely
+        here if the stepper's factorisation is sparse) stepped by a rule with a
+        convolution-quadrature form (BDF1, BDF2, trapezoidal) from a fresh stepper. The loads and
+        offsets of all steps are taken from the arrays given, or evaluated here step by step.
         """
         kinds = {"bdf1": 0, "bdf2": 1, "trapezoidal": 2}
-        lu_piv = self.lu.dense_factors
-        if self.rule.name not in kinds or self.alpha or lu_piv is None or self.k != 0:
+        if (self.rule.name not in kinds or self.alpha or self.k != 0
+                or self.model.n > COMPILED_MAX_N):
             return None
+        lu_piv = self._dense_factors()
         n, m = self.model.n, self.model.m
         zeros_nm, zeros_mm = np.zeros((n, m)), np.zeros((m, m))
         c1, c0 = self.rule.coefficients(self.dt)
@@ -147,10 +152,71 @@ class StructureStepper:
             f = np.array([self.load(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
             offset = np.array([self.offset(k) for k in range(N + 1)], dtype=float).reshape(N + 1, m)
         dense_or = lambda A, zero: zero if A is None else np.ascontiguousarray(dense(A), dtype=float)
-        return (kinds[self.rule.name], self.dt, c1, c0, *lu_piv, dense_or(self.M, None),
-                dense_or(self.C, None), dense_or(self.Fp, None), dense_or(self.F_v, zeros_nm),
+        return (kinds[self.rule.name], self.dt, c1, c0, *lu_piv, _matvec_operand(self.M),
+                _matvec_operand(self.C), dense_or(self.Fp, None), dense_or(self.F_v, zeros_nm),
                 np.ascontiguousarray(self.Hs, dtype=float), dense_or(self.model.H_v, zeros_mm),
                 self.vstate is not None, f, offset, start)
+
+    def march_arrays(self, N):
+        """Arguments of :func:`unilateral.march.compiled.direct_steps` for N steps, or None.
+
+        Every rule of :mod:`unilateral.rules` (BDF1, BDF2, Newmark with trapezoidal and HHT-alpha)
+        from a fresh condensed stepper; a user's own :class:`~unilateral.rules.Rule` subclass is
+        stepped in Python. ``D_eff`` is factorised densely here if the stepper's factorisation
+        is sparse. The loads and offsets of all steps are taken from the arrays given, or
+        evaluated here step by step.
+
+        Returns
+        -------
+        dict with ``kind``, ``rp``, ``mats``, ``sparse``, ``f``, ``offset``, ``ustart`` (5, n)
+        and the scalars ``c0``, ``alpha``, ``viscous``; or None
+        """
+        from ..rules import BDF, Newmark
+        from .compiled import RULE_BDF1, RULE_BDF2, RULE_NEWMARK
+
+        rule, dt = self.rule, self.dt
+        if self.k != 0 or not hasattr(self, "X") or type(rule) not in (BDF, Newmark):
+            return None
+        n, m = self.model.n, self.model.m
+        c1, c0 = rule.coefficients(dt)
+        rp = np.zeros(8)
+        rp[0], rp[7] = dt, c1
+        if isinstance(rule, Newmark):
+            kind, (g, b) = RULE_NEWMARK, (rule.gamma, rule.beta)
+            rp[1:7] = (g / (b * dt), g / b - 1.0, dt * (g / (2 * b) - 1.0), dt, dt * dt * (0.5 - b),
+                       1.0 / (b * dt * dt))
+            y0, yd0, ydd0 = self.state
+            y1, yd1 = np.zeros(n), np.zeros(n)
+        else:
+            kind = RULE_BDF1 if rule.order == 1 else RULE_BDF2
+            (y0, *ys), (yd0, *yds) = self.state
+            y1, yd1 = (ys[0], yds[0]) if ys else (np.zeros(n), np.zeros(n))
+            ydd0 = np.zeros(n)
+        lu_piv = self._dense_factors()
+        if self.tables is not None:
+            f, offset = (np.ascontiguousarray(table[: N + 1], dtype=float) for table in self.tables)
+        else:
+            f = np.array([self.load(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
+            offset = np.array([self.offset(k) for k in range(N + 1)], dtype=float).reshape(N + 1, m)
+        as_dense = lambda A, shape: (np.zeros(shape) if A is None
+                                     else np.ascontiguousarray(dense(A), dtype=float))
+        mats = (np.ascontiguousarray(lu_piv[0], dtype=float), lu_piv[1].astype(np.int64),
+                as_dense(self.Fp, (n, m)).T.copy(), as_dense(self.F, (n, m)), as_dense(self.F_v, (n, m)),
+                as_dense(self.F_v, (n, m)).T.copy(), as_dense(self.model.H_v, (m, m)),
+                as_dense(self.X, (n, m)), as_dense(self.W0, (m, m)))
+        return {"kind": kind, "rp": rp, "mats": mats,
+                "sparse": tuple(_matvec_operand(A) for A in (self.M, self.C, self.K)),
+                "f": f, "offset": offset, "ustart": np.array([y0, y1, yd0, yd1, ydd0], dtype=float),
+                "c0": c0, "alpha": float(self.alpha), "viscous": self.vstate is not None}
+
+    def _dense_factors(self):
+        """``(lu, piv)`` of ``D_eff`` (LAPACK convention): the stepper's own, or a dense LU of it."""
+        lu_piv = self.lu.dense_factors
+        if lu_piv is None:
+            import scipy.linalg as sla
+
+            lu_piv = sla.lu_factor(dense(self.D_eff))
+        return lu_piv
 
     def step_with(self, dv):
         """Next step with a prescribed increment ``dv`` (m,): return ``(du, psi)`` (no LCP)."""
@@ -180,6 +246,20 @@ class StructureStepper:
             self.dvd = dvd
         self.k, self.u, self.ud, self.dv, self.f_prev = k, du, ud, dv, f
         return du, ud
+
+
+#: A matrix with more than this fraction of nonzeros is multiplied as a dense array in compiled code.
+DENSE_FRACTION = 0.25
+
+
+def _matvec_operand(A):
+    """``(indptr, indices, data, full)`` of :func:`unilateral.march.compiled._matvec_add`: CSR
+    arrays, and ``A`` itself (dense) if more than :data:`DENSE_FRACTION` of it is nonzero."""
+    S = sp.csr_matrix(A)
+    n = S.shape[0]
+    full = dense(A).astype(float) if S.nnz > DENSE_FRACTION * n * n else np.zeros((0, 0))
+    return (S.indptr.astype(np.int64), S.indices.astype(np.int64), S.data.astype(float),
+            np.ascontiguousarray(full))
 
 
 def _initial_acceleration(M, rhs):
