@@ -201,3 +201,18 @@ def test_cq_on_a_beam_with_41_springs_equals_direct_stepping():
     assert cq.success and direct.stats["contact_changes"] > 20
     for field in ("v", "psi", "u"):
         assert rel(getattr(cq, field), getattr(direct, field)) <= 1e-8, field
+
+
+def test_direct_options_choose_the_engine_through_solve():
+    """``solve(..., direct_options={"engine": ...})`` reaches the method; both engines agree."""
+    import unilateral as ul
+    from unilateral.structure.examples import liolios1990
+
+    structure, load, _ = liolios1990()
+    model = structure.to_model()
+    a = ul.solve(model, load, dt=1e-3, t_end=0.3, method="direct", direct_options={"engine": "python"})
+    b = ul.solve(model, load, dt=1e-3, t_end=0.3, direct_options={"engine": "compiled"})
+    assert b.stats["method"] == "direct" and "direct_options" in b.stats["method_reason"]
+    assert np.abs(a.u - b.u).max() <= 1e-12 * np.abs(a.u).max()
+    with pytest.raises(ValueError, match="direct_options apply to method='direct' only"):
+        ul.solve(model, load, dt=1e-3, t_end=0.3, method="cq", direct_options={"engine": "python"})

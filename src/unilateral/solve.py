@@ -19,7 +19,7 @@ __all__ = ["METHODS", "solve"]
 
 def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="static",
           lcp="bpp", lcp_options=None, bilateral=False, cq_options=None, modal_options=None,
-          callback=None) -> Solution:
+          direct_options=None, callback=None) -> Solution:
     """Dynamic response of a structure with unilateral constraints.
 
     Parameters
@@ -59,10 +59,11 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
     bilateral : bool
         Hold every constraint at its initial state (``v = v(0)``, e.g. the static one): the
         paper's "without uplift" case. A gap that is open statically stays open by as much.
-    cq_options, modal_options : dict, optional
-        Options of ``method="cq"`` (``L``, ``rho``, ``history``, ``engine``) and
-        ``method="modal"`` (``modes``, ``engine``); see :class:`~unilateral.methods.CQ` and
-        :class:`~unilateral.methods.Modal`.
+    cq_options, modal_options, direct_options : dict, optional
+        Options of ``method="cq"`` (``L``, ``rho``, ``history``, ``engine``),
+        ``method="modal"`` (``modes``, ``engine``) and ``method="direct"`` (``engine``); see
+        :class:`~unilateral.methods.CQ`, :class:`~unilateral.methods.Modal` and
+        :class:`~unilateral.methods.Direct`.
     callback : callable ``callback(k, N)``, optional
         Called after every step (progress bars).
 
@@ -74,8 +75,8 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
     if not isinstance(model, (Model, KernelModel, TimeKernelModel, FoundationModel)):
         raise TypeError(f"model must be a unilateral.Model, KernelModel, TimeKernelModel or FoundationModel, "
                         f"got {V.describe(model)}")
-    options = {name: value for name, value in (("cq", cq_options), ("modal", modal_options))
-               if value is not None}
+    options = {name: value for name, value in (("cq", cq_options), ("modal", modal_options),
+                                               ("direct", direct_options)) if value is not None}
     if isinstance(model, TimeKernelModel) and (method != "auto" or load is not None or options
                                                or disc.rule.name != "bdf2"):
         raise ValueError(

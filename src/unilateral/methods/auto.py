@@ -36,6 +36,8 @@ def choose_method(model, rule, solver, options):
         return CQ(**options["cq"]), "cq_options were given"
     if "modal" in options:
         return Modal(**options["modal"]), "modal_options were given"
+    if "direct" in options:
+        return Direct(**options["direct"]), "direct_options were given"
     small = model.n <= DENSE_STEPPING_MAX_N and model.m <= FULL_SPACE_MIN_M
     if small and rule.supports_cq and isinstance(solver, BlockPrincipalPivoting) and model.m:
         return Modal(), ("small model: the compiled CLCP march with the exact recursive history "
