@@ -107,8 +107,6 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
 def _write_all(out, cases: dict, *, structure, units, figure, title, meta, labels, model, load, rule, formats,
                point, storeys) -> dict:
     """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
-    from ..figures.results import draw_figures
-
     labels = labels or {}
     computed = cases
     cases = _on_common_axis(cases)
@@ -155,7 +153,11 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
     if extra_results is not None:
         result["results"] = to_jsonable(extra_results["peaks"])
     write_json_atomic(out / "summary.json", result)
-    result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]
+    result["figures"] = []
+    if formats:                                 # matplotlib is imported only to draw
+        from ..figures.results import draw_figures
+
+        result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]
     return result
 
 

@@ -6,6 +6,7 @@ from .. import _validate as V
 from ..history import HISTORIES
 from ..lcp import BlockPrincipalPivoting
 from ..march.clcp import march_cq, march_cq_compiled
+from ..march.jit import compiled_pays
 
 ENGINES = ("auto", "compiled", "python")
 #: Above this many steps the history of stored weights is summed by the FFT-blocked algorithm.
@@ -17,11 +18,12 @@ def compiled_applies(run) -> bool:
     return isinstance(run.solver, BlockPrincipalPivoting) and not run.bilateral
 
 
-def use_compiled(engine, compiled_ok, run, *, option, needs) -> bool:
-    """Whether to run compiled: ``engine`` asked for it (and it applies), or ``auto`` and it applies."""
+def use_compiled(engine, compiled_ok, run, *, option, needs, steps) -> bool:
+    """Whether to run compiled: ``engine`` asked for it (and it applies), or ``auto``, it applies and
+    a run of ``steps`` steps is long enough (:func:`unilateral.march.jit.compiled_pays`)."""
     if engine == "compiled" and not compiled_ok:
         raise ValueError(f"{option}['engine']='compiled' needs {needs}")
-    return engine == "compiled" or (engine == "auto" and compiled_ok)
+    return engine == "compiled" or (engine == "auto" and compiled_ok and compiled_pays(steps))
 
 
 def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto", option="cq_options"):
@@ -40,7 +42,7 @@ def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto",
     run.stats["history"] = history
     solver = run.solver
     if use_compiled(engine, history == "naive" and compiled_applies(run), run, option=option,
-                    needs="history='naive' and lcp='bpp'"):
+                    needs="history='naive' and lcp='bpp'", steps=N):
         run.stats["engine"] = "compiled"
         return march_cq_compiled("naive", (W, psi_affine), v_b, dt=disc.dt, tol=solver.tol,
                                  max_iter=solver.max_iter or 10 * W.shape[1] + 10, callback=run.callback)

@@ -7,6 +7,7 @@ import functools
 from .. import _validate as V
 from ..lcp import BlockPrincipalPivoting
 from ..march.active_set import march_direct_active_set
+from ..march.jit import compiled_pays
 from ..march.direct import march_direct, march_direct_compiled
 from ..march.stepper import COMPILED_MAX_N
 from ..model import Model
@@ -55,7 +56,8 @@ class Direct(Method):
                              "unilateral.rules and the condensed LCP (a sparse model with at most "
                              f"{FULL_SPACE_MIN_M} constraints or a dense model); got lcp="
                              f"{run.solver.name!r}, rule={disc.rule!r}, n={model.n}, m={model.m}")
-        compiled = engine == "compiled" or (engine == "auto" and compiled_ok and model.n <= COMPILED_MAX_N)
+        compiled = engine == "compiled" or (engine == "auto" and compiled_ok and model.n <= COMPILED_MAX_N
+                                            and compiled_pays(disc.N))
         base = BaseState.prepare(model, load, initial, disc, run, tables=compiled)
         if base.init.message:
             return failed_at_start(model, base.init, run)

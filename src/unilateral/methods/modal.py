@@ -66,7 +66,8 @@ class Modal(Method):
             history = kernel.history(disc.N, disc.dt, disc.rule)
             run.stats["history"] = history.name
             solver = run.solver
-            if use_compiled(engine, compiled_applies(run), run, option="modal_options", needs="lcp='bpp'"):
+            if use_compiled(engine, compiled_applies(run), run, option="modal_options", needs="lcp='bpp'",
+                            steps=disc.N):
                 run.stats["engine"] = "compiled"
                 return march_cq_compiled("recursive", (W0, *history.arrays(), psi_affine), v_b, dt=disc.dt,
                                          tol=solver.tol, max_iter=solver.max_iter or 10 * model.m + 10,
@@ -107,7 +108,8 @@ class Modal(Method):
                 history = new_history()
                 run.stats["history"] = history.name
                 solver = run.solver
-                if use_compiled(engine, compiled_applies(run), run, option="modal_options", needs="lcp='bpp'"):
+                if use_compiled(engine, compiled_applies(run), run, option="modal_options", needs="lcp='bpp'",
+                                steps=disc.N):
                     run.stats["engine"] = "compiled"
                     return march_cq_compiled("recursive", (W0, *history.arrays(), psi_affine), c_b,
                                              dt=disc.dt, tol=solver.tol,
