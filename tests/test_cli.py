@@ -82,3 +82,15 @@ def test_bad_options_name_the_option():
     assert result.exit_code == 2 and "--rule" in result.output
     result = CliRunner().invoke(main, ["example", "liolios1990", "--dt", "-1", "--out", "/tmp/unused-unilateral"])
     assert result.exit_code == 2 and "Invalid value for '--dt': -1 is not a positive finite number" in result.output
+
+
+def test_a_short_cli_run_stays_in_python_and_leaves_the_library_policy_alone(tmp_path):
+    """The CLI runs short analyses without loading compiled code; the library default is restored."""
+    from unilateral.march import jit
+
+    result = CliRunner().invoke(main, ["example", "liolios1990", "--out", str(tmp_path / "ex"), "--t-end", "0.2",
+                                       "--figures", "none", "--method", "modal"])
+    assert result.exit_code == 0, result.output
+    assert jit.COMPILE_MIN_STEPS == 0 and jit.compiled_pays(10)
+    stats = [json.loads(text) for text in load_netcdf(tmp_path / "ex" / "results.nc")["stats"].values]
+    assert [s["engine"] for s in stats] == ["python", "python"]

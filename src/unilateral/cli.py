@@ -17,7 +17,7 @@ import click
 
 from . import __version__
 
-EXAMPLES = ("liolios1990",)
+EXAMPLES = ("liolios1990", "halfspace")                          # unilateral.analysis.run.EXAMPLES
 METHOD_NAMES = ("auto", "cq", "modal", "direct")                 # in unilateral.methods.MATRIX_METHOD_NAMES
 RULE_NAMES = ("bdf1", "bdf2", "hht", "newmark", "trapezoidal")   # unilateral.rules.RULES
 LCP_NAMES = ("bpp", "enumerate", "lemke", "newton", "pgs")       # unilateral.lcp.LCP_SOLVERS
@@ -108,6 +108,10 @@ def example(name, method, rule, dt, t_end, lcp, out, formats):
     liolios1990: the paper's example (a mass on a column on a rigid foundation resting on
     three tensionless spring-dashpot soil elements, gravity and a horizontal pulse). Writes
     results.nc, CSV tables, summary.json and the paper's Fig. 2 to OUT (default ./liolios1990).
+
+    halfspace: the same tower on a rigid footing on the paper's soil, on cones and on the elastic
+    half-space, under the pulse and a synthetic earthquake; adds halfspace.png (uplift, rocking and
+    contact pressure side by side) to OUT (default ./halfspace).
     """
     overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
     _run(lambda progress: _analysis().run_example(name, out or Path(name), figures=formats, progress=progress,
@@ -175,6 +179,11 @@ def _register_batch():
 _register_batch()
 
 
+#: Runs of fewer steps use the Python loops in a CLI process, which would otherwise spend 1-1.5 s
+#: importing numba and loading compiled code to save less (see :mod:`unilateral.march.jit`).
+CLI_COMPILE_MIN_STEPS = 2000
+
+
 # ---------------------------------------------------------------------- helpers
 def _analysis():
     from . import analysis
@@ -187,6 +196,9 @@ def _run(call, out, overrides):
     started = time.perf_counter()
     bar = _ProgressBar() if sys.stderr.isatty() else None
     from .io.atomic import WriteError
+    from .march import jit
+
+    compile_min_steps, jit.COMPILE_MIN_STEPS = jit.COMPILE_MIN_STEPS, CLI_COMPILE_MIN_STEPS
     from .io.folder import OutputFolderError
 
     try:
@@ -200,6 +212,7 @@ def _run(call, out, overrides):
     except MemoryError as exc:                  # solve() refuses runs that would not fit, with the figures
         raise click.ClickException(str(exc) or "out of memory: increase --dt or shorten --t-end") from None
     finally:
+        jit.COMPILE_MIN_STEPS = compile_min_steps       # the CLI may run inside a library process (tests)
         if bar is not None:
             bar.close()
     report = _analysis().report(result)

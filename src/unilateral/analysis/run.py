@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-EXAMPLES = ("liolios1990",)
+EXAMPLES = ("liolios1990", "halfspace")
 UNITS_KN = {"length": "m", "force": "kN", "time": "s"}
 SETTINGS = ("dt", "t_end", "method", "rule", "lcp", "initial")
 
@@ -60,9 +60,22 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
 
 
 def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None, **overrides) -> dict:
-    """Run a built-in example (``"liolios1990"``) with and without uplift; see :func:`run_model_file`."""
+    """Run a built-in example with and without uplift; see :func:`run_model_file`.
+
+    ``"liolios1990"``: the paper's example. ``"halfspace"``: the paper's tower on the Winkler-Kelvin
+    soil, cones and the elastic half-space under the pulse and an earthquake
+    (:func:`unilateral.analysis.halfspace_example.run_halfspace_example`).
+    """
     if name not in EXAMPLES:
         raise ValueError(f"no example {name!r}; valid: {', '.join(EXAMPLES)}")
+    if name == "halfspace":
+        from .halfspace_example import run_halfspace_example
+
+        unknown = set(overrides) - set(SETTINGS)
+        if unknown:
+            raise TypeError(f"unknown setting(s) {sorted(unknown)}; valid: {', '.join(SETTINGS)}")
+        return run_halfspace_example(Path(out) if out is not None else Path(name), figures=figures,
+                                     progress=progress, **overrides)
     from ..structure.examples import liolios1990
 
     structure, load, info = liolios1990()

@@ -168,7 +168,8 @@ def _at(where: str):
 def _check(document: ModelFile, folder: Path) -> None:
     """Raise :class:`Problems` listing every inconsistency of a validated document."""
     problems = (_mode_problems(document) + _duplicate_problems(document)
-                + _reference_problems(document, folder) + _record_problems(document))
+                + _reference_problems(document, folder) + _record_problems(document)
+                + _foundation_problems(document))
     if problems:
         raise Problems(problems)
 
@@ -257,6 +258,66 @@ def _record_problems(document: ModelFile) -> list[str]:
     return problems
 
 
+def _foundation_problems(document: ModelFile) -> list[str]:
+    """The keys of ``[foundation]`` that go together (soil model and its parameters, nodes)."""
+    f = document.foundation
+    if f is None or document.matrices is not None:
+        return []
+    problems = []
+    at = ("foundation",)
+    ids = [node.id for node in document.nodes]
+    for k, node in enumerate(f.nodes or ()):
+        if node not in set(ids):
+            problems.append(value_problem((*at, "nodes", k), node, f"no node {toml_value(node)} (nodes are "
+                                          f"{compact_ids(ids)})") + did_you_mean(node, ids))
+    if f.nodes is not None and f.patches is not None:
+        problems.append(value_problem((*at, "patches"), f.patches, "only for a rigid footing (a flexible footing, "
+                                      "with nodes, has one patch per node): remove patches or nodes"))
+    if f.nodes is not None and len(f.nodes) < 2:
+        problems.append(value_problem((*at, "nodes"), f.nodes, "a flexible footing needs at least two nodes; "
+                                      "omit nodes for a rigid footing"))
+    if f.nodes is None and f.width is None:
+        problems.append(f"{key_path((*at, 'width'))}: missing key (a rigid footing needs its width along x)")
+    soil, where = f.soil, (*at, "soil")
+    m = len(f.nodes) if f.nodes is not None else (f.patches or 3)
+    if soil.model == "winkler-kelvin":
+        for key in ("G", "Vs", "nu", "rho"):
+            if getattr(soil, key) is not None:
+                problems.append(value_problem((*where, key), getattr(soil, key), 'not used by model = '
+                                              '"winkler-kelvin" (give k and c per patch): remove it'))
+        if soil.damping:
+            problems.append(value_problem((*where, "damping"), soil.damping, 'not used by model = "winkler-kelvin" '
+                                          "(give c): remove it"))
+        if soil.k is None:
+            problems.append(f"{key_path((*where, 'k'))}: missing key (model = \"winkler-kelvin\" needs the spring "
+                            "of each patch [F/L], one number or a list of one per patch)")
+        for key in ("k", "c"):
+            value = getattr(soil, key)
+            if isinstance(value, list) and len(value) != m:
+                problems.append(value_problem((*where, key), value, f"give one number or a list of {m} numbers "
+                                              f"(one per patch; the footing has {m})"))
+        return problems
+    if soil.G is None and soil.Vs is None:
+        problems.append(f"{key_path((*where, 'G'))}: missing key (model = {toml_value(soil.model)} needs G or Vs)")
+    elif soil.G is not None and soil.Vs is not None:
+        problems.append(value_problem((*where, "Vs"), soil.Vs, "give either G or Vs, not both"))
+    for key in ("nu", "rho"):
+        if getattr(soil, key) is None:
+            problems.append(f"{key_path((*where, key))}: missing key (model = {toml_value(soil.model)} needs it)")
+    for key in ("k", "c"):
+        value = getattr(soil, key)
+        if value is not None and value != 0.0:
+            problems.append(value_problem((*where, key), value, f'only for model = "winkler-kelvin" (model = '
+                                          f"{toml_value(soil.model)} takes G or Vs, nu, rho)"))
+    if soil.model == "cones" and soil.damping:
+        problems.append(value_problem((*where, "damping"), soil.damping, 'the cones have no material damping; '
+                                      'use damping = 0 or model = "halfspace"'))
+    if f.horizontal == "cone" and soil.model == "winkler-kelvin":
+        problems.append(value_problem((*at, "horizontal"), f.horizontal, 'needs the soil\'s G or Vs, nu, rho '
+                                      '(model = "halfspace" or "cones")'))
+    return problems
+
+
 # ---------------------------------------------------------------------- the frame
 def _build_structure(document: ModelFile) -> Structure:
     fr = Frame2D()
@@ -277,6 +338,14 @@ def _build_structure(document: ModelFile) -> Structure:
     for k, mass in enumerate(document.masses):
         with _at(key_path(("masses", k))):
             fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass)
+    f = document.foundation
+    if f is not None:
+        soil = {key: value for key, value in f.soil.model_dump().items() if value is not None}
+        if soil.get("rho") is not None:
+            soil["rho"] = soil["rho"] * to_mass
+        with _at("foundation"):
+            fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=soil, patches=f.patches,
+                          nodes=f.nodes, horizontal=f.horizontal, gap=f.gap)
     rayleigh = document.damping.rayleigh if document.damping is not None else None
     if rayleigh is not None:
         with _at("damping.rayleigh"):

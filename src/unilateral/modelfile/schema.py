@@ -430,6 +430,46 @@ class Matrices(Table):
     constraints: list[Annotated[str, Field(min_length=1)]] | None = None
 
 
+# ---------------------------------------------------------------------- foundation on a soil medium
+class FoundationSoil(Table):
+    """[foundation.soil]: the soil medium under the footing and its model."""
+
+    model: Literal["halfspace", "cones", "winkler-kelvin"] = Field(title="soil model", description=(
+        "halfspace: the rigorous (visco)elastic half-space; cones: the footing's vertical cone (Wolf) "
+        "spread over the patches; winkler-kelvin: a tensionless spring k and dashpot c per patch."))
+    G: Positive | None = Field(None, description="Shear modulus [F/L^2] (halfspace, cones); or give Vs.")
+    Vs: Positive | None = Field(None, description="Shear-wave speed [L/T] (halfspace, cones); or give G.")
+    nu: Annotated[float, Field(ge=0.0, lt=0.5)] | None = Field(None, description="Poisson's ratio, 0 <= nu < 0.5.")
+    rho: Positive | None = Field(None, description="Mass density [F T^2/L^4, or units.mass/L^3].")
+    damping: Annotated[float, Field(ge=0.0, lt=1.0)] = Field(0.0, description=(
+        "Material damping ratio of the half-space (constant Q); 0 for cones and winkler-kelvin."))
+    k: Positive | list[Positive] | None = Field(None, description=(
+        "winkler-kelvin: spring of each patch [F/L], one number or one per patch."))
+    c: NonNegative | list[NonNegative] = Field(0.0, description=(
+        "winkler-kelvin: dashpot of each patch [F T/L], one number or one per patch."))
+
+
+class Foundation(Table):
+    """[foundation]: a footing resting on a soil medium through unilateral contacts."""
+
+    EXAMPLE: ClassVar[str] = ('[foundation] node = 2, width = 10.0, length = 10.0, patches = 4, '
+                              'soil = { model = "halfspace", Vs = 100.0, nu = 0.33, rho = 2.0 }')
+    name: Name = "footing"
+    node: NodeRef = Field(description="Reference node: the rigid footing's node (uy, rz); where the "
+                                      "horizontal restraint acts.")
+    nodes: list[NodeId] | None = Field(None, description=(
+        "A flexible footing: its contact nodes, one patch each (omit for a rigid footing)."))
+    width: Positive | None = Field(None, description="Width along x [L] (flexible: default the span of nodes).")
+    length: Positive = Field(description="Length out of plane [L].")
+    patches: Annotated[int, Field(ge=1, le=400)] | None = Field(None, description=(
+        "Rigid footing: number of strips across the width (default 3)."))
+    horizontal: Literal["support", "cone", "none"] = Field("support", title="horizontal restraint", description=(
+        "support: ux of node supported; cone: Wolf's horizontal cone as a bilateral spring and dashpot at "
+        "node; none: restrained otherwise."))
+    gap: float = Field(0.0, description="Opening at u = 0 with the soil unloaded [L]; negative: a penetration.")
+    soil: FoundationSoil
+
+
 class ModelFile(Table):
     """A unilateral model file: a 2-D frame (nodes, elements, ...) or matrices, loads, analysis."""
 
@@ -441,6 +481,7 @@ class ModelFile(Table):
     unilateral: list[Unilateral] = []
     masses: list[Mass] = []
     damping: Damping | None = None
+    foundation: Foundation | None = None
     matrices: Matrices | None = None
     loads: Loads = Loads()
     analysis: Analysis
@@ -456,7 +497,8 @@ class ModelFile(Table):
         return self
 
 
-FRAME_SECTIONS = ("nodes", "supports", "rigid_links", "elements", "unilateral", "masses", "damping")
+FRAME_SECTIONS = ("nodes", "supports", "rigid_links", "elements", "unilateral", "masses", "damping",
+                  "foundation")
 
 
 # ---------------------------------------------------------------------- helpers

@@ -189,6 +189,9 @@ class SoilFlexibility:
             raise ValueError(f"m (the number of contacts) must be >= 1, got {m}")
         self._func, self.m, self._static = func, m, static
         self.poles, self.kelvin, self.description = poles, kelvin, description
+        #: Time (s) after which the soil's impulse response is negligible, or None (unknown): the
+        #: truncation hint of :meth:`cq_weights`.
+        self.memory = None
 
     # ------------------------------------------------------------------ evaluation
     def evaluate(self, s) -> np.ndarray:
@@ -234,6 +237,60 @@ class SoilFlexibility:
                              f"positive definite; its smallest eigenvalue is {eig[0]:.3g}")
         return value
 
+    def cq_weights(self, N: int, dt: float, rule, **cq_options) -> np.ndarray:
+        """Convolution-quadrature weights ``W_0 .. W_N`` (N+1, m, m) real of ``Phi(s)``.
+
+        The impulse response of a soil without creep dies out: on an elastic half-space the surface
+        displacements under a force that has stopped are static once the Rayleigh wave has crossed
+        the foundation (Pekeris), so the weights beyond a few travel times across the foundation are
+        round-off. Only ``W_0 .. W_J`` are then computed, by the FFT on a circle with
+        ``L = 8 (J + 1)`` points instead of ``8 (N + 1)``, and ``W_j = 0`` beyond: ``J`` starts at
+        ``memory / dt`` (``memory``, s: a hint of the constructor, e.g. three Rayleigh-wave travel
+        times across the half-space's patches) plus 64 steps, and is accepted only if the last
+        eighth of the computed weights is below ``1e-8`` of the largest weight (their round-off floor
+        is about 1e-10 of it); otherwise ``J``
+        grows fourfold, up to ``N`` (a creeping soil, e.g. constant-Q damping, ends there).
+        Weights are kept per ``(dt, rule)`` on this object, so that the cases of one analysis
+        (with and without uplift, several loads) evaluate ``Phi(s)`` once.
+
+        ``cq_options`` (``L``, ``rho``) give the plain :func:`~unilateral.kernels.cq_weights` of all
+        ``N + 1`` weights.
+        """
+        from ..kernels.cq_weights import cq_weights
+        from ..rules import get_rule
+
+        rule = get_rule(rule, cq=True)
+        N, dt = int(N), float(dt)
+
+        def real(W):
+            return np.real_if_close(W) if np.iscomplexobj(W) else W
+
+        if cq_options:
+            return real(cq_weights(self.evaluate, N, dt, rule, **cq_options))
+        cache = self.__dict__.setdefault("_weights_cache", {})
+        key = (dt, rule.name)
+        known = cache.get(key)
+        if known is not None and (known[1] or known[0].shape[0] >= N + 1):
+            W, _ = known
+        else:
+            memory = getattr(self, "memory", None)
+            J = N if memory is None else min(N, int(np.ceil(float(memory) / dt)) + 64)
+            while True:
+                W = real(cq_weights(self.evaluate, J, dt, rule))
+                if J == N:
+                    cache[key] = (W, False)
+                    break
+                scale = np.abs(W).max(initial=0.0)
+                tail = np.abs(W[J - J // 8:]).max(initial=0.0)
+                if tail <= 1e-8 * scale:
+                    cache[key] = (W, True)              # complete: W_j = 0 beyond J
+                    break
+                J = min(N, 4 * J)
+        out = np.zeros((N + 1, self.m, self.m))
+        k = min(N + 1, W.shape[0])
+        out[:k] = W[:k]
+        return out
+
     @property
     def is_rational(self) -> bool:
         """True if the exact pole-residue form is known (``method="modal"`` applies)."""
@@ -262,8 +319,14 @@ class SoilFlexibility:
             raise ValueError("patches must have positive sides (a point contact has an infinite "
                              "self-flexibility on a half-space)")
         func = lambda s: halfspace.surface_flexibility(patches, s, kmax_factor=kmax_factor)
-        return cls(func, patches.m, description=f"half-space G={halfspace.G:g}, nu={halfspace.nu:g}, "
+        soil = cls(func, patches.m, description=f"half-space G={halfspace.G:g}, nu={halfspace.nu:g}, "
                                                  f"rho={halfspace.rho:g}, {patches.m} patches")
+        if halfspace.damping == 0.0 or halfspace.damping_model == "kelvin_voigt":
+            # three Rayleigh-wave travel times across the patches (the weights' truncation hint)
+            lo = patches.centres - 0.5 * patches.sizes
+            hi = patches.centres + 0.5 * patches.sizes
+            soil.memory = 3.0 * float(np.hypot(*(hi.max(axis=0) - lo.min(axis=0)))) / halfspace.cr
+        return soil
 
     @classmethod
     def cones(cls, patches, G, nu, rho, *, wave="rayleigh") -> SoilFlexibility:
@@ -271,6 +334,12 @@ class SoilFlexibility:
 
         Diagonal: Wolf's vertical cone of the equal-area disc; coupling: Boussinesq decay with a
         wave delay. Rational (``method="modal"``) only for one patch (no coupling, no delay).
+
+        The coupling is not passive in general: for 2 to 4 strips of a 10 m square footing under the
+        tower of :func:`unilateral.structure.examples.halfspace_tower`, the march with every contact
+        held (the bilateral case) grows without bound at every time step tried, and ``Phi(0)`` of 5
+        or more such strips is not positive definite. ``Frame2D.foundation`` therefore spreads the
+        footing's own vertical cone over the patches instead (:mod:`unilateral.structure.foundation`).
         """
         from .cones import cone, cone_flexibility
 
@@ -581,10 +650,9 @@ class FoundationModel:
         (zero initial data), without the round-off that the FFT on a circle suffers where
         ``D(s)`` is ill-conditioned at small ``|s|`` (a footing resting only on the soil has a
         pole of ``D(s)^-1`` at ``s = 0``; axially rigid members add stiffness 1e7 times larger).
-        The soil's part is :func:`~unilateral.kernels.cq_weights` of ``Phi(s)`` (``cq_options``:
-        ``L``, ``rho``).
+        The soil's part is :meth:`SoilFlexibility.cq_weights` (truncated where the soil's impulse
+        response has died out; ``cq_options``: ``L``, ``rho`` force the full FFT).
         """
-        from ..kernels.cq_weights import cq_weights
         from ..march.direct import sweep_direct
         from ..march.stepper import StructureStepper
         from ..rules import get_rule
@@ -600,8 +668,7 @@ class FoundationModel:
             impulse[1, j] = 1.0
             _, _, _, opening, _ = sweep_direct(stepper, N + 1, np.zeros(m), np.zeros(m), impulse)
             W[:, :, j] = opening[1:]
-        soil = cq_weights(self.soil.evaluate, N, dt, rule, **cq_options)
-        return W + (np.real_if_close(soil) if np.iscomplexobj(soil) else soil)
+        return W + self.soil.cq_weights(N, dt, rule, **cq_options)
 
     # ------------------------------------------------------------------ equivalent matrix models
     def static_model(self) -> Model:

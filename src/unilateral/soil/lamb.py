@@ -130,6 +130,17 @@ def _factor(kc, d, a1, a2):
     return out
 
 
+def _factors(kc, keys):
+    """``_factor`` of every key (U, 3) ``(d, a1, a2)``, stacked on a last axis: (..., U).
+
+    The sinc products depend on the sizes only: each distinct ``(a1, a2)`` is evaluated once and
+    only ``cos(kc d)`` per key (strips of one width share one pair of sincs).
+    """
+    sizes, group = np.unique(keys[:, 1:], axis=0, return_inverse=True)
+    sincs = [_factor(kc, 0.0, a1, a2) for a1, a2 in sizes]
+    return np.stack([np.cos(kc * d) * sincs[g] for (d, _, _), g in zip(keys, group.ravel())], axis=-1)
+
+
 def angular(k, keys, chunk_entries: int = 2_000_000) -> np.ndarray:
     """Angular factors ``H_p(k)`` (nk, P) for pair keys (P, 6) ``|dx|, |dy|, a_r, b_r, a_s, b_s``.
 
@@ -166,8 +177,8 @@ def angular(k, keys, chunk_entries: int = 2_000_000) -> np.ndarray:
             sel = idx[j:j + step]
             kk = k[sel][:, None]
             kx, ky = kk * c[None, :], kk * s[None, :]
-            Sx = np.stack([_factor(kx, *xk) for xk in xkeys], axis=-1)     # (q, n, Ux)
-            Sy = np.stack([_factor(ky, *yk) for yk in ykeys], axis=-1)     # (q, n, Uy)
+            Sx = _factors(kx, xkeys)                                        # (q, n, Ux)
+            Sy = _factors(ky, ykeys)                                        # (q, n, Uy)
             M = np.matmul(Sx.transpose(0, 2, 1), Sy)                       # (q, Ux, Uy)
             out[sel] = (2.0 * np.pi / n) * M[:, ix, iy]
         start = stop

@@ -138,3 +138,90 @@ def winkler_beam(n_elements=100, *, length=50.0, EI=2e6, EA=2e7, mass_per_length
     info = {"units": "kN, m, s", "node": node,
             "figure": {"node": node, "dof": "uy", "label": f"vertical displacement of node {node} (m)"}}
     return structure, q, info
+
+
+#: The footing of :func:`halfspace_tower` (m): 10 m wide (the paper's), 10 m long out of plane.
+FOOTING_WIDTH = 10.0
+FOOTING_LENGTH = 10.0
+#: The half-space of :func:`halfspace_tower` (kN, m, s): rho in t/m^3, Vs in m/s. With nu = 1/3 its
+#: static vertical stiffness under the rigid 10 m x 10 m footing on 4 strips is 6.09e5 kN/m, the
+#: paper's 3 x 200 MN/m (rocking 1.22e7 kN m/rad against the paper's 1.0e7; the cones: 6.37e5 and
+#: 4.98e6, a Winkler bed's rocking).
+SOIL_RHO = 2.0
+SOIL_NU = 1.0 / 3.0
+SOIL_VS = 97.0
+HALFSPACE_SOILS = ("winkler-kelvin", "cones", "halfspace")
+
+
+def halfspace_tower(soil="halfspace", *, load="pulse", patches=4, record=None, pulse=PULSE):
+    """The paper's tower on a rigid footing resting on a soil medium (kN, m, s).
+
+    Node 1: the mass ``M = 40`` on top of a 10 m column (``EI = 1e9``, axially practically rigid);
+    node 2: the footing's centre, restrained horizontally, with the footing's ``uy`` and ``rz``.
+    The footing (``Frame2D.foundation``, rigid, massless) rests on
+
+    * ``"winkler-kelvin"``: the paper's three tensionless soil elements (``k = 200e3`` kN/m,
+      ``c = 10e3`` kN s/m) under ``x = -5, 0, +5`` (three strips of a 15 m x 6.67 m footing, so that
+      the contacts sit where the paper's are and the footing's area is 100 m^2);
+    * ``"cones"``: Wolf's vertical cone of the 10 m x 10 m footing spread over ``patches`` strips
+      by area (uncoupled spring, dashpot per strip; :mod:`unilateral.structure.foundation`);
+    * ``"halfspace"``: the rigorous elastic half-space under the same strips.
+
+    The medium of the cones and the half-space: ``rho = 2`` t/m^3, ``nu = 1/3``, ``Vs = 97`` m/s
+    (``G = 18.8`` MPa), chosen so that the static vertical stiffness of the footing is the paper's
+    ``3 x 200`` MN/m (see ``info["static_stiffness"]``).
+
+    Parameters
+    ----------
+    soil : {"winkler-kelvin", "cones", "halfspace"}
+    load : {"pulse", "earthquake"}
+        Gravity (g = 10 m/s^2) and either the paper's horizontal pulse (``pulse`` kN at node 1 for
+        ``0 < t <= 0.1`` s) or a horizontal ground acceleration ``record`` (default: the synthetic
+        record of :func:`unilateral.loads.synthetic_accelerogram`, 8 s, PGA 5 m/s^2, f_g = 4 Hz,
+        seed 1)
+        acting as ``-M r a_g`` (displacements relative to the free field, ``docs/theory.md`` 12).
+    patches : int
+        Strips of the 10 m footing (cones, half-space).
+    record : GroundMotion or time function, optional
+        The ground acceleration (m/s^2) of ``load="earthquake"``.
+    pulse : float
+        Magnitude of the pulse (kN).
+
+    Returns
+    -------
+    structure : Structure (``structure.to_model()`` is the FoundationModel)
+    load : LoadHistory
+    info : dict ``units``, ``soil``, ``load``, ``edge`` (x of the left edge), ``static_stiffness``
+        (vertical, kN/m, from the soil's ``Phi(0)``), ``figure`` (rocking of node 2).
+    """
+    from ..loads import synthetic_accelerogram
+
+    if soil not in HALFSPACE_SOILS:
+        raise ValueError(f"soil={soil!r} is not valid; valid: {', '.join(map(repr, HALFSPACE_SOILS))}")
+    if load not in ("pulse", "earthquake"):
+        raise ValueError(f"load={load!r} is not valid; valid: 'pulse', 'earthquake'")
+    fr = Frame2D()
+    fr.node(1, 0.0, HEIGHT)
+    fr.node(2, 0.0, 0.0)
+    fr.beam("column", 2, 1, E=1.0, A=EA_RIGID, I=EI)
+    fr.mass(1, MASS)
+    if soil == "winkler-kelvin":
+        width, length, m = 3 * HALF_WIDTH, FOOTING_WIDTH * FOOTING_LENGTH / (3 * HALF_WIDTH), 3
+        spec = {"model": "winkler-kelvin", "k": K_SOIL, "c": C_SOIL}
+    else:
+        width, length, m = FOOTING_WIDTH, FOOTING_LENGTH, patches
+        spec = {"model": soil, "Vs": SOIL_VS, "nu": SOIL_NU, "rho": SOIL_RHO}
+    fr.foundation("footing", 2, width=width, length=length, patches=m, soil=spec)
+    structure = fr.build()
+    weight = structure.gravity(GRAVITY)
+    if load == "pulse":
+        history = LoadHistory(weight, [(structure.nodal_load(1, ux=1.0), Rectangular(pulse, t_end=T_PULSE))])
+    else:
+        a_g = record if record is not None else synthetic_accelerogram(8.0, 0.01, 5.0, seed=1, f_g=4.0)
+        history = LoadHistory(weight, [structure.ground_motion(a_g, "ux")])
+    fnd = structure.foundation
+    ones = np.ones(fnd.m)
+    info = {"units": "kN, m, s", "soil": soil, "load": load, "edge": -0.5 * FOOTING_WIDTH,
+            "static_stiffness": float(ones @ np.linalg.solve(fnd.soil.static(), ones)),
+            "figure": {"node": 2, "dof": "rz", "label": "rocking of the footing (rad)"}}
+    return structure, history, info

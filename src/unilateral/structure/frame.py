@@ -50,6 +50,7 @@ class Frame2D:
         self._names: set = set()
         self._mass: dict = {}
         self._rayleigh: tuple[float, float] | None = None
+        self._foundation = None
 
     # ------------------------------------------------------------------ nodes and supports
     def node(self, node_id, x, y) -> None:
@@ -229,6 +230,74 @@ class Frame2D:
                            A=_real(where, "A", A, ">0"), slack=_real(where, "slack", slack),
                            capacity=_real(where, "capacity", capacity, ">=0")))
 
+    # ------------------------------------------------------------------ foundation on a soil medium
+    def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
+                   horizontal="support", gap=0.0) -> None:
+        """A footing resting on a soil medium (half-space, cones or Winkler-Kelvin) through
+        unilateral contacts; :meth:`Structure.to_model` then gives a
+        :class:`~unilateral.soil.FoundationModel` (``docs/theory.md``, section 12).
+
+        Rigid footing (``nodes=None``): ``node`` carries the footing's ``uy`` and ``rz``;
+        ``patches`` strips (default 3) across ``width`` (the frame's x, centred on ``node``), each
+        ``length`` long out of plane. Flexible footing: one patch per node of ``nodes`` (the nodes of
+        a footing beam at one elevation), centred on it, its tributary width; the end patches reach
+        the edges at ``centre +- width/2`` (default ``width``: the span of the nodes).
+
+        Parameters
+        ----------
+        name : str
+            Contacts are named ``"name.1"`` ... (rigid, left to right) or ``"name.<node>"``.
+        node : node id
+            The reference node: the rigid footing's node; where ``horizontal`` acts.
+        width, length : float, length
+        soil : SoilFlexibility, SoilSpec or dict
+            E.g. ``{"model": "halfspace", "Vs": 200.0, "nu": 1/3, "rho": 2.0, "damping": 0.0}``,
+            ``{"model": "cones", "G": ..., "nu": ..., "rho": ...}`` or
+            ``{"model": "winkler-kelvin", "k": 200e3, "c": 10e3}`` (per patch); see
+            :mod:`unilateral.structure.foundation`.
+        patches : int, optional
+            Number of strips of a rigid footing (default 3).
+        nodes : sequence of node ids, optional
+            A flexible footing's contact nodes.
+        horizontal : {"support", "cone", "none"}
+            The footing's horizontal restraint: ``ux`` of ``node`` supported (default), Wolf's
+            horizontal cone as a bilateral spring and dashpot at ``node`` (no sliding), or nothing.
+        gap : float or (m,) array, length
+            Opening at ``u = 0`` with the soil unloaded (negative: a penetration).
+
+        Only one foundation per frame, and none with other unilateral elements.
+        """
+        from .foundation import build_foundation, horizontal_cone
+
+        where = f"foundation {name!r}"
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"foundation name must be a non-empty str, got {name!r}")
+        if self._foundation is not None:
+            raise ValueError(f"{where}: the frame already has a foundation ({self._foundation.name!r}); one "
+                             "foundation per frame (the half-space couples every patch)")
+        if name in self._names:
+            raise ValueError(f"{where}: the name is already used by another element")
+        self._node(where, "node", node)
+        for k, other in enumerate(nodes or ()):
+            self._node(where, f"nodes[{k}]", other)
+        fnd = build_foundation(name=name, node=node, nodes=nodes, width=width, length=length, soil=soil,
+                               patches=3 if patches is None and nodes is None else patches,
+                               horizontal=horizontal, gap=gap, coords=self._coords)
+        for contact in fnd.contact_nodes():
+            if contact in self._links:
+                continue
+            if (contact, "uy") in self._restrained:
+                raise ValueError(f"{where}: uy of node {contact!r} is supported: the footing could not move "
+                                 "on the soil; remove that support")
+        if fnd.horizontal == "support":
+            self.support(node, ux=True, uy=False)
+        elif fnd.horizontal == "cone":
+            K, C = horizontal_cone(fnd, where)
+            self.spring(f"{name}.horizontal_spring", node, K, direction="ux")
+            self.dashpot(f"{name}.horizontal_dashpot", node, C, direction="ux")
+        self._foundation = fnd
+        self._names.add(name)
+
     # ------------------------------------------------------------------ build
     def build(self) -> Structure:
         """Number the DOFs and assemble the natural form, the mass and the damping matrices.
@@ -240,6 +309,9 @@ class Frame2D:
         everything = self._elements + self._dashpots
         rotated = {node for e in everything for node, dof in e.dofs if dof == "rz"}
         rotated |= {node for node, mass in self._mass.items() if mass[2] > 0}
+        fnd = self._foundation
+        if fnd is not None and fnd.rigid and fnd.m > 1:
+            rotated.add(fnd.node)                       # the footing rocks on its patches
         dofs = DofMap(self._coords, self._restrained, rotated, self._links)
         if dofs.n == 0:
             raise ValueError("every DOF is supported or linked: the frame has no free DOF")
@@ -259,7 +331,11 @@ class Frame2D:
         nodal_mass = np.array([self._mass.get(node, np.zeros(3)) for node in dofs.nodes])
         M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
         K = (G @ E @ G.T).tocsr()
-        _check_stiffness(K, dofs)
+        on_soil = set()
+        if fnd is not None:                             # the soil stiffens these (FoundationModel checks)
+            for terms in fnd.moved_rows(self._coords):
+                on_soil |= {(node, dof) for node, dof, _ in terms}
+        _check_stiffness(K, dofs, exempt=on_soil)
         C = self._damping(dofs, M)
         natural = NaturalForm(G=G, E=E, B=B, A=np.zeros((m, m)), r=r, theta=ConstantStrain(theta), E_v=E_v)
         return Structure(
@@ -270,6 +346,7 @@ class Frame2D:
             constraint_strains=rows, nodal_mass=nodal_mass,
             elements=tuple(self._elements), dashpots=tuple(self._dashpots),
             coords={node: xy.copy() for node, xy in self._coords.items()}, rayleigh=self._rayleigh,
+            foundation=fnd,
         )
 
     # ------------------------------------------------------------------ helpers
@@ -361,6 +438,9 @@ class Structure:
     dashpots : the attached dashpots (their viscosity is in ``C``)
     coords : dict node -> (2,) coordinates
     rayleigh : ``(a0, a1)`` of the Rayleigh damping in ``C``, or None
+    foundation : :class:`~unilateral.structure.foundation.Foundation` or None
+        A footing on a soil medium (:meth:`Frame2D.foundation`); its contacts are not among
+        ``constraint_names`` (``m`` counts the frame's own unilateral elements).
 
     Results of a solution (end forces, reactions, base shear, drifts, accelerations) are in
     :mod:`unilateral.structure.forces`; :meth:`influence` and :meth:`ground_motion` build the load
@@ -380,6 +460,7 @@ class Structure:
     dashpots: tuple = ()
     coords: dict | None = None
     rayleigh: tuple | None = None
+    foundation: object = None
 
     @property
     def n(self) -> int:
@@ -391,12 +472,20 @@ class Structure:
         """Number of unilateral unknowns."""
         return len(self.constraint_names)
 
-    def to_model(self) -> Model:
-        """The reduced problem (eqs. 13-16) via :meth:`Model.from_natural`.
+    def to_model(self):
+        """The problem to solve: a :class:`Model` or, with a foundation, a ``FoundationModel``.
 
-        DOF names are ``"node.dof"`` (e.g. ``"3.uy"``), constraint names the unilateral
-        element names.
+        Without a foundation: the reduced problem (eqs. 13-16) via :meth:`Model.from_natural`; DOF
+        names are ``"node.dof"`` (e.g. ``"3.uy"``), constraint names the unilateral element names.
+        With a foundation (:meth:`Frame2D.foundation`): the
+        :class:`~unilateral.soil.FoundationModel` of the frame's ``M, K, C`` without the soil, ``T``
+        of the footing, the soil's ``Phi(s)`` and the footing's gap; constraint names are the
+        contact names. Its solutions have ``v`` the openings and ``psi = -c`` (minus the contact forces).
         """
+        if self.foundation is not None:
+            from .foundation import to_foundation_model
+
+            return to_foundation_model(self)
         nat = self.natural
         return Model.from_natural(
             nat.G, nat.E, nat.B, M=self.M, A=nat.A, r=nat.r,
@@ -542,7 +631,7 @@ def _coo(rows, cols, vals, shape) -> sp.csr_matrix:
     return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=shape)
 
 
-def _check_stiffness(K, dofs: DofMap) -> None:
+def _check_stiffness(K, dofs: DofMap, exempt=frozenset()) -> None:
     """Raise ``ValueError`` naming the free DOFs no element stiffens.
 
     A mechanism whose diagonal is positive (e.g. a frame that sways with pinned joints, or a
@@ -551,7 +640,7 @@ def _check_stiffness(K, dofs: DofMap) -> None:
     dynamic problem well posed.
     """
     d = K.diagonal()
-    bad = np.flatnonzero(d <= 0)
+    bad = np.array([i for i in np.flatnonzero(d <= 0) if dofs.free[i] not in exempt], dtype=int)
     if bad.size:
         names = ", ".join(dofs.names[i] for i in bad[:10]) + (", ..." if bad.size > 10 else "")
         raise ValueError(

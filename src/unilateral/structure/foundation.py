@@ -1,0 +1,445 @@
+"""A footing of a :class:`~unilateral.structure.Frame2D` resting on a soil medium (``Frame2D.foundation``).
+
+The frame is the structure of a :class:`~unilateral.soil.FoundationModel`: its ``M, K, C`` without the
+soil, ``T`` (n, m) the upward displacement of the footing at each contact patch, ``Phi(s)`` the soil's
+flexibility of the patches (``docs/theory.md``, section 12). Two footings:
+
+* **rigid** (``node`` only): the reference ``node`` carries ``uy`` and ``rz``; ``patches`` strips
+  across the ``width`` (the frame's x), each as long as the footing (``length``, out of plane), at
+  ``x_j`` from the node: ``T[:, j] = e_uy + x_j e_rz``;
+* **flexible** (``nodes=[...]``): one patch per node of a footing beam, its tributary width, centred
+  on the node; ``T[:, j] = e_uy`` of node ``j``.
+
+The soil (``soil=``): a :class:`~unilateral.soil.SoilFlexibility` of the patches, a
+:class:`SoilSpec`, or a dict of its fields: ``model`` ``"halfspace"`` (the rigorous (visco)elastic
+half-space), ``"cones"`` (Wolf's cones with Boussinesq coupling) or ``"winkler-kelvin"`` (the paper's
+tensionless spring ``k`` and dashpot ``c`` per patch); ``G`` or ``Vs``, ``nu``, ``rho``, ``damping``.
+
+``"cones"`` is Wolf's (1994) vertical cone of the disc with the footing's area (spring ``K``,
+radiation dashpot ``C = rho c A``, trapped mass if ``nu > 1/3``) spread over the patches in
+proportion to their areas: a bed of uncoupled, rational (``method="modal"``) cone elements whose
+totals are the footing's vertical cone; its rocking stiffness is that of a Winkler bed (for the
+10 m square footing on 4 strips 0.47 of the rocking cone's). The coupled
+:meth:`SoilFlexibility.cones <unilateral.soil.SoilFlexibility.cones>` (Boussinesq decay with a wave
+delay between patches) can be given as ``soil`` directly, but it is not passive: with the contacts
+held (the bilateral case) the march of the example's tower on 2 to 4 strips grows without bound
+(to 1e7 m and beyond), at every time step tried; it is not used here.
+
+The horizontal restraint (``horizontal=``): the contact is vertical only (relaxed: no shear
+tractions), so the footing needs a horizontal restraint of its own: ``"support"`` (default: ``ux``
+of the reference node supported, as in the paper's example), ``"cone"`` (a bilateral horizontal
+spring ``K = 8 G r0 / (2 - nu)`` and dashpot ``C = rho Vs pi r0^2`` of Wolf's horizontal cone of the
+disc of equal area, attached to the reference node: the footing is assumed not to slide, also when
+it lifts off partly) or ``"none"`` (the frame restrains it otherwise).
+
+Units: any consistent set; with kN, m, s: ``G`` in kPa, ``rho`` in t/m^3, ``k`` in kN/m,
+``c`` in kN s/m.
+"""
+
+from __future__ import annotations
+
+import numbers
+from dataclasses import dataclass, fields
+
+import numpy as np
+import scipy.sparse as sp
+
+__all__ = ["HORIZONTAL", "SOIL_MODELS", "Foundation", "SoilSpec", "soil_flexibility"]
+
+SOIL_MODELS = ("halfspace", "cones", "winkler-kelvin")
+HORIZONTAL = ("support", "cone", "none")
+
+
+@dataclass(frozen=True)
+class SoilSpec:
+    """The soil under a footing, by its material (all in the frame's consistent units).
+
+    Attributes
+    ----------
+    model : {"halfspace", "cones", "winkler-kelvin"}
+        The rigorous half-space, the footing's vertical cone spread over the patches, or the
+        paper's Kelvin elements (see :mod:`unilateral.structure.foundation`).
+    G : float, force/length^2
+        Shear modulus (or give ``Vs``; ``G = rho Vs^2``).
+    Vs : float, length/time
+        Shear-wave speed.
+    nu : float in [0, 0.5)
+    rho : float, mass/length^3 (force time^2/length^4)
+    damping : float >= 0
+        Material damping ratio of the half-space (constant Q, :class:`~unilateral.soil.HalfSpace`);
+        0 for the cones (they have none).
+    k : float or sequence of m floats, force/length
+        ``"winkler-kelvin"``: the spring of each patch (one number: the same for every patch).
+    c : float or sequence of m floats, force time/length
+        ``"winkler-kelvin"``: the dashpot of each patch (default 0).
+    """
+
+    model: str
+    G: float | None = None
+    Vs: float | None = None
+    nu: float | None = None
+    rho: float | None = None
+    damping: float = 0.0
+    k: object = None
+    c: object = 0.0
+
+    @classmethod
+    def from_dict(cls, data: dict, where: str = "soil") -> SoilSpec:
+        """A SoilSpec from a dict of its fields; unknown keys are named in the error."""
+        if not isinstance(data, dict):
+            raise TypeError(f"{where} must be a SoilFlexibility, a SoilSpec or a dict with 'model', got {data!r}")
+        names = [f.name for f in fields(cls)]
+        unknown = [key for key in data if key not in names]
+        if unknown:
+            raise ValueError(f"{where}: unknown key(s) {', '.join(map(repr, unknown))}; valid: {', '.join(names)}")
+        if "model" not in data:
+            raise ValueError(f"{where}: 'model' is missing; valid: {', '.join(map(repr, SOIL_MODELS))}")
+        return cls(**data)
+
+    def shear_modulus(self, where="soil") -> float:
+        """``G`` (given, or ``rho Vs^2``)."""
+        if (self.G is None) == (self.Vs is None):
+            raise ValueError(f"{where}: give either G or Vs (not both, not neither) for model={self.model!r}; "
+                             f"got G={self.G!r}, Vs={self.Vs!r}")
+        rho = _positive(where, "rho", self.rho)
+        if self.G is not None:
+            return _positive(where, "G", self.G)
+        return rho * _positive(where, "Vs", self.Vs) ** 2
+
+    def poisson(self, where="soil") -> float:
+        if isinstance(self.nu, bool) or not isinstance(self.nu, numbers.Real) or not 0.0 <= self.nu < 0.5:
+            raise ValueError(f"{where}: nu={self.nu!r} is not valid; give Poisson's ratio in [0, 0.5)")
+        return float(self.nu)
+
+
+def soil_flexibility(soil, patches, where="soil"):
+    """The :class:`~unilateral.soil.SoilFlexibility` of ``patches`` for ``soil``.
+
+    Parameters
+    ----------
+    soil : SoilFlexibility, SoilSpec or dict
+        A SoilFlexibility must have one contact per patch.
+    patches : RectangularPatches
+        ``m`` patches (contact order).
+    where : str
+        The name used in error messages.
+
+    Returns
+    -------
+    soil : SoilFlexibility
+    spec : SoilSpec or None
+    """
+    from ..soil.foundation_model import SoilFlexibility
+
+    if isinstance(soil, SoilFlexibility):
+        if soil.m != patches.m:
+            raise ValueError(f"{where}: the SoilFlexibility has m = {soil.m} contacts but the footing has "
+                             f"{patches.m} patches; build it for these patches")
+        return soil, None
+    spec = soil if isinstance(soil, SoilSpec) else SoilSpec.from_dict(soil, where)
+    if spec.model not in SOIL_MODELS:
+        raise ValueError(f"{where}: model={spec.model!r} is not valid; valid: {', '.join(map(repr, SOIL_MODELS))}")
+    m = patches.m
+    if spec.model == "winkler-kelvin":
+        for key in ("G", "Vs", "nu", "rho"):
+            if getattr(spec, key) is not None:
+                raise ValueError(f"{where}: {key}={getattr(spec, key)!r} is not used by model='winkler-kelvin' "
+                                 "(give k and c per patch), remove it")
+        if spec.damping:
+            raise ValueError(f"{where}: damping={spec.damping!r} is not used by model='winkler-kelvin' (give c)")
+        if spec.k is None:
+            raise ValueError(f"{where}: model='winkler-kelvin' needs k, the spring of each patch [force/length]")
+        k = _per_patch(where, "k", spec.k, m, ">0")
+        c = _per_patch(where, "c", spec.c, m, ">=0")
+        return SoilFlexibility.kelvin(k, c), spec
+    if spec.k is not None or (spec.c not in (None, 0, 0.0)):
+        raise ValueError(f"{where}: k and c are for model='winkler-kelvin'; model={spec.model!r} takes G or Vs, "
+                         "nu, rho (and damping)")
+    G, nu = spec.shear_modulus(where), spec.poisson(where)
+    rho = _positive(where, "rho", spec.rho)
+    damping = spec.damping
+    if isinstance(damping, bool) or not isinstance(damping, numbers.Real) or not 0.0 <= damping < 1.0:
+        raise ValueError(f"{where}: damping={damping!r} is not valid; give a damping ratio in [0, 1)")
+    if spec.model == "cones":
+        if damping:
+            raise ValueError(f"{where}: damping={damping!r}: the cones have no material damping; use "
+                             "model='halfspace' for a damped soil, or damping = 0")
+        from ..soil.cones import Cone, cone
+
+        areas = patches.areas
+        whole = cone("vertical", G, nu, rho, float(np.sqrt(areas.sum() / np.pi)))
+        share = areas / areas.sum()
+        flex = SoilFlexibility.impedances([Cone("vertical", whole.K * w, whole.C * w, whole.dM * w, 0.0,
+                                                whole.z0, whole.c) for w in share])
+        flex.description = (f"the footing's vertical cone (G={G:g}, nu={nu:g}, rho={rho:g}) over {m} patches "
+                            "by area")
+        return flex, spec
+    from ..soil.halfspace import HalfSpace
+
+    return SoilFlexibility.halfspace(HalfSpace(G, nu, rho, float(damping)), patches), spec
+
+
+@dataclass(frozen=True, eq=False)
+class Foundation:
+    """A footing on a soil medium, as attached by :meth:`Frame2D.foundation`.
+
+    Attributes
+    ----------
+    name : str
+    node : the reference node (rigid: the footing's node; flexible: where ``horizontal`` acts)
+    nodes : tuple of contact nodes (flexible), or None (rigid)
+    width, length : float, length
+    patches : RectangularPatches
+        Patch centres in the frame's x (absolute; y = 0 along the footing's length).
+    soil : SoilFlexibility
+    spec : SoilSpec or None
+    horizontal : str
+    gap : (m,) opening at ``u = 0`` with the soil unloaded
+    contact_names : tuple of m str
+    y : float, elevation of the footing (length)
+    """
+
+    name: str
+    node: object
+    nodes: tuple | None
+    width: float
+    length: float
+    patches: object
+    soil: object
+    spec: SoilSpec | None
+    horizontal: str
+    gap: np.ndarray
+    contact_names: tuple
+    y: float = 0.0
+
+    @property
+    def m(self) -> int:
+        """Number of contact patches."""
+        return self.patches.m
+
+    @property
+    def rigid(self) -> bool:
+        return self.nodes is None
+
+    def contact_nodes(self) -> list:
+        """The node each contact force acts on (the reference node for a rigid footing)."""
+        return [self.node] * self.m if self.rigid else list(self.nodes)
+
+    def moved_rows(self, coords) -> list[tuple]:
+        """Per contact: ``[(node, dof, factor), ...]`` with ``z_f = sum factor * u(node, dof)``."""
+        if self.rigid:
+            x0 = float(coords[self.node][0])
+            return [[(self.node, "uy", 1.0), (self.node, "rz", float(x) - x0)]
+                    for x in self.patches.centres[:, 0]]
+        return [[(node, "uy", 1.0)] for node in self.nodes]
+
+    def T(self, dofs, coords) -> np.ndarray:
+        """``T`` (n, m): upward displacement of the footing at each patch, ``z_f = T^T u``."""
+        out = np.zeros((dofs.n, self.m))
+        for j, terms in enumerate(self.moved_rows(coords)):
+            for node, dof, factor in terms:
+                if factor:
+                    out[:, j] += factor * dofs.T[dofs.full_index(node, dof)].toarray().ravel()
+        return out
+
+    def constraint_coords(self) -> dict:
+        """Coordinates along ``constraint`` for ``results.nc``: x, y of each patch, kind, gap."""
+        return {"constraint_x": ("constraint", [float(x) for x in self.patches.centres[:, 0]]),
+                "constraint_y": ("constraint", [float(self.y)] * self.m),
+                "constraint_kind": ("constraint", ["foundation"] * self.m),
+                "constraint_gap": ("constraint", [float(g) for g in self.gap])}
+
+    # ------------------------------------------------------------------ results of a solution
+    def contact_forces(self, sol) -> np.ndarray:
+        """Compressive contact forces ``c = -psi`` (N+1, m) of a solution (force)."""
+        return -np.asarray(sol.psi, dtype=float)
+
+    def contact_load(self, structure, sol) -> np.ndarray:
+        """``T c`` (N+1, n): the load of the contact forces on the structure."""
+        T = self.T(structure.dofs, structure.coords)
+        return self.contact_forces(sol) @ T.T
+
+    def ground_reactions(self, structure, sol) -> tuple[dict, dict]:
+        """The soil's forces on the structure, per contact: ``(fx, fy, mz)`` (N+1, 3) and the node.
+
+        Each contact force ``c_j`` acts upward at its patch centre; it is reported at the node it
+        acts on (``contact_nodes``) with the moment ``(x_j - x_node) c_j`` of the offset, so that
+        base forces and overturning moments about any point come out right.
+        """
+        c = self.contact_forces(sol)
+        forces, at = {}, {}
+        for j, node in enumerate(self.contact_nodes()):
+            f = np.zeros((c.shape[0], 3))
+            f[:, 1] = c[:, j]
+            f[:, 2] = (float(self.patches.centres[j, 0]) - float(structure.coords[node][0])) * c[:, j]
+            forces[self.contact_names[j]] = f
+            at[self.contact_names[j]] = node
+        return forces, at
+
+
+def structural_solution(sol):
+    """A view of a foundation model's solution for the frame's results: ``v`` without columns.
+
+    The frame of a foundation has no unilateral elements of its own; its end forces, supports,
+    accelerations and energies are those of ``M u'' + C u' + K u = q + T c`` with the contact
+    forces as a load (:meth:`Foundation.contact_load`).
+    """
+    from ..result import Solution
+
+    N1 = len(sol.t)
+    empty = np.zeros((N1, 0))
+    return Solution(t=sol.t, v=empty, psi=empty, psiL=None, u=sol.u, udot=sol.udot, success=sol.success,
+                    message=sol.message, stats=dict(sol.stats), dof_names=sol.dof_names, constraint_names=[])
+
+
+def add_soil_energy(energy: dict, contact_load: np.ndarray, u: np.ndarray) -> dict:
+    """Put the work of the contact forces into the energy balance of the frame alone.
+
+    ``energy`` is :func:`unilateral.analysis.energy.energy_balance` of the frame under the applied
+    load ``q`` only; the contact forces ``T c`` also work on it. ``W_soil = -int (T c)^T u' dt``
+    (trapezoidal on the increments, as the other terms) is the energy that went into the soil
+    (stored in it, radiated into the half-space, dissipated by its dashpots): it is reported as
+    ``contact_dissipated`` and the balance ``W_in = dT + dU + D_damping + W_soil`` is re-evaluated.
+    """
+    du = np.diff(u, axis=0)
+    inc = -0.5 * np.einsum("ki,ki->k", contact_load[1:] + contact_load[:-1], du)
+    soil = np.concatenate([[0.0], np.cumsum(inc)])
+    out = dict(energy)
+    out["contact_dissipated"] = energy["contact_dissipated"] + soil
+    residual = energy["balance_error"] - soil
+    scale = float(np.max(np.maximum.reduce([np.abs(out["input_work"]), out["kinetic"],
+                                            np.abs(out["elastic_structure"] - out["elastic_structure"][0]),
+                                            np.abs(out["damping_dissipated"] + out["contact_dissipated"])]),
+                         initial=0.0))
+    out["balance_error"] = residual
+    out["relative_error"] = np.abs(residual) / scale if scale > 0 else np.zeros_like(residual)
+    out["max_relative_error"] = float(out["relative_error"].max()) if residual.size else 0.0
+    return out
+
+
+def build_foundation(*, name, node, nodes, width, length, soil, patches, horizontal, gap, coords) -> Foundation:
+    """Check the arguments of :meth:`Frame2D.foundation` and make the :class:`Foundation`."""
+    from ..soil.patches import RectangularPatches, strips
+
+    where = f"foundation {name!r}"
+    length = _positive(where, "length", length)
+    horizontal = horizontal if isinstance(horizontal, str) else repr(horizontal)
+    if horizontal not in HORIZONTAL:
+        raise ValueError(f"{where}: horizontal={horizontal!r} is not valid; valid: {', '.join(map(repr, HORIZONTAL))}")
+    if nodes is None:
+        width = _positive(where, "width", width)
+        if isinstance(patches, bool) or not isinstance(patches, numbers.Integral) or not 1 <= patches <= 400:
+            raise ValueError(f"{where}: patches={patches!r} is not valid; give the number of strips across "
+                             "the width, an integer from 1 to 400")
+        x0, y0 = coords[node]
+        local = strips(width, length, int(patches))
+        pts = RectangularPatches(local.centres + np.array([x0, 0.0]), local.sizes)
+        names = tuple(f"{name}.{j + 1}" for j in range(pts.m))
+        contact_nodes = None
+    else:
+        nodes = list(nodes)
+        if patches is not None:
+            raise ValueError(f"{where}: patches={patches!r}: a flexible footing has one patch per node of "
+                             "nodes; remove patches")
+        if len(nodes) < 2:
+            raise ValueError(f"{where}: nodes={nodes!r}: a flexible footing needs at least two nodes (one "
+                             "patch each); give node only for a rigid footing")
+        if len(set(map(repr, nodes))) != len(nodes):
+            raise ValueError(f"{where}: nodes={nodes!r} lists a node twice")
+        xy = np.array([coords[n] for n in nodes], dtype=float)
+        order = np.argsort(xy[:, 0])
+        if np.any(np.diff(xy[order, 0]) <= 0):
+            raise ValueError(f"{where}: nodes={nodes!r}: two nodes have the same x; the footing's nodes must "
+                             "lie at distinct x along the width")
+        if np.ptp(xy[:, 1]) > 1e-9 * max(1.0, np.abs(xy[:, 1]).max()):
+            raise ValueError(f"{where}: nodes={nodes!r} are not at one elevation (y from {xy[:, 1].min():g} to "
+                             f"{xy[:, 1].max():g}); a footing lies on the ground surface")
+        nodes = [nodes[i] for i in order]
+        x = xy[order, 0]
+        span = x[-1] - x[0]
+        width = span if width is None else _positive(where, "width", width)
+        if width < span * (1 - 1e-12):
+            raise ValueError(f"{where}: width={width!r} is smaller than the span of the nodes ({span:g}); give "
+                             "width >= the span, or omit it (the span)")
+        centre = 0.5 * (x[0] + x[-1])
+        edges = np.concatenate([[centre - 0.5 * width], 0.5 * (x[1:] + x[:-1]), [centre + 0.5 * width]])
+        lo, hi = edges[:-1], edges[1:]
+        # each patch centred on its node: the narrower side of its tributary strip, twice
+        half = np.minimum(x - lo, hi - x)
+        if np.any(half <= 0):
+            raise ValueError(f"{where}: a node lies on the footing's edge with width={width!r}; give a width "
+                             "larger than the span of the nodes so that each edge node has a patch")
+        pts = RectangularPatches(np.column_stack([x, np.zeros_like(x)]), np.column_stack([2 * half,
+                                                                                          np.full_like(x, length)]))
+        names = tuple(f"{name}.{n}" for n in nodes)
+        contact_nodes = tuple(nodes)
+        y0 = xy[0, 1]
+    flex, spec = soil_flexibility(soil, pts, f"{where}: soil")
+    gap_arr = np.broadcast_to(np.asarray(gap, dtype=float), (pts.m,)).copy() if np.ndim(gap) == 0 else \
+        np.asarray(gap, dtype=float)
+    if gap_arr.shape != (pts.m,) or not np.all(np.isfinite(gap_arr)):
+        raise ValueError(f"{where}: gap={gap!r} must be a finite number or one number per patch ({pts.m})")
+    fnd = Foundation(name=name, node=node, nodes=contact_nodes, width=float(width), length=length, patches=pts,
+                     soil=flex, spec=spec, horizontal=horizontal, gap=gap_arr, contact_names=names, y=float(y0))
+    return fnd
+
+
+def horizontal_cone(fnd: Foundation, where: str) -> tuple[float, float]:
+    """``(K, C)`` of Wolf's horizontal cone of the disc with the footing's area."""
+    from ..soil.cones import cone
+
+    spec = fnd.spec
+    if spec is None or spec.model == "winkler-kelvin":
+        raise ValueError(f"{where}: horizontal='cone' needs the soil's G (or Vs), nu and rho (model 'halfspace' "
+                         "or 'cones'); use horizontal='support' or add a spring and a dashpot")
+    r0 = float(np.sqrt(fnd.width * fnd.length / np.pi))
+    c = cone("horizontal", spec.shear_modulus(where), spec.poisson(where), spec.rho, r0)
+    return float(c.K), float(c.C)
+
+
+def to_foundation_model(structure):
+    """The :class:`~unilateral.soil.FoundationModel` of a frame with a foundation."""
+    from ..soil.foundation_model import FoundationModel
+
+    fnd = structure.foundation
+    if structure.m:
+        raise ValueError(f"the frame has a foundation on a soil medium ({fnd.name!r}) and unilateral elements "
+                         f"({', '.join(structure.constraint_names[:5])}): a FoundationModel has the footing's "
+                         "contacts only; model the other contacts as part of the foundation or leave them out")
+    nat = structure.natural
+    theta = nat.theta(0.0)
+    if np.any(theta):
+        raise ValueError("the frame has imposed strains (axial_strain, curvature) and a foundation on a soil "
+                         "medium: a FoundationModel takes no imposed strains; give them as loads")
+    K = (nat.G @ nat.E @ nat.G.T).tocsr()
+    T = fnd.T(structure.dofs, structure.coords)
+    dense = structure.n <= 2000
+    M, C = structure.M, structure.C
+    if dense:
+        K, M = K.toarray(), M.toarray()
+        C = None if C is None else C.toarray()
+    else:
+        T = sp.csr_matrix(T)
+    return FoundationModel(M, K, T, fnd.soil, C=C, gap=fnd.gap, dof_names=structure.dofs.names,
+                           contact_names=list(fnd.contact_names))
+
+
+def _positive(where, arg, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not np.isfinite(value) or value <= 0:
+        raise ValueError(f"{where}: {arg}={value!r} is not valid; give a finite number > 0")
+    return float(value)
+
+
+def _per_patch(where, arg, value, m, bound) -> np.ndarray:
+    values = [value] * m if isinstance(value, numbers.Real) and not isinstance(value, bool) else value
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        arr = None
+    if arr is None or arr.shape != (m,) or not np.all(np.isfinite(arr)):
+        raise ValueError(f"{where}: {arg}={value!r} is not valid; give one number or a list of {m} numbers "
+                         "(one per patch)")
+    bad = arr <= 0 if bound == ">0" else arr < 0
+    if np.any(bad):
+        raise ValueError(f"{where}: {arg}={value!r} is not valid; every value must be {bound[0]} {bound[1:]}")
+    return arr
