@@ -128,10 +128,10 @@ direction = "ux"
 [scaling]
 values = [0.5, 1.0]
 [analysis]
-method = "direct"
-dt = 2e-3
-t_end = 8.0
-""")
+method = "cq"
+dt = 1e-3
+t_end = 20.0
+""")                                                           # about 1-2 s per analysis: long enough to kill one
     client = distributed.Client(cluster)
     pids = client.run(os.getpid)                               # worker address -> pid
     box = {}

@@ -17,6 +17,7 @@ that differ (``success``, ``message``, ``stats``, timings, ...) become variables
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import errno
 import io
@@ -152,11 +153,25 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
         previous file at ``path`` is intact and no temporary file is left.
     """
     path = Path(path)
-    if ds.nbytes <= IN_MEMORY_LIMIT:
-        data = ds.to_netcdf(engine=ENGINE)
-        return atomic_write(path, lambda tmp: _write_bytes(tmp, data))
-    _check_free_space(path, int(ds.nbytes))
-    return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
+    with _local_scheduler():
+        if ds.nbytes <= IN_MEMORY_LIMIT:
+            data = ds.to_netcdf(engine=ENGINE)
+            return atomic_write(path, lambda tmp: _write_bytes(tmp, data))
+        _check_free_space(path, int(ds.nbytes))
+        return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
+
+
+def _local_scheduler():
+    """A context in which xarray writes with local locks even if a Dask distributed Client is active.
+
+    With a Client, xarray takes a distributed lock named after the target, which fails for an
+    in-memory target (``Semaphore or Lock <BytesIO> not known``); the data are in memory anyway.
+    """
+    try:
+        import dask
+    except ImportError:
+        return contextlib.nullcontext()
+    return dask.config.set(scheduler="synchronous")
 
 
 def _write_bytes(path: Path, data) -> None:
