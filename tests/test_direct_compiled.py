@@ -216,3 +216,17 @@ def test_direct_options_choose_the_engine_through_solve():
     assert np.abs(a.u - b.u).max() <= 1e-12 * np.abs(a.u).max()
     with pytest.raises(ValueError, match="direct_options apply to method='direct' only"):
         ul.solve(model, load, dt=1e-3, t_end=0.3, method="cq", direct_options={"engine": "python"})
+
+
+@pytest.mark.parametrize("method", ["direct", "modal", "cq"])
+def test_a_failed_compiled_step_is_reported_alike_by_every_compiled_march(method):
+    """One BPP solve per step is not enough once the soil lifts off: the run stops and says where."""
+    from unilateral.structure.examples import liolios1990
+
+    structure, load, _ = liolios1990()
+    options = {"cq_options": {"history": "naive"}} if method == "cq" else {}
+    sol = ul.solve(structure.to_model(), load, dt=1e-3, t_end=0.3, method=method, lcp_options={"max_iter": 1},
+                   **options)
+    assert sol.stats["engine"] == "compiled" and not sol.success and len(sol.t) == 9
+    assert "the LCP of step 9 (t = 0.009) failed: block principal pivoting" in sol.message
+    assert "did not converge in 1 solves" in sol.message and "try lcp='lemke'" in sol.message

@@ -83,15 +83,7 @@ def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol, callback=None):
         v, psi, stats, failed = march(*args, v_b, max_iter, tol)
     else:
         v, psi, stats, failed = _chunked(compiled, kind, args, v_b, max_iter, tol, callback)
-    log = StepLog(v_b.shape[0], v_b > 0)
-    log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
-    log.contact_changes, log.max_error = int(stats[2]), float(stats[3])
-    if failed:
-        log.failure = (
-            f"the LCP of step {failed} (t = {failed * dt:.6g}) failed: block principal pivoting "
-            f"found a principal submatrix of W0 that is not positive definite, did not converge in "
-            f"{max_iter} solves, or left an LCP error above tol = {tol:g}; try lcp='lemke'"
-        )
+    log = StepLog.of_compiled(v_b, stats, failed, dt=dt, max_iter=max_iter, tol=tol)
     if len(v):
         log.active = v[-1] > 0
     return v, psi, log

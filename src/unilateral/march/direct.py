@@ -121,14 +121,8 @@ def march_direct_compiled(stepper, N, v_b, psi0, *, dt, max_iter, tol, bilateral
     else:
         failed = _chunked(run, N, callback)
     du, dud, v, psi, stats = carry[:5]
-    log = StepLog(m, v_b > 0)
-    log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
-    log.contact_changes, log.max_error = int(stats[2]), float(stats[3])
+    log = StepLog.of_compiled(v_b, stats, failed, dt=dt, max_iter=max_iter, tol=tol)
     if failed:
-        log.failure = (
-            f"the LCP of step {failed} (t = {failed * dt:.6g}) failed: block principal pivoting "
-            f"found a principal submatrix of W0 that is not positive definite, did not converge in "
-            f"{max_iter} solves, or left an LCP error above tol = {tol:g}; try lcp='lemke'")
         du, dud, v, psi = du[:failed], dud[:failed], v[:failed], psi[:failed]
     log.active = v[-1] > 0
     return du, dud, v, psi, log

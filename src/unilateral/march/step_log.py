@@ -29,6 +29,20 @@ class StepLog:
             return False
         return True
 
+    @classmethod
+    def of_compiled(cls, v_b, stats, failed: int, *, dt: float, max_iter: int, tol: float) -> StepLog:
+        """The log of a compiled march: its ``stats`` (iterations, largest count, contact changes,
+        largest LCP error) and the step that ``failed`` (0: none)."""
+        log = cls(v_b.shape[0], v_b > 0)
+        log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
+        log.contact_changes, log.max_error = int(stats[2]), float(stats[3])
+        if failed:
+            log.failure = (
+                f"the LCP of step {failed} (t = {failed * dt:.6g}) failed: block principal pivoting "
+                f"found a principal submatrix of W0 that is not positive definite, did not converge in "
+                f"{max_iter} solves, or left an LCP error above tol = {tol:g}; try lcp='lemke'")
+        return log
+
     def stats(self) -> dict:
         return {"lcp_iterations": self.iterations, "lcp_max_iterations": self.max_iterations,
                 "max_lcp_error": self.max_error, "contact_changes": self.contact_changes}
