@@ -378,3 +378,17 @@ def test_a_soil_from_a_gap_starts_at_rest_and_falls_onto_the_soil():
     t = sol.t[:first]
     assert np.allclose(uy[:first], -5.0 * t ** 2, rtol=1e-9, atol=1e-15)
     assert sol.v[-1].max() < 1e-15 and -sol.psi[-1].sum() == pytest.approx(600.0, rel=2e-2)
+
+
+def test_a_coupled_cone_model_that_would_create_energy_is_refused_and_the_half_space_is_passive():
+    """The admittance i omega Phi(i omega) of a soil must have a positive semidefinite Hermitian part
+    (it absorbs energy); the coupled cones' does not, the rigorous half-space's does."""
+    from unilateral.soil import HalfSpace, strips
+    from unilateral.soil.foundation_model import SoilFlexibility, _check_passive
+
+    patches = strips(10.0, 10.0, 2)
+    with pytest.raises(ValueError, match=r"not passive: the Hermitian part of i omega Phi\(i omega\) has a negative eigenvalue \(-0\.\d+ of"):
+        SoilFlexibility.cones(patches, 18.8e3, 1 / 3, 2.0)
+    assert SoilFlexibility.cones(strips(10.0, 10.0, 1), 18.8e3, 1 / 3, 2.0).m == 1     # one cone: passive
+    halfspace = HalfSpace(18.8e3, 1 / 3, 2.0)
+    _check_passive(lambda s: halfspace.surface_flexibility(patches, s), patches, 18.8e3, 2.0)

@@ -340,6 +340,10 @@ class SoilFlexibility:
         held (the bilateral case) grows without bound at every time step tried, and ``Phi(0)`` of 5
         or more such strips is not positive definite. ``Frame2D.foundation`` therefore spreads the
         footing's own vertical cone over the patches instead (:mod:`unilateral.structure.foundation`).
+        A soil must not create energy: the Hermitian part of the admittance ``i omega Phi(i omega)``
+        is checked on a frequency grid up to 20 shear-wave transits of the smallest patch per
+        second, and a coupled model that fails is refused (an unstable march would be a silently
+        wrong answer; the rigorous half-space passes the same check to 2e-12).
         """
         from .cones import cone, cone_flexibility
 
@@ -349,6 +353,7 @@ class SoilFlexibility:
             single = cls.impedances([cone("vertical", G, nu, rho, float(np.sqrt(patches.areas[0] / np.pi)))])
             single.description = f"vertical cone, G={G:g}, nu={nu:g}, rho={rho:g}"
             return single
+        _check_passive(func, patches, G, rho)
         return cls(func, patches.m, description=f"cones, G={G:g}, nu={nu:g}, rho={rho:g}, {patches.m} patches")
 
     @classmethod
@@ -830,3 +835,23 @@ def _check_psd(name, A):
         if eig[0] < -limit:
             raise ValueError(f"{name} must be symmetric positive semidefinite; its smallest eigenvalue is "
                              f"{eig[0]:.3g} (largest {eig[-1]:.3g})")
+
+
+def _check_passive(func, patches, G, rho) -> None:
+    """Raise ValueError if the soil would create energy: the Hermitian part of the admittance
+    ``i omega Phi(i omega)`` (velocity per force) must be positive semidefinite, checked on a grid of
+    frequencies up to ``20 c_s / size`` of the smallest patch, to 1e-6 of its largest eigenvalue."""
+    cs = float(np.sqrt(G / rho))
+    size = float(np.sqrt(np.min(patches.areas)))
+    omega = np.geomspace(1e-3, 20.0, 120) * cs / size
+    Y = 1j * omega[:, None, None] * np.asarray(func(1j * omega))
+    eig = np.linalg.eigvalsh(0.5 * (Y + np.conj(np.swapaxes(Y, 1, 2))))
+    relative = eig.min(axis=1) / np.abs(eig).max(axis=1)
+    k = int(np.argmin(relative))
+    if relative[k] < -1e-6:
+        raise ValueError(
+            f"the coupled cone model of these {patches.m} patches is not passive: the Hermitian part of "
+            f"i omega Phi(i omega) has a negative eigenvalue ({relative[k]:.3g} of its largest) at omega = "
+            f"{omega[k]:.4g} rad/s (the soil would create energy and the march would grow without bound); "
+            "use SoilFlexibility.halfspace (rigorous) or SoilFlexibility.impedances with one cone per patch "
+            "(uncoupled)")
