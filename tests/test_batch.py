@@ -451,3 +451,31 @@ type = "base_shear"
     error = res["peaks"]["u"]["energy"]["max_relative_error"]
     assert table["energy_error"].values[0] == pytest.approx(error, rel=1e-12)
     assert 0 < error < 0.05
+
+
+def test_plain_text_records_with_a_header_line_are_read_with_skip_header(tmp_path):
+    """[records] skip_header reaches the reader; without it the header is refused with the hint."""
+    t = np.arange(0.0, 2.0, 0.01)
+    lines = "\n".join(f"{a:.6f}" for a in 0.2 * np.sin(2 * np.pi * 2.0 * t))
+    (tmp_path / "rec.txt").write_text("acceleration [g]\n" + lines + "\n")
+    body = """
+[[models]]
+file = "tower.toml"
+[records]
+files = ["rec.txt"]
+units = "g"
+dt = 0.01
+direction = "ux"
+{skip}
+[scaling]
+values = [1.0]
+[analysis]
+t_end = 2.0
+"""
+    path = write_study(tmp_path, body.format(skip="skip_header = 1"))
+    table = run_study(path, tmp_path / "out", synchronous=True, progress=False, figures=False).table
+    assert table["status"].values[0] == "ok", table["message"].values[0]
+    assert table["top"].values[0] > 0
+    bad = write_study(tmp_path, body.format(skip=""), name="bad.toml")
+    table = run_study(bad, tmp_path / "out_bad", synchronous=True, progress=False, figures=False).table
+    assert table["status"].values[0] == "error" and "skip_header" in table["message"].values[0]

@@ -86,6 +86,8 @@ class Records(Table):
                                                          "relative to the study file (default: the model's).")
     units: str | None = Field(None, description='Units of plain-text records, e.g. "g" or "cm/s2".')
     dt: Positive | None = Field(None, description="Time step of one-column text records [s].")
+    skip_header: int | None = Field(None, ge=0, description=(
+        "Header lines to skip at the top of plain-text records (default 0)."))
 
     @model_validator(mode="after")
     def _some(self):

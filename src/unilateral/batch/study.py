@@ -378,7 +378,8 @@ def _records(doc: StudyFile, folder: Path) -> list[Record]:
     names = {}
     for path in files:
         at2 = path.suffix.lower() == ".at2"
-        options = {} if at2 else {k: v for k, v in (("units", rec.units), ("dt", rec.dt)) if v is not None}
+        options = {} if at2 else {k: v for k, v in (("units", rec.units), ("dt", rec.dt),
+                                                   ("skip_header", rec.skip_header)) if v is not None}
         if not at2 and rec.units is None:
             problems.append(f"records.units: missing key (the plain-text record {path.name} needs the units of "
                             'its values, e.g. units = "g" or "cm/s2")')
