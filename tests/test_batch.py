@@ -407,9 +407,10 @@ files = ["{record_files(1)[0].as_posix()}"]
 direction = "ux"
 [analysis]
 method = "direct"
+lcp = "lemke"
 t_end = 6.0
 timeout = 0.05
-""")
+""")                                        # Lemke: the Python march, about 0.3 s even with numba loaded
     result = run_study(path, tmp_path / "out", synchronous=True, progress=False, figures=False)
     assert list(result.table["status"].values) == ["timeout"]
     assert "stopped after 0.05 s" in result.table["message"].values[0]

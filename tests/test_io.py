@@ -110,6 +110,37 @@ def test_netcdf_round_trip(tmp_path, sol):
     assert attrs["model_name"] == "seed example" and attrs["model_mass"] == 40.0
 
 
+def test_the_netcdf_writer_writes_what_xarray_writes(tmp_path, runs):
+    ds = uio.to_dataset(runs, units=UNITS, attrs={"model": {"name": "seed", "mass": 40.0}})
+    ds = ds.assign_coords(constraint_kind=("constraint", ["soil", "soil", "gap"]))      # a non-index coordinate
+    ours = uio.load_netcdf(uio.save_netcdf(ds, tmp_path / "ours.nc"))
+    ds.to_netcdf(tmp_path / "xarray.nc", engine="h5netcdf")
+    theirs = uio.load_netcdf(tmp_path / "xarray.nc")
+    xr.testing.assert_identical(ours, ds)
+    xr.testing.assert_identical(ours, theirs)
+    assert "constraint_kind" in ours.coords and ours["u"].encoding["dtype"] == np.float64
+
+
+def test_writing_results_imports_neither_dask_array_nor_distributed(tmp_path):
+    """The command line's run, example and plot hold no Dask arrays: xarray is told so."""
+    import subprocess
+    import sys
+
+    code = ("import sys; import numpy as np; import xarray as xr; "
+            "from xarray.namedarray import pycompat; "
+            "from unilateral.io.results import without_dask_arrays, write_netcdf; "
+            "ds = None\n"
+            "with without_dask_arrays():\n"
+            "    ds = xr.Dataset({'x': ('t', np.arange(3.0))}, coords={'t': np.arange(3.0)})\n"
+            f"    write_netcdf(ds, {str(tmp_path / 'x.nc')!r})\n"
+            "    inside = [m in sys.modules for m in ('dask.array', 'distributed')]\n"
+            "print(inside, 'dask' in pycompat._cached_duck_array_modules, "
+            "pycompat.array_type('dask')[0].__module__)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["[False,", "False]", "False", "dask.array.core"]   # restored afterwards
+
+
 def test_save_netcdf_from_solution(tmp_path, sol):
     path = uio.save_netcdf(sol, tmp_path / "run.nc", units=UNITS, attrs={"method": sol.stats["method"]})
     assert_same_solution(uio.from_dataset(uio.load_netcdf(path)), sol)

@@ -114,8 +114,9 @@ def example(name, method, rule, dt, t_end, lcp, out, formats):
     contact pressure side by side) to OUT (default ./halfspace).
     """
     overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
-    _run(lambda progress: _analysis().run_example(name, out or Path(name), figures=formats, progress=progress,
-                                                  **overrides), out or Path(name), overrides)
+    _run(lambda progress, figure_process: _analysis().run_example(
+        name, out or Path(name), figures=formats, progress=progress, figure_process=figure_process, **overrides),
+        out or Path(name), overrides, figures=bool(formats) and name != "halfspace")
 
 
 @main.command()
@@ -126,8 +127,9 @@ def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral):
     """Analyse the structure described by MODEL_FILE (TOML; see docs/model-file.md)."""
     overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
     target = out or Path(model_file.stem)
-    _run(lambda progress: _analysis().run_model_file(model_file, target, bilateral=bilateral, figures=formats,
-                                                     progress=progress, **overrides), target, overrides)
+    _run(lambda progress, figure_process: _analysis().run_model_file(
+        model_file, target, bilateral=bilateral, figures=formats, progress=progress, figure_process=figure_process,
+        **overrides), target, overrides, figures=bool(formats))
 
 
 @main.command()
@@ -141,16 +143,17 @@ def plot(results, out, formats):
     from .analysis.outputs import figure_view
     from .figures.results import draw_figures
     from .io.atomic import WriteError
-    from .io.results import ResultsFileError, open_results
+    from .io.results import ResultsFileError, open_results, without_dask_arrays
 
-    try:
-        ds = open_results(results)
-    except ResultsFileError as exc:
-        raise _UsageFailure(str(exc)) from None
-    try:
-        paths = draw_figures(figure_view(ds), out or results.parent, formats)
-    except (WriteError, OSError) as exc:
-        raise click.ClickException(f"cannot write the figures to {out or results.parent}: {exc}") from None
+    with without_dask_arrays():
+        try:
+            ds = open_results(results)
+        except ResultsFileError as exc:
+            raise _UsageFailure(str(exc)) from None
+        try:
+            paths = draw_figures(figure_view(ds), out or results.parent, formats)
+        except (WriteError, OSError) as exc:
+            raise click.ClickException(f"cannot write the figures to {out or results.parent}: {exc}") from None
     for path in paths:
         click.echo(path)
 
@@ -191,28 +194,38 @@ def _analysis():
     return analysis
 
 
-def _run(call, out, overrides):
-    """Run an analysis with a progress bar, print the report; exit 1 if a case failed."""
+def _run(call, out, overrides, *, figures):
+    """Run an analysis with a progress bar, print the report; exit 1 if a case failed.
+
+    ``call(progress, figure_process)`` runs it. With ``figures``, a process forked first (before
+    the heavy imports) imports the figure code and later draws the figures while this one writes
+    the other outputs (:class:`~unilateral.figures.background.BackgroundFigures`).
+    """
     started = time.perf_counter()
+    figure_process = _figure_process() if figures else None
     bar = _ProgressBar() if sys.stderr.isatty() else None
+    from .figures.background import FigureProcessError
     from .io.atomic import WriteError
+    from .io.folder import OutputFolderError
+    from .io.results import without_dask_arrays
     from .march import jit
 
     compile_min_steps, jit.COMPILE_MIN_STEPS = jit.COMPILE_MIN_STEPS, CLI_COMPILE_MIN_STEPS
-    from .io.folder import OutputFolderError
-
     try:
-        result = call(bar)
+        with without_dask_arrays():
+            result = call(bar, figure_process)
     except OutputFolderError as exc:
         raise click.BadParameter(str(exc), param_hint="'--out'") from None
     except WriteError as exc:
         raise click.ClickException(f"{exc}; the previous outputs in {out} are unchanged") from None
-    except (ValueError, TypeError) as exc:
+    except (ValueError, TypeError, FigureProcessError) as exc:
         raise click.ClickException(str(exc)) from None
     except MemoryError as exc:                  # solve() refuses runs that would not fit, with the figures
         raise click.ClickException(str(exc) or "out of memory: increase --dt or shorten --t-end") from None
     finally:
         jit.COMPILE_MIN_STEPS = compile_min_steps       # the CLI may run inside a library process (tests)
+        if figure_process is not None:
+            figure_process.close()
         if bar is not None:
             bar.close()
     report = _analysis().report(result)
@@ -220,6 +233,13 @@ def _run(call, out, overrides):
     click.echo(f"results in {out}/ ({time.perf_counter() - started:.2f} s)")
     if not result.get("success_all", True):
         sys.exit(1)
+
+
+def _figure_process():
+    """A :class:`~unilateral.figures.background.BackgroundFigures`, or None where it cannot fork."""
+    from .figures.background import BackgroundFigures
+
+    return BackgroundFigures(preload=("xarray",)) if BackgroundFigures.available() else None
 
 
 class _UsageFailure(click.ClickException):

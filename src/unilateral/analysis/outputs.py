@@ -63,7 +63,7 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", in
 
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
                   meta=None, labels=None, model=None, load=None, rule=None, formats=("png",),
-                  point=None, storeys=None) -> dict:
+                  point=None, storeys=None, figure_process=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     The files replace those of the previous run in ``out_dir`` as a set (see the module's doc).
@@ -86,13 +86,21 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     formats : figure formats, e.g. ``("png",)`` (default), ``("png", "pdf")`` or ``()`` (none)
     point : (x0, y0) of the overturning moment (default: the lowest, leftmost node)
     storeys : ``[(lower_node, upper_node)]`` storeys for drifts (default: levels by elevation)
+    figure_process : :class:`unilateral.figures.background.BackgroundFigures`, optional
+        A forked process that draws the figures while this one writes the other files (the same
+        files as in process); closed here if the writing fails.
     """
     folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir)
     try:
         staging = folder.prepare()
-        result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
-                            meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
-                            point=point, storeys=storeys)
+        try:
+            result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
+                                meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
+                                point=point, storeys=storeys, figure_process=figure_process)
+        except BaseException:
+            if figure_process is not None:      # it draws into the staging folder, removed below
+                figure_process.close()
+            raise
         final = folder.commit()
     except WriteError as exc:                   # name the output folder, not the staging folder
         raise WriteError(folder.path / exc.path.name, exc) from exc
@@ -105,7 +113,7 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
 
 
 def _write_all(out, cases: dict, *, structure, units, figure, title, meta, labels, model, load, rule, formats,
-               point, storeys) -> dict:
+               point, storeys, figure_process) -> dict:
     """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
     labels = labels or {}
     computed = cases
@@ -129,6 +137,8 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                                                rule=rule or main.stats.get("rule", "bdf2"), point=point,
                                                storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
+    if formats and figure_process is not None:
+        figure_process.submit(figure_view(ds), out, formats)
     save_netcdf(ds, out / "results.nc")
     for name, sol in computed.items():
         save_csv(sol, out, prefix="" if name == main_name else f"{name}_")
@@ -154,7 +164,9 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         result["results"] = to_jsonable(extra_results["peaks"])
     write_json_atomic(out / "summary.json", result)
     result["figures"] = []
-    if formats:                                 # matplotlib is imported only to draw
+    if formats and figure_process is not None:
+        result["figures"] = [str(p) for p in figure_process.result()]
+    elif formats:                               # matplotlib is imported only to draw
         from ..figures.results import draw_figures
 
         result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]

@@ -29,7 +29,7 @@ def settings_of(defaults: dict, **given) -> dict:
 
 
 def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progress=None, point=None,
-                   storeys=None, **overrides) -> dict:
+                   storeys=None, figure_process=None, **overrides) -> dict:
     """Analyse a model file and write every output, as ``unilateral run`` does.
 
     Parameters
@@ -40,6 +40,9 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
     figures : figure formats (``("png",)``, ``("png", "pdf")``, ``()``)
     progress : callable ``progress(done, total)`` in work units over the whole run, optional
     point, storeys : see :func:`unilateral.analysis.write_outputs`
+    figure_process : :class:`unilateral.figures.background.BackgroundFigures`, optional
+        A forked process that draws the figures while this one writes the other outputs (the
+        command line starts one as it starts); by default the figures are drawn in process.
     **overrides : ``dt``, ``t_end``, ``method``, ``rule``, ``lcp``, ``initial``
 
     Returns
@@ -56,10 +59,12 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
                    structure=spec.structure, units=spec.units, figure=spec.figure,
                    title=a.get("title") or path.stem, meta={"model_file": str(path)},
                    cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
-                   labels=None, formats=figures, progress=progress, point=point, storeys=storeys)
+                   labels=None, formats=figures, progress=progress, point=point, storeys=storeys,
+                   figure_process=figure_process)
 
 
-def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None, **overrides) -> dict:
+def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None, figure_process=None,
+                **overrides) -> dict:
     """Run a built-in example with and without uplift; see :func:`run_model_file`.
 
     ``"liolios1990"``: the paper's example. ``"halfspace"``: the paper's tower on the Winkler-Kelvin
@@ -85,7 +90,8 @@ def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None
                    title="Liolios (1990), Fig. 2: vertical displacement of node 3",
                    meta={"example": name, "model": "Liolios (1990) section 5, reconstruction in docs/theory.md"},
                    cases=("unilateral", "bilateral"), formats=figures, progress=progress,
-                   labels={"unilateral": "with uplift", "bilateral": "without uplift"})
+                   labels={"unilateral": "with uplift", "bilateral": "without uplift"},
+                   figure_process=figure_process)
 
 
 def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:
@@ -94,7 +100,7 @@ def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:
 
 
 def analyse(model, load, settings, out, *, structure, units, figure, title, meta, cases, labels,
-            formats=("png",), progress=None, point=None, storeys=None) -> dict:
+            formats=("png",), progress=None, point=None, storeys=None, figure_process=None) -> dict:
     """Solve ``cases`` (``"unilateral"``, ``"bilateral"``) and write every output to ``out``.
 
     ``progress(done, total)`` is called with work units over the whole run: ``N`` per case (step
@@ -104,6 +110,9 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
     read-only folder or a path through a file fails at once
     (:class:`~unilateral.io.folder.OutputFolderError`). A case that fails (``success=False``) does
     not stop the run: every case is written as far as it got, and ``success_all`` is False.
+
+    ``figure_process`` (a :class:`~unilateral.figures.background.BackgroundFigures`, optional)
+    draws the figures while this process writes the other outputs (:func:`write_outputs`).
     """
     from .._validate import positive_float
     from ..io.folder import OutputFolder
@@ -127,7 +136,7 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
                 progress((k + 1) * N, total)
         result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
                                meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
-                               formats=formats, point=point, storeys=storeys)
+                               formats=formats, point=point, storeys=storeys, figure_process=figure_process)
     finally:
         folder.close()
     if progress is not None:

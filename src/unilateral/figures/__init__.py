@@ -2,11 +2,26 @@
 
 :func:`draw_figures` (``results``) draws every figure of a ``results.nc`` dataset; ``run`` and
 ``plot`` on the command line both call it, so they write the same files. ``plots`` holds the house
-style, the Agg figure factory (no pyplot) and atomic saving. Import this package only when drawing:
-matplotlib takes a while to import.
+style, the Agg figure factory (no pyplot) and atomic saving; ``background`` draws the figures in a
+forked process while the caller writes the other outputs. The names below are imported on first
+use: matplotlib takes a while to import, and the figure process imports it while the run solves.
 """
 
-from .plots import PAGE_WIDTH, save_figure
-from .results import draw_figures
+from importlib import import_module
 
-__all__ = ["PAGE_WIDTH", "draw_figures", "save_figure"]
+_EXPORTS = {"PAGE_WIDTH": "plots", "save_figure": "plots", "draw_figures": "results"}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'unilateral.figures' has no attribute {name!r}")
+    value = getattr(import_module(f"unilateral.figures.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -24,6 +24,8 @@ import io
 import json
 import os
 import shutil
+import sys
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -146,6 +148,9 @@ IN_MEMORY_LIMIT = 1 << 30
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     """Write the Dataset ``ds`` to the netCDF-4 file ``path``, atomically.
 
+    The Dataset is encoded by xarray's own CF encoder into an h5netcdf store
+    (:func:`netcdf_bytes`), so the file is the one :meth:`xarray.Dataset.to_netcdf` writes.
+
     Raises
     ------
     unilateral.io.atomic.WriteError
@@ -153,25 +158,64 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
         previous file at ``path`` is intact and no temporary file is left.
     """
     path = Path(path)
-    with _local_scheduler():
-        if ds.nbytes <= IN_MEMORY_LIMIT:
-            data = ds.to_netcdf(engine=ENGINE)
-            return atomic_write(path, lambda tmp: _write_bytes(tmp, data))
-        _check_free_space(path, int(ds.nbytes))
-        return atomic_write(path, lambda tmp: ds.to_netcdf(tmp, engine=ENGINE))
+    if ds.nbytes <= IN_MEMORY_LIMIT:
+        data = netcdf_bytes(ds)
+        return atomic_write(path, lambda tmp: _write_bytes(tmp, data))
+    _check_free_space(path, int(ds.nbytes))
+    return atomic_write(path, lambda tmp: _store(ds, tmp))
 
 
-def _local_scheduler():
-    """A context in which xarray writes with local locks even if a Dask distributed Client is active.
+def netcdf_bytes(ds: xr.Dataset) -> bytes:
+    """The netCDF-4 file of ``ds``, encoded in memory."""
+    buffer = io.BytesIO()
+    _store(ds, buffer)
+    return buffer.getvalue()
 
-    With a Client, xarray takes a distributed lock named after the target, which fails for an
-    in-memory target (``Semaphore or Lock <BytesIO> not known``); the data are in memory anyway.
+
+def _store(ds: xr.Dataset, target) -> None:
+    """Write ``ds`` to ``target`` (a path or a binary file object) through an h5netcdf store.
+
+    :meth:`xarray.Dataset.to_netcdf` does the same after asking Dask which scheduler runs (it
+    imports ``dask`` and ``distributed``, about 0.5 s, and under a distributed Client takes a lock
+    that fails for an in-memory target). The data are in memory here, so a local lock suffices.
+    """
+    from xarray.backends import H5NetCDFStore
+
+    if any(variable.chunks is not None for variable in ds.variables.values()):
+        ds = ds.load()                          # Dask-backed variables: computed here, then written
+    store = H5NetCDFStore.open(target, mode="w", lock=threading.Lock())
+    try:
+        ds.dump_to_store(store)
+    finally:
+        store.close()
+
+
+@contextlib.contextmanager
+def without_dask_arrays():
+    """A block in which xarray takes Dask as absent, if this process has not imported it.
+
+    xarray checks every new variable against ``dask.array.Array`` and imports ``dask.array`` for
+    that (0.3-0.9 s); a process that has not imported Dask holds no Dask arrays, so the check can
+    only say no. The command line's ``run``, ``example`` and ``plot`` run in this block. If Dask is
+    imported already, or xarray keeps its cache of array modules otherwise, nothing changes.
     """
     try:
-        import dask
-    except ImportError:
-        return contextlib.nullcontext()
-    return dask.config.set(scheduler="synchronous")
+        from xarray.namedarray import pycompat
+
+        cache, absent = pycompat._cached_duck_array_modules, object.__new__(pycompat.DuckArrayModule)
+        absent.module, absent.version, absent.type, absent.available = None, pycompat.Version("0"), (), False
+    except (ImportError, AttributeError, TypeError):
+        yield
+        return
+    if "dask" in sys.modules or "dask" in cache:
+        yield
+        return
+    cache["dask"] = absent
+    try:
+        yield
+    finally:
+        if cache.get("dask") is absent:
+            del cache["dask"]
 
 
 def _write_bytes(path: Path, data) -> None:

@@ -13,7 +13,7 @@ import time
 
 import numpy as np
 
-from .jit import compiled_pays
+from .jit import SWEEP_STEP_COST, compiled_pays
 from .step_log import StepLog
 
 
@@ -154,7 +154,8 @@ def sweep_direct(stepper, N, v_b, psi0, dv=None, *, callback=None, compiled=True
     """
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
     m = stepper.model.m
-    arrays = stepper.sweep_arrays(N) if compiled and callback is None and compiled_pays(N) else None
+    arrays = (stepper.sweep_arrays(N) if compiled and callback is None and compiled_pays(N, SWEEP_STEP_COST)
+              else None)
     if arrays is not None:                  # compiled: the same operations, in machine code
         from .compiled import sweep
 

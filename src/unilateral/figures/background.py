@@ -1,0 +1,168 @@
+"""Figures drawn by a forked process while the caller writes the other outputs.
+
+A run of the command line spends as long drawing its figures (importing matplotlib, then about
+0.2 s per figure) as solving and writing everything else. :class:`BackgroundFigures` forks a
+process at the start of the run, which imports the figure code while the caller solves, then
+draws the figures of the Dataset it is sent (:func:`unilateral.figures.results.draw_figures`, the
+same code and files as in process) while the caller writes ``results.nc``, the tables and the
+summary. On a machine with two cores this takes the figures off the run's critical path.
+
+Only on Linux (``fork``; the child is killed with its parent, ``PR_SET_PDEATHSIG``); elsewhere
+:meth:`BackgroundFigures.available` is False and the caller draws in process. The child never
+returns into the caller's code: it leaves by :func:`os._exit`, and a failure is sent back and
+raised by :meth:`BackgroundFigures.result` (a :class:`~unilateral.io.atomic.WriteError` as such).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import importlib
+import os
+import pickle
+import signal
+import sys
+import traceback
+from pathlib import Path
+
+from ..io.atomic import WriteError
+
+
+class FigureProcessError(RuntimeError):
+    """The figure process failed; ``details`` holds its traceback."""
+
+    def __init__(self, message: str, details: str = ""):
+        super().__init__(message)
+        self.details = details
+
+
+class BackgroundFigures:
+    """A forked process that draws the figures of one run.
+
+    Use: ``figures = BackgroundFigures()`` (forks), later ``figures.submit(ds, out, formats)``,
+    write the other outputs, then ``paths = figures.result()``; ``figures.close()`` in a
+    ``finally`` (kills the process if it was never used or the run failed).
+
+    Parameters
+    ----------
+    preload : names of modules the process imports while it waits, e.g. ``("xarray",)`` to
+        unpickle a Dataset at once (the figure code itself is always imported)
+    """
+
+    def __init__(self, preload=()):
+        if not self.available():
+            raise RuntimeError("BackgroundFigures needs os.fork on Linux; draw in process instead")
+        job_read, self._job = os.pipe()
+        self._reply, reply_write = os.pipe()
+        for stream in (sys.stdout, sys.stderr):
+            stream.flush()
+        parent = os.getpid()
+        self.pid = os.fork()
+        if self.pid == 0:                       # the child: never returns
+            os.close(self._job)
+            os.close(self._reply)
+            _child(job_read, reply_write, parent, preload)
+        os.close(job_read)
+        os.close(reply_write)
+        self._submitted = False
+
+    @staticmethod
+    def available() -> bool:
+        """True where the figures can be drawn by a forked process (Linux)."""
+        return sys.platform.startswith("linux") and hasattr(os, "fork")
+
+    def submit(self, ds, out_dir, formats) -> None:
+        """Send the Dataset to draw and where to (``out_dir``, ``formats`` of ``draw_figures``)."""
+        data = pickle.dumps((ds, str(out_dir), tuple(formats)), protocol=pickle.HIGHEST_PROTOCOL)
+        with os.fdopen(self._job, "wb") as pipe:
+            pipe.write(data)
+        self._job = None
+        self._submitted = True
+
+    def result(self) -> list[Path]:
+        """Wait for the figures; return the files written, or raise what the process raised."""
+        if not self._submitted:
+            raise RuntimeError("BackgroundFigures.result() before submit()")
+        with os.fdopen(self._reply, "rb") as pipe:
+            data = pipe.read()
+        self._reply = None
+        _, status = os.waitpid(self.pid, 0)
+        self.pid = None
+        if not data:
+            raise FigureProcessError(f"the figure process ended without a result ({_status_text(status)})")
+        kind, value = pickle.loads(data)
+        if kind == "ok":
+            return [Path(p) for p in value]
+        if kind == "write_error":
+            path, errno_, reason = value
+            raise WriteError(path, OSError(errno_, reason))
+        message, details = value
+        raise FigureProcessError(f"drawing the figures failed: {message}", details)
+
+    def close(self) -> None:
+        """Release the pipes; kill and reap the process if it is still running."""
+        for fd in (self._job, self._reply):
+            if fd is not None:
+                os.close(fd)
+        self._job = self._reply = None
+        if self.pid is not None:
+            try:
+                os.kill(self.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            os.waitpid(self.pid, 0)
+            self.pid = None
+
+
+def _status_text(status: int) -> str:
+    if os.WIFSIGNALED(status):
+        return f"killed by signal {os.WTERMSIG(status)}"
+    return f"exit status {os.WEXITSTATUS(status)}"
+
+
+def _child(job_read: int, reply_write: int, parent: int, preload) -> None:
+    """Import the figure code, wait for the job, draw, send the result, exit: never returns."""
+    code = 1
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)       # the parent decides; it kills us
+        _die_with_parent()
+        if os.getppid() != parent:                          # it died before we asked
+            os._exit(1)
+        from .results import draw_figures               # matplotlib: imported while the parent solves
+
+        for module in preload:
+            importlib.import_module(module)
+        no_dask = contextlib.ExitStack()                # held until the process ends
+        if "xarray" in sys.modules:                     # this process never holds Dask arrays
+            from ..io.results import without_dask_arrays
+
+            no_dask.enter_context(without_dask_arrays())
+
+        with os.fdopen(job_read, "rb") as pipe:
+            data = pipe.read()
+        if not data:                                        # the parent closed without a job
+            os._exit(0)
+        ds, out_dir, formats = pickle.loads(data)
+        try:
+            reply = ("ok", [str(p) for p in draw_figures(ds, out_dir, formats)])
+        except WriteError as exc:
+            reply = ("write_error", (str(exc.path), exc.errno, exc.reason))
+        except Exception as exc:
+            reply = ("error", (f"{type(exc).__name__}: {exc}", traceback.format_exc()))
+        with os.fdopen(reply_write, "wb") as pipe:
+            pipe.write(pickle.dumps(reply))
+        code = 0
+    except BaseException:                                   # noqa: BLE001 - nothing may escape a fork
+        pass
+    finally:
+        os._exit(code)
+
+
+def _die_with_parent() -> None:
+    """Ask Linux to kill this process when its parent dies (``prctl(PR_SET_PDEATHSIG, SIGKILL)``)."""
+    import ctypes
+
+    PR_SET_PDEATHSIG = 1
+    try:
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+    except (OSError, AttributeError):
+        pass
