@@ -10,14 +10,23 @@ Measures, for the 100 analyses of ``examples/ida.toml`` (the rocking tower under
   compiled numba code from its disk cache, about 1 s, which is reported on its own);
 * ``dask``: the same analyses as tasks on a LocalCluster of ``--workers`` single-threaded worker
   processes, after a warm-up task on every worker (cluster start and warm-up reported on their
-  own); and the whole ``run_study`` (table and figures included) on the same cluster.
+  own), their results read from their files as ``run_study`` does; and the whole ``run_study``
+  (table and figures included) on the same cluster.
 
 The overhead per analysis is the wall time per analysis (times the workers) less the time spent
 in ``unilateral.solve``, relative to the latter; it covers the task round trip, building the load
 (models and records are cached per worker), collecting the peaks and writing the result
-atomically (with fsync). The parallel efficiency is ``throughput(dask) / (workers * throughput(serial))``.
-Both depend on the load of the machine (``os.getloadavg()`` is reported). Results go to a JSON file
-(``--out``; default: a temporary folder, never the repository).
+atomically. The parallel efficiency is ``throughput(dask) / (workers * throughput(serial))``; the
+machine's own ceiling is measured too: ``--workers`` CPU-bound Python processes started together
+against one alone (virtual CPUs that share a core give less than one each). The CPU time of this
+process during the tasks (scheduler and client, per analysis) is reported: on a machine with as
+many cores as workers it is taken from them.
+
+BLAS runs single-threaded in this process (``OPENBLAS_NUM_THREADS=1`` and the like, unless set), as
+Dask's nanny sets it in the workers: both cases do the same work, and a multi-threaded BLAS call
+waiting for a busy core does not stall the serial case. All the numbers depend on the load of the
+machine (``os.getloadavg()`` is reported). Results go to a JSON file (``--out``; default: a temporary
+folder, never the repository).
 """
 
 from __future__ import annotations
@@ -26,13 +35,21 @@ import argparse
 import json
 import os
 import platform
+import resource
 import shutil
 import statistics
+import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):       # before numpy is imported
+    os.environ.setdefault(_name, "1")
+
 ROOT = Path(__file__).resolve().parents[1]
+#: A CPU-bound loop of pure Python for the machine's ceiling (about a second).
+LOOP = "s = 0\nfor i in range(12_000_000):\n    s += i"
 
 
 def serial(study, folder: Path) -> dict:
@@ -52,7 +69,7 @@ def serial(study, folder: Path) -> dict:
 
 
 def dask(study, folder: Path, workers: int) -> tuple[dict, dict]:
-    from distributed import as_completed
+    from distributed import wait
 
     from unilateral.batch import run_study
     from unilateral.batch.runner import _close, start_cluster
@@ -63,19 +80,23 @@ def dask(study, folder: Path, workers: int) -> tuple[dict, dict]:
     started = time.perf_counter() - t0
     t0 = time.perf_counter()
     client.run(warm_up)
-    (folder / "warm").mkdir()
-    for address in client.scheduler_info()["workers"]:
-        client.submit(run_analysis, study.analyses[0].payload, str(folder / "warm"), "", workers=[address],
-                      pure=False).result()
+    for k, address in enumerate(client.scheduler_info()["workers"]):     # a folder each: none finds the
+        warm = folder / "warm" / str(k)                                   # other's result and skips the build
+        warm.mkdir(parents=True)
+        client.submit(run_analysis, study.analyses[0].payload, str(warm), "", workers=[address], pure=False).result()
     warm_total = time.perf_counter() - t0
     results = folder / "dask"
     results.mkdir()
+    cpu = _cpu_time()
     start = time.perf_counter()
-    futures = [client.submit(run_analysis, a.payload, str(results), "dask", pure=False) for a in study.analyses]
-    out = [f.result() for f in as_completed(futures)]
+    futures = client.map(run_analysis, [a.payload for a in study.analyses], [str(results)] * len(study.analyses),
+                         ["dask"] * len(study.analyses), pure=False)
+    wait(futures)
     wall = time.perf_counter() - start
+    here = (_cpu_time() - cpu) / len(futures)
+    out = json_results(results)                        # as run_study: read, not fetched from the workers
     tasks = _summary(f"dask ({workers} workers)", out, wall, workers,
-                     {"cluster_start_s": started, "warm_up_s": warm_total})
+                     {"cluster_start_s": started, "warm_up_s": warm_total, "client_scheduler_cpu_s": here})
     start = time.perf_counter()
     result = run_study(study, folder / "study", scheduler=cluster.scheduler_address, progress=False)
     whole = time.perf_counter() - start
@@ -85,6 +106,26 @@ def dask(study, folder: Path, workers: int) -> tuple[dict, dict]:
                   "wall_s": whole, "per_second": len(solve) / whole, "counts": result.counts,
                   "mean_solve_s": statistics.fmean(solve)}
     return tasks, end_to_end
+
+
+def ceiling(workers: int, rounds: int = 3) -> dict:
+    """The machine's ceiling: ``workers`` times the seconds of :data:`LOOP` in one process alone over
+    those of the slowest of ``workers`` processes started together (``workers`` on idle cores),
+    the median of ``rounds`` pairs run one after the other (a virtual machine's speed drifts)."""
+    def run(n):
+        procs = [subprocess.Popen([sys.executable, "-c", f"import time\nt = time.perf_counter()\n{LOOP}\n"
+                                   "print(time.perf_counter() - t)"], stdout=subprocess.PIPE, text=True)
+                 for _ in range(n)]
+        return [float(p.communicate()[0]) for p in procs]
+
+    pairs = [(run(1)[0], run(workers)) for _ in range(rounds)]
+    speedups = [workers * alone / max(together) for alone, together in pairs]
+    return {"pairs_s": pairs, "speedups": speedups, "speedup": statistics.median(speedups)}
+
+
+def _cpu_time() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
 
 
 def json_results(folder: Path):
@@ -124,11 +165,12 @@ def main(argv=None):
         rows.append(tasks)
     finally:
         shutil.rmtree(folder / "serial", ignore_errors=True)
+    machine = ceiling(args.workers)
     efficiency = rows[1]["per_second"] / (args.workers * rows[0]["per_second"])
     report = {"study": str(args.study), "analyses": len(study.analyses), "cpu_count": os.cpu_count(),
               "machine": platform.platform(), "python": platform.python_version(),
               "loadavg_before": load_before, "loadavg_after": os.getloadavg(),
-              "cases": rows, "run_study": whole, "parallel_efficiency": efficiency}
+              "cases": rows, "run_study": whole, "parallel_efficiency": efficiency, "ceiling": machine}
     print(f"{'case':32s} {'an/s':>7s} {'wall s':>7s} {'solve ms':>9s} {'(cpu ms)':>9s} {'task ms':>8s} "
           f"{'overhead/solve (task)':>22s} {'(end to end)':>13s}")
     for r in rows:
@@ -140,6 +182,9 @@ def main(argv=None):
     print(f"parallel efficiency on {args.workers} workers: {100 * efficiency:.0f}%   "
           f"(warm-up: serial {rows[0]['warm_up_s']:.1f} s, cluster start {rows[1]['cluster_start_s']:.1f} s "
           f"+ warm-up {rows[1]['warm_up_s']:.1f} s; load average {load_before[0]:.2f} -> {os.getloadavg()[0]:.2f})")
+    print(f"this process (scheduler, client) during the tasks: {1e3 * rows[1]['client_scheduler_cpu_s']:.1f} ms CPU "
+          f"per analysis; machine ceiling: {args.workers} CPU-bound processes together run "
+          f"{machine['speedup']:.2f}x one alone (median of {', '.join(f'{x:.2f}' for x in machine['speedups'])})")
     out = args.out or folder / "batch_throughput.json"
     out.write_text(json.dumps(report, indent=2) + "\n")
     print(f"written: {out}")

@@ -454,6 +454,92 @@ type = "base_shear"
     assert 0 < error < 0.05
 
 
+@pytest.mark.parametrize("rule", ["bdf2", "trapezoidal"])
+def test_frame_results_equal_the_full_reactions_and_energy_balance(rule):
+    """The worker's base shear and energy error (operators of the variant, no element forces)
+    against ``base_forces(reactions(...))`` and ``energy_balance`` of the full histories, on a frame
+    with soil springs (Kelvin), a spring and a dashpot to the ground and Rayleigh damping, under a
+    load history (its grid factors) and under the same load as an array of samples."""
+    from test_structure_results import portal
+
+    from unilateral.analysis.energy import energy_balance
+    from unilateral.batch.worker import FrameOperators, FrameResults
+    from unilateral.loads import LoadHistory
+    from unilateral.structure import forces as F
+
+    st = portal()
+    dt, N = 1e-3, 400
+    load = LoadHistory(st.gravity(10.0), [(st.nodal_load(2, ux=1.0), lambda t: 300.0 * np.sin(20.0 * t))])
+    sol = ul.solve(st.to_model(), load, dt=dt, t_end=N * dt, method="cq", rule=rule)
+    assert sol.stats["contact_changes"] > 0
+    samples = load.grid_samples(dt, N)[0]
+    h = F.Histories.from_solution(st, sol, rule, load0=samples[0])
+    shear = np.abs(F.base_forces(st, F.reactions(st, h))["base_shear"]).max()
+    error = energy_balance(st, h, samples)["max_relative_error"]
+    operators = FrameOperators(st)
+    for q in (load, samples):
+        frame = FrameResults(sol, operators, q, rule)
+        assert frame.peak_base_shear() == pytest.approx(shear, rel=1e-12)
+        assert frame.energy_error() == pytest.approx(error, rel=1e-9 if rule == "bdf2" else 0, abs=1e-14)
+    assert shear > 10.0 and (error > 1e-5 if rule == "bdf2" else error < 1e-10)
+
+
+def test_base_shear_and_energy_error_of_a_footing_on_a_soil_medium_equal_the_frame_results(tmp_path):
+    """A model with a [foundation]: the frame alone loaded by the contact forces too, as
+    analysis.structure_results has it (the analysis used to fail on the soil's extra unknowns)."""
+    from unilateral.analysis.results import ground_motions_of, structure_results
+
+    record = record_files(1)[0]
+    model = """
+units = { length = "m", force = "kN", time = "s" }
+nodes = [{ id = 1, x = 0.0, y = 10.0 }, { id = 2, x = 0.0, y = 0.0 }]
+elements = [{ type = "beam", name = "column", node_i = 2, node_j = 1, E = 1.0, A = 1e12, I = 1e9 }]
+masses = [{ node = 1, m = 40.0 }]
+[foundation]
+node = 2
+width = 10.0
+length = 10.0
+soil = { model = "winkler-kelvin", k = 200e3, c = 10e3 }
+[loads]
+gravity = { g = 10.0 }
+"""
+    analysis = '[analysis]\ndt = 0.002\nt_end = 1.0\nmethod = "cq"\n'
+    (tmp_path / "footing.toml").write_text(model + analysis)
+    path = tmp_path / "study.toml"
+    path.write_text(f"""
+[[models]]
+file = "footing.toml"
+[records]
+files = ["{record.as_posix()}"]
+direction = "ux"
+[scaling]
+values = [3.0]
+[analysis]
+t_end = 1.0
+[[quantities]]
+name = "base_shear"
+type = "base_shear"
+[[quantities]]
+name = "energy_error"
+type = "energy_error"
+""")
+    table = run_study(path, tmp_path / "out", synchronous=True, progress=False, figures=False).table
+    assert table["status"].values[0] == "ok", table["message"].values[0]
+    alone = tmp_path / "alone.toml"
+    alone.write_text(model + ground_motion(record, 3.0) + analysis)
+    spec = load_model_file(alone)
+    a = spec.analysis
+    sol = ul.solve(spec.model, spec.load, dt=a["dt"], t_end=a["t_end"], method=a["method"], rule=a["rule"])
+    samples = spec.load.grid_samples(a["dt"], len(sol.t) - 1)[0]
+    res = structure_results(spec.structure, spec.model, {"u": sol}, rule=a["rule"], load_samples=samples,
+                            ground_motions=ground_motions_of(spec.structure, spec.load))
+    shear = np.abs(res["variables"]["base_shear"][1]["u"]).max()
+    assert sol.v.max() > 0 and shear > 10.0                    # it rocks
+    assert table["base_shear"].values[0] == pytest.approx(shear, rel=1e-12)
+    error = res["peaks"]["u"]["energy"]["max_relative_error"]
+    assert table["energy_error"].values[0] == pytest.approx(error, rel=1e-9)
+
+
 def test_plain_text_records_with_a_header_line_are_read_with_skip_header(tmp_path):
     """[records] skip_header reaches the reader; without it the header is refused with the hint."""
     t = np.arange(0.0, 2.0, 0.01)

@@ -158,6 +158,32 @@ t_end = 20.0
     assert len(list((tmp_path / "out" / "results").glob("*.json"))) == 6
 
 
+def test_timed_out_analyses_are_recorded_and_their_workers_restarted(tmp_path, cluster):
+    """A timeout on the cluster: the result is read back from the task (the worker to restart)."""
+    records = record_files(2)
+    path = write_study(tmp_path, f"""
+[[models]]
+file = "tower.toml"
+[records]
+files = ["{records[0].as_posix()}", "{records[1].as_posix()}"]
+direction = "ux"
+[analysis]
+method = "direct"
+dt = 1e-4
+t_end = 6.0
+timeout = 0.05
+""")                                                           # 60 000 steps: seconds, far beyond the limit
+    client = distributed.Client(cluster)
+    before = set(client.run(os.getpid).values())
+    result = run_study(path, tmp_path / "out", scheduler=cluster.scheduler_address, progress=False, figures=False)
+    client.wait_for_workers(2, timeout=60)
+    after = set(client.run(os.getpid).values())
+    client.close()
+    assert list(result.table["status"].values) == ["timeout", "timeout"]
+    assert all("stopped after 0.05 s" in m for m in result.table["message"].values)
+    assert before - after                                      # a worker that ran one was restarted
+
+
 def _group(pgid) -> list[str]:
     """Command lines of the live processes of process group ``pgid``."""
     out = subprocess.run(["ps", "-o", "pid=,pgid=,stat=,args=", "-A"], capture_output=True, text=True).stdout
@@ -181,9 +207,9 @@ direction = "ux"
 values = [0.5, 1.0, 1.5]
 [analysis]
 method = "direct"
-dt = 2e-3
+dt = 2e-5
 t_end = 5.0
-""")
+""")                                                  # 250 000 steps, about 1 s each: long enough to be interrupted
     out = tmp_path / "out"
     command = [sys.executable, "-m", "unilateral.batch", str(path), "--out", str(out), "--workers", "2",
                "--no-figures"]

@@ -134,6 +134,30 @@ def test_rocking_state_space_structure(kernels):
     assert not np.any(kernels["rocking"][1].P1)
 
 
+def test_a_multiple_real_pole_split_by_rounding_into_a_pair(monkeypatch):
+    """The triple pole -1/a1 of the Rayleigh-damped massless DOFs as some LAPACK builds return it:
+    one real eigenvalue and a conjugate pair +-1e-18 i with complex vectors. Made real again, the
+    three are normalised as one cluster and the kernel is exact."""
+    real_eig = sla.eig
+
+    def split(a):
+        mu, X = real_eig(a)
+        target = -1e-3                                      # -1 / (1/a1) of consistent_mass_model
+        idx = np.flatnonzero(np.abs(mu - target) <= 1e-9 * abs(target))
+        assert idx.size == 3
+        V = np.linalg.svd(np.hstack([X[:, idx].real, X[:, idx].imag]))[0][:, :3]
+        pair = (V[:, 1] + 1j * V[:, 2]) / np.sqrt(2.0)
+        rest = np.setdiff1d(np.arange(mu.size), idx)
+        mu = np.r_[mu[rest], target, target + 1e-18j, target - 1e-18j]
+        return mu, np.column_stack([X[:, rest], V[:, 0], pair, pair.conj()])
+
+    monkeypatch.setattr(sla, "eig", split)
+    model = consistent_mass_model()
+    kernel = PoleResidueKernel.from_model(model)
+    assert np.count_nonzero(kernel.poles == -1e3) == 3
+    assert kernel.relative_error(MatrixKernel(model), sample_points(kernel, 2e-2)) <= 1e-10
+
+
 def test_poles_spanning_many_decades(kernels):
     poles = np.abs(kernels["rocking_stiff"][1].poles)
     assert poles.max() / poles.min() > 1e10

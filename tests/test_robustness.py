@@ -244,11 +244,12 @@ def read_only(monkeypatch, folder: Path):
     folder.chmod(0o555)
     if os.geteuid() != 0:
         return
-    inside = str(folder.resolve()) + os.sep
+    itself = str(folder.resolve())
+    inside = itself + os.sep
 
     def guard(real):
         def call(path, *args, **kwargs):
-            if os.fspath(path).startswith(inside):
+            if os.fspath(path) == itself or os.fspath(path).startswith(inside):
                 raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), os.fspath(path))
             return real(path, *args, **kwargs)
         return call

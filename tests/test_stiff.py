@@ -78,14 +78,24 @@ def test_penalty_model_is_stiff_and_split(models):
     assert StiffCoordinates.of(models["rigid"][1]) is None
 
 
-def test_assembled_penalty_model_reproduces_the_asymmetry(models):
-    """The report: without the natural form (assembled K only) the static state is asymmetric."""
+def test_assembled_penalty_model_is_known_only_to_its_rounding(models):
+    """The report: without the natural form (assembled K only) the static state is decided by
+    rounding. Whether a given LAPACK's solve comes out asymmetric is luck; what is not: changing
+    each entry of K by one unit in the last place (symmetrically) moves the static state by about
+    eps cond(K) ~ 1e-4 relative, where the natural form is exact to 1e-12 (next test)."""
     structure, model, load = models["penalty"]
-    assembled = ul.Model(M=model.M.toarray(), K=model.K.toarray(), F=model.F, H=model.H,
-                         C=model.C.toarray(), F_v=model.F_v, H_v=model.H_v)
-    st = static_state(assembled, load(0.0), get_lcp_solver("bpp"))
-    w3, w4 = uy(structure, st.u, 3), uy(structure, st.u, 4)
-    assert abs(w3 - w4) > 1e-7 * abs(STATIC)
+    K = model.K.toarray()
+    rng = np.random.default_rng(1990)
+    states = []
+    for trial in range(3):
+        ulp = np.triu(np.sign(rng.standard_normal(K.shape)))
+        perturbed = K * (1.0 + np.finfo(float).eps * (ulp + np.triu(ulp, 1).T)) if trial else K
+        assembled = ul.Model(M=model.M.toarray(), K=perturbed, F=model.F, H=model.H,
+                             C=model.C.toarray(), F_v=model.F_v, H_v=model.H_v)
+        st = static_state(assembled, load(0.0), get_lcp_solver("bpp"))
+        states.append([uy(structure, st.u, node) for node in (3, 2, 4)])
+    spread = np.ptp(np.array(states), axis=0).max()
+    assert spread > 1e-6 * abs(STATIC)
 
 
 def test_static_state_symmetric_and_equal_to_rigid_link(models):

@@ -15,6 +15,7 @@ import pytest
 
 import unilateral as ul
 from unilateral.analysis.modes import modes
+from unilateral.rules import Newmark
 from unilateral.structure import Frame2D
 from unilateral.structure import forces as F
 
@@ -91,6 +92,41 @@ def test_base_forces_balance_inertia_damping_and_loads_at_every_step(solved):
         scale = np.abs(expected).max()
         assert scale > 1.0
         np.testing.assert_allclose(base[key], expected, atol=1e-7 * scale, err_msg=key)
+
+
+@pytest.mark.parametrize("point", [(0.0, 0.0), (1.5, -2.0)])
+def test_base_force_operator_equals_the_base_forces_of_the_reactions(solved, point):
+    """Supports, soil (Kelvin), a spring and a dashpot to the ground, Rayleigh a1 on the beams."""
+    st, sol, Q, h = solved
+    full = F.base_forces(st, F.reactions(st, h), point)
+    operator, state = F.BaseForceOperator.of(st, point), F.StateRows.of(h.u, h.udot, h.v, h.vdot)
+    fast = operator(state)
+    for key, expected in full.items():
+        np.testing.assert_allclose(fast[key], expected, rtol=0, atol=1e-12 * np.abs(expected).max(), err_msg=key)
+    np.testing.assert_allclose(operator.base_shear(state), full["base_shear"], rtol=0,
+                               atol=1e-12 * np.abs(full["base_shear"]).max())
+
+
+def test_state_rows_of_a_solution_are_its_histories_without_accelerations(solved):
+    st, sol, Q, _ = solved
+    for rule in ("bdf2", "trapezoidal"):
+        h = F.Histories.from_solution(st, sol, rule)
+        state = F.StateRows.of_solution(sol, rule)
+        assert state.n == st.n
+        assert np.array_equal(state.x, np.vstack([h.u.T, h.v.T]))
+        assert np.array_equal(state.xdot, np.vstack([h.udot.T, h.vdot.T]))
+
+
+@pytest.mark.parametrize("rule", ["bdf1", "bdf2", "trapezoidal", Newmark(0.6, 0.3)])
+def test_rate_is_the_first_rate_of_rates_in_any_layout(rule):
+    from unilateral.rules import get_rule
+
+    rule = get_rule(rule) if isinstance(rule, str) else rule
+    y = np.cumsum(np.random.default_rng(1).standard_normal((40, 3)), axis=0)
+    y0d, y0dd = np.array([0.5, -1.0, 2.0]), np.array([3.0, 0.0, -4.0])
+    first, _ = F.rates(y, rule, 1e-2, rate0=y0d, second0=y0dd)
+    assert np.array_equal(F.rate(y, rule, 1e-2, rate0=y0d, second0=y0dd), first)
+    assert np.array_equal(F.rate(np.asfortranarray(y), rule, 1e-2, rate0=y0d, second0=y0dd), first)
 
 
 def test_beam_end_forces_are_in_equilibrium(solved):

@@ -25,7 +25,13 @@ kinetic energy, change of elastic energy or energy dissipated).
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
+import scipy.sparse as sp
+
+#: Matrices with at most this many entries are multiplied dense (one BLAS call on the histories).
+DENSE_ENTRIES = 1 << 14
 
 
 def energy_balance(structure, h, q) -> dict:
@@ -44,46 +50,121 @@ def energy_balance(structure, h, q) -> dict:
     residual ``W_in - dT - dU - D``), ``relative_error`` (the residual over the largest energy
     of the run: input work, kinetic, change of elastic, or dissipated); and ``max_relative_error`` (float).
     """
-    nat = structure.natural
-    q = np.asarray(q, dtype=float)
-    M, C = structure.M, structure.C
-    udot, u, v, vdot = h.udot, h.u, h.v, h.vdot
-    kinetic = 0.5 * np.einsum("ki,ki->k", udot, (M @ udot.T).T)
-    theta = nat.theta(0.0)
-    eps = (nat.G.T @ u.T).T - (nat.B @ v.T).T - theta
-    Eeps = (nat.E @ eps.T).T
-    density = 0.5 * eps * Eeps                      # per strain (E is block diagonal)
-    unilateral = np.zeros(eps.shape[1], dtype=bool)
-    unilateral[structure.constraint_strains] = True
-    elastic_u = density[:, unilateral].sum(axis=1)
-    elastic_s = density[:, ~unilateral].sum(axis=1)
-    du = np.diff(u, axis=0)
-    work = _cumulative(0.5 * np.einsum("ki,ki->k", q[1:] + q[:-1], du))
-    damping = np.zeros(len(h.t))
-    if C is not None:
-        Cud = (C @ udot.T).T
-        damping = _cumulative(0.5 * np.einsum("ki,ki->k", Cud[1:] + Cud[:-1], du))
-    contact = np.zeros(len(h.t))
-    if nat.E_v is not None:
-        eps_rate = (nat.G.T @ udot.T).T - (nat.B @ vdot.T).T
-        viscous = (nat.E_v @ eps_rate.T).T
-        contact += _cumulative(0.5 * np.einsum("ki,ki->k", viscous[1:] + viscous[:-1], np.diff(eps, axis=0)))
-    if v.shape[1]:
-        b = np.asarray(nat.B.sum(axis=0)).ravel()
-        sigma_b = (np.asarray(Eeps)[:, structure.constraint_strains] * b)     # b sigma, elastic part
+    from ..structure.forces import StateRows
+
+    return EnergyBalance(structure)(StateRows.of(h.u, h.udot, h.v, h.vdot), q)
+
+
+class LoadFactors(NamedTuple):
+    """Load samples ``q = constant + factors @ vectors`` (N+1, n), not formed (a LoadHistory's
+    :meth:`~unilateral.loads.LoadHistory.grid_factors`): the work of the loads is
+    ``constant^T du + sum_j f_j vectors_j^T du``, one product with the increments."""
+
+    constant: np.ndarray        # (n,)
+    vectors: np.ndarray         # (terms, n)
+    factors: np.ndarray         # (N+1, terms)
+
+
+class EnergyBalance:
+    """:func:`energy_balance` with the structure's matrices prepared once (for many runs of one model).
+
+    The state is a :class:`~unilateral.structure.forces.StateRows` (one row per unknown), so that
+    every product is one matrix times all the steps, with two matrices:
+
+        [eps; E eps] = S [u; v] - [theta; E theta],  S = [A; E A],  A = [G^T, -B]
+        [M u'; C u'; E_v eps'] = R [u'; v']          (eps' = A [u'; v'])
+
+    The strains are reordered, the bilateral ones first and the unilateral ones (in the order of
+    ``v``) last, so that both parts are blocks of rows; the rows of ``C u'`` without damping and
+    of ``E_v eps'`` without Kelvin elements are left out. Small matrices are multiplied dense,
+    large ones sparse.
+
+    Parameters
+    ----------
+    structure : Structure
+    """
+
+    def __init__(self, structure):
+        nat = structure.natural
+        n, (ne, m) = structure.M.shape[0], nat.B.shape
+        unilateral = np.asarray(structure.constraint_strains, dtype=int)
+        order = np.concatenate([np.setdiff1d(np.arange(ne), unilateral), unilateral])
+        A = sp.hstack([sp.csr_matrix(nat.G).T, -sp.csr_matrix(nat.B)]).tocsr()[order]
+        E = sp.csr_matrix(nat.E)[order][:, order]
+        theta = np.asarray(nat.theta(0.0), dtype=float)[order]
+        zeros = sp.csr_matrix((n, m))
+        rates = [sp.hstack([structure.M, zeros])]
+        if structure.C is not None:
+            rates.append(sp.hstack([structure.C, zeros]))
         if nat.E_v is not None:
-            sigma_b = sigma_b + viscous[:, structure.constraint_strains] * b
+            rates.append(sp.csr_matrix(nat.E_v)[order][:, order] @ A)
+        self.n, self.ne, self.bilateral = n, ne, ne - m
+        self.damped, self.kelvin = structure.C is not None, nat.E_v is not None
+        self.S = _prepared(sp.vstack([A, E @ A]))
+        self.offset = np.concatenate([theta, E @ theta])[:, None]
+        self.imposed = bool(self.offset.any())
+        self.R = _prepared(sp.vstack(rates))
+        self.b = np.asarray(nat.B.sum(axis=0)).ravel()[:, None]     # b of each unilateral element
+
+    def __call__(self, state, q) -> dict:
+        """The energies of :func:`energy_balance` of a run.
+
+        Parameters
+        ----------
+        state : :class:`~unilateral.structure.forces.StateRows` (``v'`` used with Kelvin elements only)
+        q : (N+1, n) load samples (a transposed view of rows (n, N+1) is used without a copy), or
+            :class:`LoadFactors`
+        """
+        n, ne, nb, x, xdot = self.n, self.ne, self.bilateral, state.x, state.xdot
+        strains = self.S @ x
+        if self.imposed:
+            strains -= self.offset
+        eps, Eeps = strains[:ne], strains[ne:]
+        rates = self.R @ xdot
+        kinetic = 0.5 * np.einsum("ik,ik->k", xdot[:n], rates[:n])
+        elastic_s = 0.5 * np.einsum("ik,ik->k", eps[:nb], Eeps[:nb])     # E is block diagonal
+        elastic_u = 0.5 * np.einsum("ik,ik->k", eps[nb:], Eeps[nb:])
+        du = np.diff(x[:n], axis=1)
+        work = _cumulative(_work(q, du))
+        damping = _cumulative(_pairs(rates[n:2 * n], du)) if self.damped else np.zeros(x.shape[1])
+        sigma_b = Eeps[nb:] * self.b                                      # b sigma, elastic part
+        increments = 0.0
+        if self.kelvin:
+            viscous = rates[2 * n if self.damped else n:]
+            increments = _pairs(viscous, np.diff(eps, axis=1))
+            sigma_b = sigma_b + viscous[nb:] * self.b
         # work of b sigma = psi + r on v': the capacity slip and the contact switches
-        contact += _cumulative(0.5 * np.einsum("ki,ki->k", sigma_b[1:] + sigma_b[:-1], np.diff(v, axis=0)))
-    T0, U0 = kinetic[0], elastic_s[0] + elastic_u[0]
-    residual = work - (kinetic - T0) - (elastic_s + elastic_u - U0) - damping - contact
-    scale = float(np.max(np.maximum.reduce([np.abs(work), kinetic, np.abs(elastic_s + elastic_u - U0),
-                                            damping + contact]), initial=0.0))
-    relative = np.abs(residual) / scale if scale > 0 else np.zeros_like(residual)
-    return {"kinetic": kinetic, "elastic_structure": elastic_s, "elastic_unilateral": elastic_u,
-            "damping_dissipated": damping, "contact_dissipated": contact, "input_work": work,
-            "balance_error": residual, "relative_error": relative,
-            "max_relative_error": float(relative.max()) if relative.size else 0.0}
+        increments = increments + _pairs(sigma_b, np.diff(x[n:], axis=1))
+        contact = _cumulative(increments)
+        T0, U0 = kinetic[0], elastic_s[0] + elastic_u[0]
+        elastic = elastic_s + elastic_u - U0
+        residual = work - (kinetic - T0) - elastic - damping - contact
+        scale = max(np.abs(work).max(), kinetic.max(), np.abs(elastic).max(), (damping + contact).max(), 0.0)
+        relative = np.abs(residual) / scale if scale > 0 else np.zeros_like(residual)
+        return {"kinetic": kinetic, "elastic_structure": elastic_s, "elastic_unilateral": elastic_u,
+                "damping_dissipated": damping, "contact_dissipated": contact, "input_work": work,
+                "balance_error": residual, "relative_error": relative,
+                "max_relative_error": float(relative.max())}
+
+
+def _work(q, du) -> np.ndarray:
+    """Increments (N,) of the work of the loads ``(q_n + q_{n-1})^T (u_n - u_{n-1}) / 2``; ``du`` (n, N)."""
+    if isinstance(q, LoadFactors):
+        constant, each = np.split(np.vstack([q.constant, q.vectors]) @ du, [1])   # (1, N), (terms, N)
+        return constant[0] + 0.5 * np.einsum("kj,jk->k", q.factors[1:] + q.factors[:-1], each)
+    return _pairs(np.asarray(q, dtype=float).T, du)
+
+
+def _prepared(A):
+    """``A`` dense if it has at most :data:`DENSE_ENTRIES` entries, else sparse csr."""
+    if A.shape[0] * A.shape[1] <= DENSE_ENTRIES:
+        return np.asarray(A.toarray() if sp.issparse(A) else A, dtype=float)
+    return sp.csr_matrix(A)
+
+
+def _pairs(f, dx) -> np.ndarray:
+    """Trapezoidal increments ``(f_n + f_{n-1})^T (x_n - x_{n-1}) / 2`` (N,) of rows ``f`` (k, N+1), ``dx`` (k, N)."""
+    return 0.5 * np.einsum("ik,ik->k", f[:, 1:] + f[:, :-1], dx)
 
 
 def _cumulative(increments) -> np.ndarray:

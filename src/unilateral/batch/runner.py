@@ -226,14 +226,19 @@ def _run_dask(todo, results: Path, run_id: str, scheduler, workers, bar: Progres
     futures = {}
     ran = 0
     try:
-        for analysis in todo:
-            future = client.submit(run_analysis, dict(analysis.payload, fsync=fsync), str(results), run_id,
-                                   key=f"unilateral-analysis-{analysis.key}", pure=False, retries=0)
-            futures[future] = analysis
+        submitted = client.map(run_analysis, [dict(a.payload, fsync=fsync) for a in todo],
+                               [str(results)] * len(todo), [run_id] * len(todo),
+                               key=[f"unilateral-analysis-{a.key}" for a in todo], pure=False, retries=0)
+        futures = dict(zip(submitted, todo))
         for future in as_completed(list(futures)):
             analysis = futures.pop(future)
             if future.status == "finished":
-                result = future.result()
+                # The task wrote its result: read it here rather than fetch it from the worker (a
+                # round trip per analysis, and CPU that the workers share on one machine). Fetched
+                # only if this process cannot read it, or for a timeout (whether to restart the worker).
+                result = read_result(results, analysis.key)
+                if result is None or result["status"] == "timeout":
+                    result = future.result()
             else:
                 try:
                     exc = future.exception()

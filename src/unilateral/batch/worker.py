@@ -11,6 +11,7 @@ of analyses that use it.
 from __future__ import annotations
 
 import copy
+import functools
 import math
 import os
 import socket
@@ -51,7 +52,8 @@ def _file_stamp(path: str) -> tuple:
 
 
 def model_variant(payload: dict):
-    """``(spec, ground-motion vector or None, node y coordinates)`` of the payload's model variant."""
+    """``(spec, ground-motion vector or None, node y coordinates, FrameOperators or None)`` of the
+    payload's model variant (None: a matrix-level model)."""
     import json
 
     from ..modelfile import build_model_spec
@@ -73,7 +75,8 @@ def model_variant(payload: dict):
     vector = _ground_vector(spec, payload["ground_motion"])
     ys = {node.id: node.y for node in spec.document.nodes}
     _CACHE_STATS["model_builds"] += 1
-    _MODEL_CACHE[key] = (spec, vector, ys)
+    frame = None if spec.structure is None else FrameOperators(spec.structure)
+    _MODEL_CACHE[key] = (spec, vector, ys, frame)
     return _MODEL_CACHE[key]
 
 
@@ -149,8 +152,11 @@ def collect(quantity: dict, sol, spec, ys: dict, frame: FrameResults | None = No
             raise KeyError(f"quantity {name}: no unilateral element {missing[0]!r} "
                            f"(elements: {', '.join(sol.constraint_names)})")
         cols = [sol.constraint_names.index(n) for n in names]
-        series = sol.v[:, cols] if kind == "uplift" else -sol.psi[:, cols]
-        peaks = series.max(axis=0) if series.shape[0] else np.full(len(cols), math.nan)
+        series = (sol.v if kind == "uplift" else sol.psi)[:, cols]       # a copy by columns: fast reductions
+        if not series.shape[0]:
+            peaks = np.full(len(cols), math.nan)
+        else:                                          # the contact force is -psi: its peak -min(psi)
+            peaks = series.max(axis=0) if kind == "uplift" else -series.min(axis=0)
         if quantity["over"] == "each":
             return {f"{name}.{n}": float(p) for n, p in zip(names, peaks)}, notes
         return {name: float(np.max(peaks)) if peaks.size else math.nan}, notes
@@ -173,47 +179,90 @@ def collect(quantity: dict, sol, spec, ys: dict, frame: FrameResults | None = No
     raise ValueError(f"unknown quantity type {kind!r}")
 
 
-class FrameResults:
-    """Base shear and energy balance of one solved frame, computed once on first use.
+class FrameOperators:
+    """The matrices :class:`FrameResults` needs of one model variant, built on first use and
+    cached with the variant (a worker builds them once, whatever the number of its analyses).
 
     Parameters
     ----------
-    sol : Solution of ``spec.model``;  spec : the model variant;  load : the analysis' load
-    rule : the time rule of the run (for the rates of the histories)
+    structure : Structure of the model variant
     """
 
-    def __init__(self, sol, spec, load, rule):
-        self.sol, self.structure, self.load, self.rule = sol, spec.structure, load, rule
-        self._histories = self._samples = None
+    def __init__(self, structure):
+        self.structure = structure
 
-    def _state(self):
-        from ..structure.forces import Histories
+    @functools.cached_property
+    def base_forces(self):
+        """:class:`~unilateral.structure.forces.BaseForceOperator` of the structure."""
+        from ..structure.forces import BaseForceOperator
 
-        if self._histories is None:
-            N, dt = len(self.sol.t) - 1, float(self.sol.t[1] - self.sol.t[0])
-            self._samples = _load_samples(self.load, self.structure.n, N, dt)
-            self._histories = Histories.from_solution(self.structure, self.sol, self.rule, load0=self._samples[0])
-        return self._histories, self._samples
+        return BaseForceOperator.of(self.structure)
+
+    @functools.cached_property
+    def energy_balance(self):
+        """:class:`~unilateral.analysis.energy.EnergyBalance` of the structure."""
+        from ..analysis.energy import EnergyBalance
+
+        return EnergyBalance(self.structure)
+
+
+class FrameResults:
+    """Base shear and energy error of one solved frame, from the state the two need only.
+
+    The state is the solution's ``u``, ``u'``, ``v`` and the rule's ``v'`` as
+    :class:`~unilateral.structure.forces.StateRows` (no accelerations, no element forces); the
+    base shear is its product with the variant's
+    :class:`~unilateral.structure.forces.BaseForceOperator`, the energies those of its
+    :class:`~unilateral.analysis.energy.EnergyBalance`. A footing on a soil medium is handled as
+    :func:`unilateral.analysis.results.structure_results` does: the frame alone, loaded by the
+    contact forces too (vertical: no base shear), whose work went into the soil. Both numbers
+    equal those of ``structure_results`` to round-off (``tests/test_batch.py``).
+
+    Parameters
+    ----------
+    sol : Solution of ``spec.model``;  operators : FrameOperators of the variant;  load : the
+    analysis' load;  rule : the time rule of the run (name or Rule)
+    """
+
+    def __init__(self, sol, operators: FrameOperators, load, rule):
+        self.sol, self.operators, self.load, self.rule = sol, operators, load, rule
+        self.foundation = operators.structure.foundation
+
+    @functools.cached_property
+    def state(self):
+        """:class:`~unilateral.structure.forces.StateRows` of the run (of the frame alone with a foundation)."""
+        from ..structure.forces import StateRows
+
+        sol = self.sol
+        if self.foundation is not None:
+            from ..structure.foundation import structural_solution
+
+            sol = structural_solution(sol)
+        return StateRows.of_solution(sol, self.rule)
 
     def peak_base_shear(self) -> float:
         """Peak |sum of the x forces of the ground| (force unit of the model)."""
-        from ..structure.forces import base_forces, reactions
-
-        h, _ = self._state()
-        return _peak(base_forces(self.structure, reactions(self.structure, h))["base_shear"])
+        return _peak(self.operators.base_forces.base_shear(self.state))
 
     def energy_error(self) -> float:
         """Largest relative error of the energy balance over the run."""
-        from ..analysis.energy import energy_balance
+        sol = self.sol
+        q = _load_samples(self.load, sol.u.shape[1], len(sol.t) - 1, float(sol.t[1] - sol.t[0]))
+        energy = self.operators.energy_balance(self.state, q)
+        if self.foundation is not None:             # the work of the contact forces went into the soil
+            from ..structure.foundation import add_soil_energy
 
-        h, samples = self._state()
-        return float(energy_balance(self.structure, h, samples)["max_relative_error"])
+            energy = add_soil_energy(energy, self.foundation.contact_load(self.operators.structure, sol), sol.u)
+        return float(energy["max_relative_error"])
 
 
-def _load_samples(load, n, N, dt) -> np.ndarray:
-    """The load samples (N+1, n) a run on ``t_k = k dt`` used (hat averages of a LoadHistory)."""
-    if hasattr(load, "grid_samples"):
-        return np.asarray(load.grid_samples(dt, N)[0], dtype=float)
+def _load_samples(load, n, N, dt):
+    """The load samples a run on ``t_k = k dt`` used: (N+1, n), or the
+    :class:`~unilateral.analysis.energy.LoadFactors` of a LoadHistory's hat averages."""
+    from ..analysis.energy import LoadFactors
+
+    if hasattr(load, "grid_factors"):
+        return LoadFactors(load.constant, load.vectors(), load.grid_factors(dt, N)[0])
     if isinstance(load, np.ndarray):
         return np.asarray(load, dtype=float)[: N + 1]
     if load is None:
@@ -240,6 +289,8 @@ def _dof_history(sol, spec, node, dof):
     _, nonzero, weights = row
     if sol.u is None or sol.u.shape[1] != spec.structure.n:
         return spec.structure.node_displacement(sol, node, dof)       # its error message
+    if nonzero.size == 1 and weights[0] == 1.0:       # a DOF of u itself: its column
+        return sol.u[:, nonzero[0]]
     return sol.u[:, nonzero] @ weights if nonzero.size else np.zeros(len(sol.t))
 
 
@@ -309,7 +360,7 @@ def run_analysis(payload: dict, results: str, run_id: str = "") -> dict:
     restart = False
     try:
         builds, reads = _CACHE_STATS["model_builds"], _CACHE_STATS["record_reads"]
-        spec, vector, ys = model_variant(payload)
+        spec, vector, ys, operators = model_variant(payload)
         record = None if payload["record"] is None else study_record(payload["record"])
         result["cache"] = {"model": "miss" if _CACHE_STATS["model_builds"] > builds else "hit",
                            "record": "miss" if _CACHE_STATS["record_reads"] > reads else "hit"}
@@ -329,8 +380,8 @@ def run_analysis(payload: dict, results: str, run_id: str = "") -> dict:
         if not sol.success:
             result["status"] = "failed"
         values = {}
-        frame = (FrameResults(sol, spec, load, settings["rule"])
-                 if spec.structure is not None and sol.u is not None and len(sol.t) > 1 else None)
+        frame = (FrameResults(sol, operators, load, settings["rule"])
+                 if operators is not None and sol.u is not None and len(sol.t) > 1 else None)
         for quantity in payload["quantities"]:
             got, notes = collect(quantity, sol, spec, ys, frame)
             values.update(got)

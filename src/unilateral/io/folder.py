@@ -22,6 +22,7 @@ Names next to ``DIR``: ``.DIR.staging-<pid>-<token>`` (a run writing) and ``.DIR
 from __future__ import annotations
 
 import contextlib
+import errno
 import ctypes
 import ctypes.util
 import json
@@ -274,13 +275,30 @@ def _check_replaceable(given: Path, real: Path) -> None:
         raise OutputFolderError(given, f"it holds files that are not outputs of unilateral ({shown}); a run "
                                        "replaces the folder's content as a whole, so give a new or empty "
                                        "folder or the folder of an earlier run")
-    probe = real / f".probe-{os.getpid()}-{secrets.token_hex(4)}"
     try:
-        os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
-        os.unlink(probe)
+        _probe_writable(real)
     except OSError as exc:
         raise OutputFolderError(given, f"it is not writable ({exc.strerror or exc}), so its files cannot be "
                                        "replaced") from None
+
+
+def _probe_writable(folder: Path) -> None:
+    """Create a file in ``folder`` and remove it; raise OSError when that is refused.
+
+    An unnamed file (``O_TMPFILE``) where the system has them: it never shows in the folder, even
+    when the process is killed here. Elsewhere a named one that a later run ignores (``_TEMP``).
+    """
+    unnamed = getattr(os, "O_TMPFILE", 0)
+    if unnamed:
+        try:
+            os.close(os.open(folder, unnamed | os.O_WRONLY, 0o600))
+            return
+        except OSError as exc:
+            if exc.errno not in (errno.EOPNOTSUPP, errno.EISDIR, errno.EINVAL):
+                raise
+    probe = folder / f".probe.{secrets.token_hex(4)}.tmp"
+    os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600))
+    os.unlink(probe)
 
 
 def _swap_in(staging: Path, target: Path) -> None:

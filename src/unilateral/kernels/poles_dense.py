@@ -48,6 +48,9 @@ RANK_TOL = 1e-12
 EIGVEC_CONDITION_MAX = 1e8
 #: Poles closer than this (relative) are treated as one multiple pole (block normalisation).
 CLUSTER_TOL = 1e-6
+#: Eigenvalues with an imaginary part below this fraction of their modulus are real ones split
+#: by rounding (a genuinely complex pole that close to the axis is a critically damped, defective one).
+REAL_TOL = 1e-12
 
 
 def dense_poles(model) -> dict:
@@ -176,6 +179,7 @@ def _eigen(A: np.ndarray, E: np.ndarray):
         raise ValueError("the poles of a real model must come in conjugate pairs; the eigensolver "
                          f"returned {np.count_nonzero(mu.imag < 0)} with Im p > 0 and "
                          f"{np.count_nonzero(mu.imag > 0)} with Im p < 0")
+    mu, X = _real_pairs(mu, X)
     keep = mu.imag <= 0
     w, X = 1.0 / mu[keep], X[:, keep]
     w, X = _refine_fast(A, E, w, X, mu)
@@ -201,6 +205,26 @@ def _eigen(A: np.ndarray, E: np.ndarray):
             "kernel"
         )
     return w, X, Y, float(cond.max())
+
+
+def _real_pairs(mu: np.ndarray, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Conjugate pairs of eigenvalues with ``|Im mu| <= REAL_TOL |mu|`` made two real ones.
+
+    A multiple real eigenvalue (the ``-1/a1`` of the massless DOFs of a Rayleigh-damped model)
+    may come out of the eigensolver as a real one and a pair split by rounding into ``+-i 1e-18``,
+    whose complex vectors are not ``E``-orthogonal to the real one's: the pair would not be
+    normalised with its cluster. Its vectors span a real subspace, spanned as well by ``Re x`` and
+    ``Im x``, which replace them. LAPACK returns each pair consecutively, ``Im mu > 0`` first.
+    """
+    pairs = np.flatnonzero((mu.imag > 0) & (np.abs(mu.imag) <= REAL_TOL * np.abs(mu)))
+    if pairs.size == 0:
+        return mu, X
+    mu, X = mu.copy(), X.copy()
+    for j in pairs:
+        x = X[:, j].copy()
+        mu[j] = mu[j + 1] = mu[j].real
+        X[:, j], X[:, j + 1] = x.real, x.imag
+    return mu, X
 
 
 def _refine_fast(A, E, p, X, mu, *, iterations=4):

@@ -73,27 +73,54 @@ def rates(y, rule, dt, *, rate0=None, second0=None) -> tuple[np.ndarray, np.ndar
     -------
     yd, ydd : (N+1, k)
     """
-    y = np.asarray(y, dtype=float)
-    N1, k = y.shape
-    yd0 = np.zeros(k) if rate0 is None else np.asarray(rate0, dtype=float)
-    ydd0 = np.zeros(k) if second0 is None else np.asarray(second0, dtype=float)
-    name = getattr(rule, "name", "")
-    if name in ("bdf1", "bdf2"):
+    y, yd0, ydd0 = _initial_rates(y, rate0, second0)
+    if _is_bdf(rule):
         ys, yds = rule.start(y[0], yd0, ydd0, dt)
-        yd = _bdf(y, ys[1:], rule.order, dt)
-        yd[0] = yd0
-        ydd = _bdf(yd, yds[1:], rule.order, dt)
-        ydd[0] = ydd0
-        return yd, ydd
-    if getattr(rule, "alpha", 0.0) == 0.0 and name in ("trapezoidal", "newmark") and \
-            (rule.gamma, rule.beta) == (0.5, 0.25):
+        yd = _bdf(y, ys[1:], yd0, rule.order, dt)
+        return yd, _bdf(yd, yds[1:], ydd0, rule.order, dt)
+    if _is_trapezoidal(rule):
         yd = _trapezoidal(y, yd0, dt)
         return yd, _trapezoidal(yd, ydd0, dt)
+    return _recursion(y, rule, dt, yd0, ydd0)
+
+
+def rate(y, rule, dt, *, rate0=None, second0=None) -> np.ndarray:
+    """The first rate ``yd`` (N+1, k) of :func:`rates` alone (the same values, half the work for
+    the BDF and trapezoidal rules)."""
+    y, yd0, ydd0 = _initial_rates(y, rate0, second0)
+    if _is_bdf(rule):
+        ys, _ = rule.start(y[0], yd0, ydd0, dt)
+        return _bdf(y, ys[1:], yd0, rule.order, dt)
+    if _is_trapezoidal(rule):
+        return _trapezoidal(y, yd0, dt)
+    return _recursion(y, rule, dt, yd0, ydd0)[0]
+
+
+def _initial_rates(y, rate0, second0):
+    """``(y, yd0, ydd0)`` as float arrays, the initial rates zero by default."""
+    y = np.asarray(y, dtype=float)
+    k = y.shape[1]
+    yd0 = np.zeros(k) if rate0 is None else np.asarray(rate0, dtype=float)
+    ydd0 = np.zeros(k) if second0 is None else np.asarray(second0, dtype=float)
+    return y, yd0, ydd0
+
+
+def _is_bdf(rule) -> bool:
+    return getattr(rule, "name", "") in ("bdf1", "bdf2")
+
+
+def _is_trapezoidal(rule) -> bool:
+    return getattr(rule, "alpha", 0.0) == 0.0 and getattr(rule, "name", "") in ("trapezoidal", "newmark") and \
+        (rule.gamma, rule.beta) == (0.5, 0.25)
+
+
+def _recursion(y, rule, dt, yd0, ydd0):
+    """Rates of any rule by its step relations, one step after the other."""
     c1, c0 = rule.coefficients(dt)
     yd, ydd = np.empty_like(y), np.empty_like(y)
     yd[0], ydd[0] = yd0, ydd0
     state = rule.start(y[0], yd0, ydd0, dt)
-    for n in range(1, N1):
+    for n in range(1, y.shape[0]):
         h1, h2 = rule.history(state, dt)
         yd[n] = c1 * y[n] - h1
         ydd[n] = c0 * y[n] - h2
@@ -101,15 +128,18 @@ def rates(y, rule, dt, *, rate0=None, second0=None) -> tuple[np.ndarray, np.ndar
     return yd, ydd
 
 
-def _bdf(y, past, order, dt):
-    """BDF derivative of the rows of ``y`` with the past values ``past`` before row 0."""
-    ext = np.vstack([np.reshape(np.asarray(past)[::-1], (order - 1, y.shape[1])), y]) if order > 1 else y
-    s = order - 1
+def _bdf(y, past, rate0, order, dt):
+    """BDF derivative of the rows of ``y`` with the past values ``past`` before row 0; row 0 is ``rate0``.
+
+    Works on any memory layout of ``y`` (the result has the layout of ``y``).
+    """
     out = np.empty_like(y)
+    out[0] = rate0
     if order == 1:
         out[1:] = (y[1:] - y[:-1]) / dt
-    else:
-        out[1:] = (1.5 * ext[s + 1:] - 2.0 * ext[s:-1] + 0.5 * ext[s - 1:-2]) / dt
+    elif len(y) > 1:
+        out[1] = (1.5 * y[1] - 2.0 * y[0] + 0.5 * np.asarray(past[0])) / dt
+        out[2:] = (1.5 * y[2:] - 2.0 * y[1:-1] + 0.5 * y[:-2]) / dt
     return out
 
 
@@ -169,6 +199,52 @@ class Histories:
         return cls(t=np.asarray(sol.t, dtype=float), u=np.asarray(sol.u, dtype=float),
                    udot=np.asarray(sol.udot, dtype=float), uddot=uddot, v=np.asarray(sol.v, dtype=float),
                    vdot=vdot)
+
+
+@dataclass(frozen=True)
+class StateRows:
+    """The state of a run with one row per unknown and one column per step: what the operators
+    :class:`BaseForceOperator` and :class:`~unilateral.analysis.energy.EnergyBalance` multiply
+    (a matrix times all the steps at once).
+
+    Attributes
+    ----------
+    x : (n + m, N+1) ``[u; v]``: displacements (relative to the ground) and unilateral deformations
+    xdot : (n + m, N+1) ``[u'; v']``: their rates
+    n : int, number of DOFs (``u = x[:n]``)
+    """
+
+    x: np.ndarray
+    xdot: np.ndarray
+    n: int
+
+    @classmethod
+    def of(cls, u, udot, v, vdot) -> StateRows:
+        """From histories ``u, udot`` (N+1, n) and ``v, vdot`` (N+1, m)."""
+        n = u.shape[1]
+        return cls(x=_rows(u, v), xdot=_rows(udot, vdot), n=n)
+
+    @classmethod
+    def of_solution(cls, sol, rule) -> StateRows:
+        """``u``, ``u'``, ``v`` of a :class:`~unilateral.Solution` and the ``v'`` of ``rule`` (name or
+        Rule), as :meth:`Histories.from_solution` has them (without the accelerations)."""
+        from ..rules import get_rule
+
+        rule = get_rule(rule) if isinstance(rule, str) else rule
+        n = sol.u.shape[1]
+        x = _rows(sol.u, sol.v)
+        xdot = np.empty_like(x)
+        xdot[:n] = sol.udot.T
+        xdot[n:] = rate(x[n:].T, rule, float(sol.t[1] - sol.t[0])).T
+        return cls(x=x, xdot=xdot, n=n)
+
+
+def _rows(a, b) -> np.ndarray:
+    """``[a^T; b^T]`` (ka + kb, N+1) of two histories (N+1, ka), (N+1, kb)."""
+    out = np.empty((a.shape[1] + b.shape[1], a.shape[0]))
+    out[:a.shape[1]] = a.T
+    out[a.shape[1]:] = b.T
+    return out
 
 
 def _solve_massive(M, f):
@@ -364,6 +440,112 @@ def _components(label, f):
     out = np.zeros((len(f), 3))
     out[:, DOF_NAMES.index(label.rsplit(".", 1)[1])] = f
     return out
+
+
+@dataclass(frozen=True)
+class BaseForceOperator:
+    """The base forces of :func:`base_forces` as a linear function of the state, assembled once.
+
+    Every force of :func:`reactions` is linear in the state. With ``P`` (ne, 3) and ``P_d``
+    (nd, 3) the weights of the element stresses and of the attached dashpots' forces in
+    ``(base_shear, base_vertical, overturning_moment)`` (a support's row of the nodal forces, an
+    element to the ground its own force, each with its lever arm about ``point``),
+
+        base^T = P^T sigma_tot + P_d^T sigma_d = X [u; v] + X_d [u'; v'] + c
+
+    where ``sigma_tot = E eps + E_v eps' + a1 E_b G^T u'`` (``E_b``: the bilateral elements),
+    ``eps = G^T u - B v - theta``, ``eps' = G^T u' - B v'`` and ``sigma_d = E_d G_d^T u'``, so
+
+        X = P^T E [G^T, -B],   X_d = P^T (E_v + a1 E_b) [G^T, -B] + P_d^T E_d [G_d^T, 0],
+        c = -P^T E theta
+
+(``E_b B = 0``: ``B`` acts on the strains of unilateral elements only).
+
+    A run's base forces then cost two products of its :class:`StateRows` with (3, n + m)
+    matrices instead of every element's forces at every step; they equal :func:`base_forces` of
+    :func:`reactions` to round-off (``tests/test_structure_results.py``). A foundation on a soil
+    medium adds the soil's contact forces (:meth:`Foundation.ground_reactions`), which this
+    operator leaves out, as :func:`reactions` does.
+
+    Attributes
+    ----------
+    X, X_d : (3, n + m);  c : (3,) force unit (rows: base shear, base vertical force,
+    overturning moment about ``point``)
+    """
+
+    X: np.ndarray
+    X_d: np.ndarray
+    c: np.ndarray
+
+    @classmethod
+    def of(cls, structure, point=(0.0, 0.0)) -> BaseForceOperator:
+        """The operator of ``structure`` for moments about ``point`` (x0, y0)."""
+        from ..model import ConstantStrain
+
+        nat = structure.natural
+        if not isinstance(nat.theta, ConstantStrain) or nat.theta_rate is not None:
+            raise ValueError("the base force operator needs imposed strains constant in time (as Frame2D builds)")
+        P, P_d = _ground_weights(structure, point)
+        strains = sp.hstack([sp.csr_matrix(nat.G).T, -sp.csr_matrix(nat.B)]).tocsr()     # [G^T, -B]
+        EtP = np.asarray(nat.E.T @ P)
+        viscous = np.zeros_like(P) if nat.E_v is None else np.asarray(nat.E_v.T @ P)
+        a1 = structure.rayleigh[1] if structure.rayleigh else 0.0
+        if a1:
+            bilateral = np.ones(P.shape[0], dtype=bool)
+            bilateral[structure.constraint_strains] = False
+            viscous = viscous + a1 * np.asarray(nat.E.T @ (P * bilateral[:, None]))
+        X_d = np.asarray(strains.T @ viscous).T
+        for e, weights in zip(structure.dashpots, P_d):
+            X_d[:, :structure.n] += (_free_a(structure, e).T @ (e.E.T @ weights[None])).T
+        return cls(X=np.asarray(strains.T @ EtP).T, X_d=X_d, c=-(nat.theta(0.0) @ EtP))
+
+    def __call__(self, state: StateRows) -> dict:
+        """Base forces (N+1,) each of a run's :class:`StateRows`.
+
+        Returns
+        -------
+        dict ``base_shear``, ``base_vertical``, ``overturning_moment`` as :func:`base_forces`.
+        """
+        base = self.X @ state.x + self.X_d @ state.xdot + self.c[:, None]
+        return {"base_shear": base[0], "base_vertical": base[1], "overturning_moment": base[2]}
+
+    def base_shear(self, state: StateRows) -> np.ndarray:
+        """The base shear (N+1,) alone (one row of the products)."""
+        return self.X[0] @ state.x + self.X_d[0] @ state.xdot + self.c[0]
+
+
+def _ground_weights(structure, point) -> tuple[np.ndarray, np.ndarray]:
+    """Weights ``P`` (ne, 3) and ``P_d`` (nd, 3) of the element stresses and dashpot forces in the base forces.
+
+    A supported DOF's reaction is its row of :func:`nodal_forces` (``sigma_e a_e`` of the elements
+    at it); an element to the ground adds ``-sigma_e a_e`` at its node (:func:`reactions`). Each
+    force component at ``(x, y)`` counts with ``arm = (1, 0, -(y - y0))`` (x), ``(0, 1, x - x0)``
+    (y) or ``(0, 0, 1)`` (moment).
+    """
+    coords, dofs = structure.coords, structure.dofs
+    W = np.zeros((dofs.T.shape[0], 3))
+    for node, dof in dofs._restrained:
+        W[dofs.full_index(node, dof)] = _arm(coords[node], dof, point)
+    ground = {e.name for e in _ground_elements(structure)}
+
+    def weights(e, rows):
+        w = e.a @ W[rows]
+        if e.name in ground:
+            node = e.dofs[0][0]
+            w[0] -= sum(e.a[0, col] * _arm(coords[node], dof, point) for col, (_, dof) in enumerate(e.dofs))
+        return w
+
+    P = np.zeros((structure.natural.G.shape[1], 3))
+    for e, cols, rows in _element_vectors(structure):
+        P[cols] = weights(e, rows)
+    P_d = np.array([weights(e, _full_rows(structure, e))[0] for e in structure.dashpots]).reshape(-1, 3)
+    return P, P_d
+
+
+def _arm(xy, dof, point) -> np.ndarray:
+    """``(fx, fy, mz)`` of a unit force component ``dof`` at ``xy``, the moment about ``point``."""
+    (x, y), (x0, y0) = xy, point
+    return np.array({"ux": (1.0, 0.0, -(y - y0)), "uy": (0.0, 1.0, x - x0), "rz": (0.0, 0.0, 1.0)}[dof])
 
 
 # ---------------------------------------------------------------------- ground motion and storeys
