@@ -88,6 +88,8 @@ t_end = 2.0
     assert len(workers) == 2
     assert sum(r["cache"]["model"] == "miss" for r in results) <= 2 * len(workers)
     assert sum(r["cache"]["record"] == "miss" for r in results) <= 3 * len(workers)
+    assert all(0 < r["solve_time"] and 0 < r["quantities_time"] and
+               r["solve_time"] + r["quantities_time"] <= r["task_time"] for r in results)     # the benchmark's split
     assert (tmp_path / "out" / "ida.png").stat().st_size > 0 and (tmp_path / "out" / "study.csv").exists()
 
 
