@@ -22,9 +22,9 @@ Names next to ``DIR``: ``.DIR.staging-<pid>-<token>`` (a run writing) and ``.DIR
 from __future__ import annotations
 
 import contextlib
-import errno
 import ctypes
 import ctypes.util
+import errno
 import json
 import os
 import re
