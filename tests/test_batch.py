@@ -416,41 +416,60 @@ timeout = 0.05
     assert "stopped after 0.05 s" in result.table["message"].values[0]
 
 
-def test_base_shear_and_energy_error_of_a_study_equal_the_frame_results_of_the_same_run(tmp_path):
-    """The study's peak base shear and energy error are those of analysis.structure_results."""
+def study_against_structure_results(folder: Path, model, scale=3.0):
+    """A one-record study of ``model(ground)`` (model-file text; ``ground``: a ground-motion section
+    or "") asking for base_shear and energy_error, and the same analysis run alone.
+
+    Returns
+    -------
+    (peaks, sol, results): the study's row (dict), the lone run's Solution and its
+    ``analysis.structure_results``
+    """
     from unilateral.analysis.results import ground_motions_of, structure_results
 
     record = record_files(1)[0]
-    path = write_study(tmp_path, f"""
+    (folder / "model.toml").write_text(model(""))
+    path = folder / "study.toml"
+    path.write_text(f"""
 [[models]]
-file = "tower.toml"
+file = "model.toml"
 [records]
 files = ["{record.as_posix()}"]
 direction = "ux"
 [scaling]
-values = [3.0]
+values = [{scale!r}]
 [analysis]
 t_end = 1.0
 [[quantities]]
 name = "base_shear"
 type = "base_shear"
+[[quantities]]
+name = "energy_error"
+type = "energy_error"
 """)
-    table = run_study(path, tmp_path / "out", synchronous=True, progress=False, figures=False).table
+    table = run_study(path, folder / "out", synchronous=True, progress=False, figures=False).table
     assert table["status"].values[0] == "ok", table["message"].values[0]
-    alone = tmp_path / "alone.toml"
-    alone.write_text(tower(ground=ground_motion(record, 3.0), t_end=1.0))
+    alone = folder / "alone.toml"
+    alone.write_text(model(ground_motion(record, scale)))
     spec = load_model_file(alone)
     a = spec.analysis
     sol = ul.solve(spec.model, spec.load, dt=a["dt"], t_end=a["t_end"], method=a["method"], rule=a["rule"])
     samples = spec.load.grid_samples(a["dt"], len(sol.t) - 1)[0]
     res = structure_results(spec.structure, spec.model, {"u": sol}, rule=a["rule"], load_samples=samples,
                             ground_motions=ground_motions_of(spec.structure, spec.load))
+    peaks = {name: float(table[name].values[0]) for name in ("base_shear", "energy_error")}
+    return peaks, sol, res
+
+
+def test_base_shear_and_energy_error_of_a_study_equal_the_frame_results_of_the_same_run(tmp_path):
+    """The study's peak base shear and energy error are those of analysis.structure_results."""
+    peaks, sol, res = study_against_structure_results(tmp_path, lambda ground: tower(ground=ground, t_end=1.0))
     shear = res["variables"]["base_shear"][1]["u"]
     assert sol.v.max() > 0                                    # it lifts off
-    assert table["base_shear"].values[0] == pytest.approx(np.abs(shear).max(), rel=1e-12)
+    assert peaks["base_shear"] == pytest.approx(np.abs(shear).max(), rel=1e-12)
     assert np.abs(shear).max() > 10.0                          # kN: a real response, not a zero column
     error = res["peaks"]["u"]["energy"]["max_relative_error"]
-    assert table["energy_error"].values[0] == pytest.approx(error, rel=1e-12)
+    assert peaks["energy_error"] == pytest.approx(error, rel=1e-12)
     assert 0 < error < 0.05
 
 
@@ -487,9 +506,6 @@ def test_frame_results_equal_the_full_reactions_and_energy_balance(rule):
 def test_base_shear_and_energy_error_of_a_footing_on_a_soil_medium_equal_the_frame_results(tmp_path):
     """A model with a [foundation]: the frame alone loaded by the contact forces too, as
     analysis.structure_results has it (the analysis used to fail on the soil's extra unknowns)."""
-    from unilateral.analysis.results import ground_motions_of, structure_results
-
-    record = record_files(1)[0]
     model = """
 units = { length = "m", force = "kN", time = "s" }
 nodes = [{ id = 1, x = 0.0, y = 10.0 }, { id = 2, x = 0.0, y = 0.0 }]
@@ -504,40 +520,12 @@ soil = { model = "winkler-kelvin", k = 200e3, c = 10e3 }
 gravity = { g = 10.0 }
 """
     analysis = '[analysis]\ndt = 0.002\nt_end = 1.0\nmethod = "cq"\n'
-    (tmp_path / "footing.toml").write_text(model + analysis)
-    path = tmp_path / "study.toml"
-    path.write_text(f"""
-[[models]]
-file = "footing.toml"
-[records]
-files = ["{record.as_posix()}"]
-direction = "ux"
-[scaling]
-values = [3.0]
-[analysis]
-t_end = 1.0
-[[quantities]]
-name = "base_shear"
-type = "base_shear"
-[[quantities]]
-name = "energy_error"
-type = "energy_error"
-""")
-    table = run_study(path, tmp_path / "out", synchronous=True, progress=False, figures=False).table
-    assert table["status"].values[0] == "ok", table["message"].values[0]
-    alone = tmp_path / "alone.toml"
-    alone.write_text(model + ground_motion(record, 3.0) + analysis)
-    spec = load_model_file(alone)
-    a = spec.analysis
-    sol = ul.solve(spec.model, spec.load, dt=a["dt"], t_end=a["t_end"], method=a["method"], rule=a["rule"])
-    samples = spec.load.grid_samples(a["dt"], len(sol.t) - 1)[0]
-    res = structure_results(spec.structure, spec.model, {"u": sol}, rule=a["rule"], load_samples=samples,
-                            ground_motions=ground_motions_of(spec.structure, spec.load))
+    peaks, sol, res = study_against_structure_results(tmp_path, lambda ground: model + ground + analysis)
     shear = np.abs(res["variables"]["base_shear"][1]["u"]).max()
     assert sol.v.max() > 0 and shear > 10.0                    # it rocks
-    assert table["base_shear"].values[0] == pytest.approx(shear, rel=1e-12)
+    assert peaks["base_shear"] == pytest.approx(shear, rel=1e-12)
     error = res["peaks"]["u"]["energy"]["max_relative_error"]
-    assert table["energy_error"].values[0] == pytest.approx(error, rel=1e-9)
+    assert peaks["energy_error"] == pytest.approx(error, rel=1e-9)
 
 
 def test_plain_text_records_with_a_header_line_are_read_with_skip_header(tmp_path):
