@@ -2,7 +2,10 @@
 
 Statics: ``K u = q(0) + F v``, ``psi = F^T u - H v - g(0)``, complementarity. Eliminating u gives
 the LCP ``w = Lambda(0) v - psiL_0 >= 0`` with ``Lambda(0) = H - F^T K^-1 F`` (positive
-semidefinite) and ``psiL_0 = F^T K^-1 q(0) - g(0)``.
+semidefinite) and ``psiL_0 = F^T K^-1 q(0) - g(0)``. Yield and friction unknowns
+(:mod:`unilateral.constraints`) start from zero and take the static load in one increment (the
+holonomic form of the rate law, exact for proportional loading); friction rows are the
+constraint functions ``P psi``.
 """
 
 from __future__ import annotations
@@ -98,7 +101,8 @@ def static_state(model, q0, solver) -> InitialState:
     Lambda0 = model.H - transpose_times(model.F, Y)
     Lambda0 = 0.5 * (Lambda0 + Lambda0.T)
     psiL0 = transpose_times(model.F, uq) - model.g(0.0)
-    v, iters, message = static_lcp(Lambda0, psiL0, solver)
+    # yield and friction from the virgin state: one increment from zero (the law of the families)
+    v, iters, message = static_lcp(model.law.matrix(Lambda0), model.law.rows(psiL0), solver)
     u = uq + Y @ v
     return InitialState(v=v, psi=psiL0 - Lambda0 @ v, u=u, udot=np.zeros(model.n),
                         lcp_iterations=iters, message=message)
@@ -134,17 +138,19 @@ def given_state(model, initial: dict, solver=None) -> InitialState:
             i = int(np.argmax(v0 < 0))
             raise ValueError(f"initial['v0'] must be >= 0; v0[{i}] = {float(v0[i])!r}")
     else:
-        v0, _, message = static_lcp(model.H, c, solver or get_lcp_solver("bpp"))
+        law = model.law
+        v0, _, message = static_lcp(law.matrix(model.H), law.rows(c), solver or get_lcp_solver("bpp"))
         if message:
             raise ValueError("no unilateral unknowns v0 are consistent with initial['u0']: " + message)
     psi0 = c - model.H @ v0
-    _check_consistent(model, v0, psi0, scale=1.0 + float(np.max(np.abs(c), initial=0.0)))
+    _check_consistent(model, v0, model.law.rows(psi0), scale=1.0 + float(np.max(np.abs(c), initial=0.0)))
     return InitialState(v=v0, psi=psi0, u=u0, udot=udot0)
 
 
 def _check_consistent(model, v0, psi0, *, scale, rtol=1e-9):
     """Raise if ``(v0, psi0)`` violates ``psi <= 0``, or ``psi = 0`` where ``v > 0``."""
     names = model.constraint_names
+    holonomic = ~model.law.rate                 # a plastic multiplier may be > 0 inside the surface
     tension = psi0 > rtol * scale
     if np.any(tension):
         i = int(np.argmax(psi0))
@@ -152,7 +158,7 @@ def _check_consistent(model, v0, psi0, *, scale, rtol=1e-9):
             f"the initial state puts constraint {names[i]!r} in tension: psi = {psi0[i]:.6g} > 0 with "
             f"v0 = {v0[i]:.6g}; a unilateral constraint cannot pull. Give the opening consistent with "
             "u0 in initial['v0'], or leave v0 out to have it computed")
-    open_loaded = (v0 > 0) & (psi0 < -rtol * scale)
+    open_loaded = (v0 > 0) & (psi0 < -rtol * scale) & holonomic
     if np.any(open_loaded):
         i = int(np.flatnonzero(open_loaded)[0])
         raise ValueError(

@@ -19,6 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import _validate as V
+from .constraints import default_families, step_law
 
 
 class ConstantStrain:
@@ -116,10 +117,16 @@ class Model:
         link with ``gap=`` (the element carries force only once the gap has closed).
     dof_names : sequence of n str, optional
     constraint_names : sequence of m str, optional
+    families : sequence of ConstraintFamily, optional
+        The laws of the unknowns (:mod:`unilateral.constraints`): :class:`~unilateral.constraints.Contact`
+        (the paper's unilateral contact, the default for every unknown no family names),
+        :class:`~unilateral.constraints.Yield` (plastic multipliers) and
+        :class:`~unilateral.constraints.Friction` (Coulomb slips). Their step law is ``law``.
     """
 
     def __init__(self, M, K, F, H, C=None, g=None, *, F_v=None, H_v=None, q_imposed=None, gap=None,
-                 dof_names=None, constraint_names=None, natural: NaturalForm | None = None):
+                 dof_names=None, constraint_names=None, natural: NaturalForm | None = None,
+                 families=None):
         self.K = V.as_matrix("K", K, (None, None))
         n = self.K.shape[0]
         if self.K.shape != (n, n):
@@ -148,6 +155,11 @@ class Model:
         self.dof_names = _names("dof_names", dof_names, n, "u")
         self.constraint_names = _names("constraint_names", constraint_names, m, "c")
         self.natural = natural
+        self.families = list(families) if families is not None else default_families(m)
+        self.law = step_law(self.families, m)
+        if gap is not None and np.any(gap_rate := (self.law.rate & (np.asarray(gap) != 0))):
+            raise ValueError(f"gap[{int(np.argmax(gap_rate))}] is given for a yield or friction unknown; "
+                             "gaps apply to contacts")
 
     def _add_gap(self, gap: np.ndarray) -> None:
         """Add the imposed strain ``theta = -gap`` of the unilateral elements to ``g`` and ``q_imposed``."""
@@ -210,7 +222,7 @@ class Model:
     # ------------------------------------------------------------------ the natural form
     @classmethod
     def from_natural(cls, G, E, B, *, M, A=None, r=None, theta=None, C=None, E_v=None,
-                     theta_rate=None, dof_names=None, constraint_names=None) -> Model:
+                     theta_rate=None, dof_names=None, constraint_names=None, families=None) -> Model:
         """Assemble the reduced problem from the unassembled structure, eqs. (13)-(16).
 
         ``K = G E G^T``, ``F = G E B``, ``H = A + B^T E B``, ``g = B^T E theta + r``, and the
@@ -231,6 +243,7 @@ class Model:
         E_v : (ne, ne) viscous elasticity of Kelvin elements, symmetric PSD (default none)
         theta_rate : callable ``theta'(t) -> (ne,)``; required when ``theta`` is a function of
             time and ``E_v`` is given
+        families : sequence of ConstraintFamily, optional (see :class:`Model`)
         """
         G = V.as_matrix("G", G, (None, None))
         n, ne = G.shape
@@ -281,12 +294,15 @@ class Model:
                 g = _sum(g, lambda t: BtEv @ rate_f(t))
         natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=theta_f, E_v=E_v, theta_rate=rate_f)
         return cls(M=M, K=K, F=F, H=H, C=C_total, g=g, F_v=F_v, H_v=H_v, q_imposed=q_imposed,
-                   dof_names=dof_names, constraint_names=constraint_names, natural=natural)
+                   dof_names=dof_names, constraint_names=constraint_names, natural=natural,
+                   families=families)
 
     def __repr__(self) -> str:
         kind = "sparse" if self.sparse else "dense"
         visc = ", Kelvin constraints" if self.viscous else ""
-        return f"Model(n={self.n}, m={self.m}, {kind}{visc})"
+        laws = "" if self.law.trivial else ", " + ", ".join(
+            f"{self.law.kinds.count(k)} {k}" for k in ("contact", "yield", "friction") if k in self.law.kinds)
+        return f"Model(n={self.n}, m={self.m}, {kind}{visc}{laws})"
 
 
 # ---------------------------------------------------------------------- helpers

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _validate as V
+from ..constraints import contact_law, default_families, step_law
 from ..model import _names
 from .base import CallableKernel, Kernel
 from .time_domain import TimeKernel
@@ -32,9 +33,11 @@ class KernelModel:
     vectorized : bool
         ``Lambda`` accepts an array of s of shape (L,) and returns (L, m, m).
     constraint_names : sequence of m str, optional
+    families : sequence of ConstraintFamily, optional
+        The laws of the unknowns (:mod:`unilateral.constraints`; default: every one a contact).
     """
 
-    def __init__(self, Lambda, psiL, *, m=None, vectorized=False, constraint_names=None):
+    def __init__(self, Lambda, psiL, *, m=None, vectorized=False, constraint_names=None, families=None):
         if isinstance(psiL, np.ndarray) or (not callable(psiL) and psiL is not None):
             psiL = V.as_matrix("psiL", psiL, (None, m))
             m = psiL.shape[1]
@@ -57,6 +60,8 @@ class KernelModel:
         )
         if len(self.constraint_names) != self.m:
             raise ValueError(f"constraint_names must have {self.m} entries, got {len(self.constraint_names)}")
+        self.families = list(families) if families is not None else default_families(self.m)
+        self.law = step_law(self.families, self.m)
 
     def Lambda_real(self, s: float) -> np.ndarray:
         """``Lambda(s)`` at a real ``s >= 0`` as a real symmetric (m, m) matrix."""
@@ -107,6 +112,7 @@ class TimeKernelModel:
             psiL = V.as_matrix("psiL", psiL, (None, self.m))
         self.psiL = psiL
         self.constraint_names = _names("constraint_names", constraint_names, self.m, "c")
+        self.law = contact_law(self.m)
 
     # the sampling of psiL (callable or array) is the kernel model's
     psiL_samples = KernelModel.psiL_samples

@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..constraints import contact_law
 from .step_log import StepLog
 
 
-def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callback=None):
+def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callback=None, law=None):
     """March the CLCP ``psi_n = psi_affine_n - sum_{j=0..n} W_j (v_{n-j} - v_b)``.
 
     Parameters
@@ -29,6 +30,9 @@ def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callb
     bilateral : bool
         Hold every constraint (``dv = 0``): then ``psi = psi_affine``.
     callback : callable ``callback(k, N)``, optional (progress)
+    law : StepLaw, optional
+        The constraint families' law (:mod:`unilateral.constraints`); default: contact only.
+        ``psi`` holds the constraint functions ``P psi`` of the law.
 
     Returns
     -------
@@ -36,23 +40,26 @@ def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callb
     """
     N = psi_affine.shape[0] - 1
     m = psi_affine.shape[1]
+    law = contact_law(m) if law is None else law
     v = np.empty((N + 1, m))
     psi = np.empty((N + 1, m))
     v[0] = v_b
-    psi[0] = psi_affine[0]
-    log = StepLog(m, v_b > 0)
+    psi[0] = law.rows(psi_affine[0])
+    log = StepLog(m, np.zeros(m, dtype=bool) if law.rate.any() else v_b > 0)
     if bilateral:
         v[:] = v_b
-        return v, psi_affine.copy(), log
+        return v, law.rows(psi_affine), log
     base = W0 @ v_b
+    WL = law.matrix(W0)
     for k in range(1, N + 1):
-        q = history.value(k) - psi_affine[k] - base
-        res = solver.solve(W0, q, active=log.active)
+        o = law.offset(v[k - 1])
+        q = law.vector(W0, history.value(k) - psi_affine[k] - base, o)
+        res = solver.solve(WL, q, active=log.active)
         if not log.record(k, k * dt, res):
             return v[:k], psi[:k], log
-        v[k] = res.v
+        v[k] = res.v + o
         psi[k] = -res.w
-        history.push(k, res.v - v_b)
+        history.push(k, v[k] - v_b)
         if callback is not None:
             callback(k, N)
     return v, psi, log
@@ -63,7 +70,7 @@ def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callb
 PROGRESS_CHUNK = 256
 
 
-def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol, callback=None):
+def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol, callback=None, law=None):
     """:func:`march_cq` with block principal pivoting, compiled (:mod:`unilateral.march.compiled`).
 
     Parameters
@@ -73,23 +80,27 @@ def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol, callback=None):
     callback : callable ``callback(k, N)``, optional
         Progress: the compiled loop runs in chunks of steps, with its state carried across, and
         ``callback`` is called after each chunk (the same operations as one call).
+    law : StepLaw, optional (default: contact only)
 
     Returns the same ``(v, psi, log)`` as :func:`march_cq`.
     """
     from . import compiled
 
+    law = contact_law(v_b.shape[0]) if law is None else law
+    arrays = law.compiled()
     if callback is None:
         march = compiled.march_naive if kind == "naive" else compiled.march_recursive
-        v, psi, stats, failed = march(*args, v_b, max_iter, tol)
+        v, psi, stats, failed = march(*args, v_b, max_iter, tol, arrays)
     else:
-        v, psi, stats, failed = _chunked(compiled, kind, args, v_b, max_iter, tol, callback)
+        v, psi, stats, failed = _chunked(compiled, kind, args, v_b, max_iter, tol, callback, arrays)
+    psi[0] = law.rows(args[-1][0])
     log = StepLog.of_compiled(v_b, stats, failed, dt=dt, max_iter=max_iter, tol=tol)
     if len(v):
         log.active = v[-1] > 0
     return v, psi, log
 
 
-def _chunked(compiled, kind, args, v_b, max_iter, tol, callback):
+def _chunked(compiled, kind, args, v_b, max_iter, tol, callback, law):
     """The compiled march over chunks of steps, calling ``callback(k, N)`` after each."""
     psi_affine = args[-1]
     N = psi_affine.shape[0] - 1
@@ -97,12 +108,12 @@ def _chunked(compiled, kind, args, v_b, max_iter, tol, callback):
     if kind == "naive":
         W = args[0]
         carry = compiled.naive_start(W[0], psi_affine, v_b)
-        step = lambda n0, n1: compiled.naive_steps(W, psi_affine, v_b, max_iter, tol, carry, n0, n1)
+        step = lambda n0, n1: compiled.naive_steps(W, psi_affine, v_b, max_iter, tol, law, carry, n0, n1)
     else:
         W0, filters = args[0], tuple(args[1:5])
         carry = compiled.recursive_start(W0, filters[0], psi_affine, v_b)
-        step = lambda n0, n1: compiled.recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, carry,
-                                                       (n0, n1))
+        step = lambda n0, n1: compiled.recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, law,
+                                                       carry, (n0, n1))
     failed = 0
     for n0 in range(1, N + 1, chunk):
         n1 = min(n0 + chunk, N + 1)

@@ -58,12 +58,56 @@ def _cholesky_solve(W, idx, k, rhs, S, x):
 
 
 @njit(cache=True)
-def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x):
-    """Block principal pivoting for ``w = W v + q >= 0, v >= 0, v.w = 0`` with SPD ``W``.
+def _lu_solve_principal(W, idx, k, rhs, S, x):
+    """Solve ``W[idx[:k], idx[:k]] x = rhs[:k]`` by LU with partial pivoting; False if singular."""
+    for a in range(k):
+        for b in range(k):
+            S[a, b] = W[idx[a], idx[b]]
+        x[a] = rhs[a]
+    scale = 0.0
+    for a in range(k):
+        for b in range(k):
+            scale = max(scale, abs(S[a, b]))
+    for j in range(k):
+        p = j
+        for i in range(j + 1, k):
+            if abs(S[i, j]) > abs(S[p, j]):
+                p = i
+        if abs(S[p, j]) <= 1e-14 * scale:
+            return False
+        if p != j:
+            for b in range(k):
+                t = S[j, b]
+                S[j, b] = S[p, b]
+                S[p, b] = t
+            t = x[j]
+            x[j] = x[p]
+            x[p] = t
+        for i in range(j + 1, k):
+            f = S[i, j] / S[j, j]
+            if f != 0.0:
+                for b in range(j + 1, k):
+                    S[i, b] -= f * S[j, b]
+                x[i] -= f * x[j]
+    for i in range(k - 1, -1, -1):
+        t = x[i]
+        for b in range(i + 1, k):
+            t -= S[i, b] * x[b]
+        x[i] = t / S[i, i]
+    return True
 
+
+@njit(cache=True)
+def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmetric=True):
+    """Block principal pivoting for ``w = W v + q >= 0, v >= 0, v.w = 0``.
+
+    ``W`` symmetric positive definite on the principal submatrices it visits (Cholesky), or with
+    ``symmetric=False`` a nonsymmetric matrix whose visited principal submatrices are
+    nonsingular (LU with partial pivoting: the step LCP of friction).
     ``active`` (bool, m) is the warm start and is updated in place to the final active set
     (``v > 0``). ``v`` and ``w`` are outputs. Returns the number of linear solves, or minus
-    that number if the method failed (``W_AA`` not positive definite, or no convergence).
+    that number if the method failed (``W_AA`` not positive definite or singular, or no
+    convergence).
     """
     m = q.shape[0]
     scale = 1.0
@@ -83,7 +127,11 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x):
                 work_idx[k] = i
                 work_rhs[k] = -q[i]
                 k += 1
-        if not _cholesky_solve(W, work_idx, k, work_rhs, work_S, work_x):
+        if symmetric:
+            solved = _cholesky_solve(W, work_idx, k, work_rhs, work_S, work_x)
+        else:
+            solved = _lu_solve_principal(W, work_idx, k, work_rhs, work_S, work_x)
+        if not solved:
             return -it
         for i in range(m):
             v[i] = 0.0
@@ -122,6 +170,40 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x):
 
 
 @njit(cache=True)
+def law_vector(code, rate, P, W0, q, v_prev, o, t):
+    """The step law (:mod:`unilateral.constraints.law`) in place: ``o = rate v_prev`` and
+    ``q <- P (q + W0 o)``; ``code`` 0 (contact only) leaves ``q`` and sets ``o = 0``."""
+    m = q.shape[0]
+    if code == 0:
+        for a in range(m):
+            o[a] = 0.0
+        return
+    for a in range(m):
+        o[a] = rate[a] * v_prev[a]
+    for a in range(m):
+        u = q[a]
+        for b in range(m):
+            u += W0[a, b] * o[b]
+        t[a] = u
+    for a in range(m):
+        if code == 2:
+            u = 0.0
+            for b in range(m):
+                u += P[a, b] * t[b]
+            q[a] = u
+        else:
+            q[a] = t[a]
+
+
+@njit(cache=True)
+def law_matrix(code, P, W0):
+    """The step LCP matrix ``P W0`` (``W0`` itself unless ``code`` is 2)."""
+    if code == 2:
+        return P @ W0
+    return W0
+
+
+@njit(cache=True)
 def lcp_error(v, w, q):
     """``||min(v, w)|| / (1 + ||q||)``, the scaled natural-map residual."""
     num = 0.0
@@ -152,6 +234,22 @@ def _workspace(m):
 
 
 @njit(cache=True)
+def _law_step(law, W0, WL, q, v_prev, vn, wn, active, max_iter, work, o, t):
+    """The step LCP of the law on the associated vector ``q``: ``vn`` the new unknowns, ``wn``
+    the LCP's ``w = -P psi``, ``q`` left as the LCP vector. Returns the solves (negative: failed)
+    and the LCP error."""
+    code, rate, P = law
+    idx, S, rhs, x = work
+    law_vector(code, rate, P, W0, q, v_prev, o, t)
+    it = bpp(WL, q, active, vn, wn, max_iter, idx, S, rhs, x, code != 2)
+    err = lcp_error(vn, wn, q)
+    if code != 0:
+        for a in range(vn.shape[0]):
+            vn[a] += o[a]
+    return it, err
+
+
+@njit(cache=True)
 def _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
     """Store the LCP result of step n and update the statistics; False if the step failed."""
     if it < 0 or err > tol:
@@ -170,7 +268,7 @@ def _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
 
 
 @njit(cache=True)
-def march_naive(W, psi_affine, v_b, max_iter, tol):
+def march_naive(W, psi_affine, v_b, max_iter, tol, law):
     """The CLCP march with direct summation of the history; see :func:`clcp.march_cq`.
 
     Parameters
@@ -180,6 +278,7 @@ def march_naive(W, psi_affine, v_b, max_iter, tol):
     v_b : (m,)
     max_iter : int, linear solves per LCP at most
     tol : float, largest acceptable LCP error of a step
+    law : ``(code, rate, P)`` of :meth:`unilateral.constraints.StepLaw.compiled`
 
     Returns
     -------
@@ -188,7 +287,7 @@ def march_naive(W, psi_affine, v_b, max_iter, tol):
     failed_step : int, 0 if every step succeeded, else the step whose LCP failed
     """
     carry = naive_start(W[0], psi_affine, v_b)
-    failed = naive_steps(W, psi_affine, v_b, max_iter, tol, carry, 1, psi_affine.shape[0])
+    failed = naive_steps(W, psi_affine, v_b, max_iter, tol, law, carry, 1, psi_affine.shape[0])
     v, psi, stats = carry[0], carry[1], carry[3]
     if failed:
         return v[:failed], psi[:failed], stats, failed
@@ -204,12 +303,14 @@ def naive_start(W0, psi_affine, v_b):
 
 
 @njit(cache=True)
-def naive_steps(W, psi_affine, v_b, max_iter, tol, carry, n0, n1):
+def naive_steps(W, psi_affine, v_b, max_iter, tol, law, carry, n0, n1):
     """Steps ``n0 <= n < n1`` of :func:`march_naive` on the carried state; the failed step or 0."""
     v, psi, dv, stats, active, previous, base, first = carry
     m = psi_affine.shape[1]
     W0 = W[0]
+    WL = law_matrix(law[0], law[2], W0)
     q, vn, wn, idx, S, rhs, x = _workspace(m)
+    o, t1 = np.empty(m), np.empty(m)
     for n in range(n0, n1):
         for a in range(m):
             q[a] = -psi_affine[n, a] - base[a]
@@ -222,8 +323,8 @@ def naive_steps(W, psi_affine, v_b, max_iter, tol, carry, n0, n1):
                     for b in range(m):
                         t += Wj[a, b] * d[b]
                     q[a] += t
-        it = bpp(W0, q, active, vn, wn, max_iter, idx, S, rhs, x)
-        if not _record(n, it, lcp_error(vn, wn, q), tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
+        it, err = _law_step(law, W0, WL, q, v[n - 1], vn, wn, active, max_iter, (idx, S, rhs, x), o, t1)
+        if not _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
             return n
         if first[0] < 0:
             for a in range(m):
@@ -233,7 +334,7 @@ def naive_steps(W, psi_affine, v_b, max_iter, tol, carry, n0, n1):
 
 
 @njit(cache=True)
-def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
+def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol, law):
     """The CLCP march with the exact recursive history of a pole-residue kernel.
 
     The history is ``Re(free @ out)`` with ``free = sum_i coef_i state_i`` of the scalar filters
@@ -247,13 +348,14 @@ def march_recursive(W0, coef, gain, out, inp, psi_affine, v_b, max_iter, tol):
     gain : (c,) complex, ``beta_0/alpha_0``
     out, inp : (c, m) complex output and input factors
     psi_affine : (N+1, m);  v_b : (m,);  max_iter : int;  tol : float
+    law : ``(code, rate, P)`` of :meth:`unilateral.constraints.StepLaw.compiled`
 
     Returns
     -------
     As :func:`march_naive`.
     """
     carry = recursive_start(W0, coef, psi_affine, v_b)
-    failed = recursive_steps(W0, (coef, gain, out, inp), psi_affine, v_b, max_iter, tol, carry,
+    failed = recursive_steps(W0, (coef, gain, out, inp), psi_affine, v_b, max_iter, tol, law, carry,
                              (1, psi_affine.shape[0]))
     v, psi, stats = carry[0], carry[1], carry[3]
     if failed:
@@ -271,7 +373,7 @@ def recursive_start(W0, coef, psi_affine, v_b):
 
 
 @njit(cache=True)
-def recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, carry, steps):
+def recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, law, carry, steps):
     """Steps ``steps[0] <= n < steps[1]`` of :func:`march_recursive`; the failed step or 0.
 
     ``filters`` is ``(coef, gain, out, inp)``; ``carry`` the state of :func:`recursive_start`.
@@ -281,6 +383,8 @@ def recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, carry, steps):
     m = psi_affine.shape[1]
     rows, c = coef.shape
     q, vn, wn, idx, S, rhs, x = _workspace(m)
+    WL = law_matrix(law[0], law[2], W0)
+    o, t1 = np.empty(m), np.empty(m)
     free = np.empty(c, dtype=np.complex128)
     for n in range(steps[0], steps[1]):
         for k in range(c):
@@ -293,8 +397,8 @@ def recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, carry, steps):
             for k in range(c):
                 t += (free[k] * out[k, a]).real
             q[a] = t - psi_affine[n, a] - base[a]
-        it = bpp(W0, q, active, vn, wn, max_iter, idx, S, rhs, x)
-        if not _record(n, it, lcp_error(vn, wn, q), tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
+        it, err = _law_step(law, W0, WL, q, v[n - 1], vn, wn, active, max_iter, (idx, S, rhs, x), o, t1)
+        if not _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
             return n
         for i in range(rows - 1, 1, -1):
             for k in range(c):
@@ -485,7 +589,7 @@ def direct_start(N1, n, m, v_b, psi0, ustart):
 
 
 @njit(cache=True, fastmath=REASSOCIATE)
-def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, carry, steps):
+def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
     """Steps ``steps[0] <= k < steps[1]`` of the direct march, compiled; the failed step or 0.
 
     The operations of :func:`unilateral.march.direct.march_direct` with
@@ -506,6 +610,8 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, carry, steps):
         ``W0 v_b`` (m,)
     v_b : (m,) base deformations
     flags : ``(c0, alpha, viscous, bilateral, max_iter, tol)``
+    law : ``(code, rate, P)`` of :meth:`unilateral.constraints.StepLaw.compiled`; ``psi`` holds
+        the constraint functions ``P psi``
     carry : the state of :func:`direct_start`, updated in place
     steps : ``(first, stop)``
     """
@@ -521,6 +627,9 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, carry, steps):
     rhs, x, acc = np.empty(n), np.empty(n), np.empty(n)
     c, dv, dvd, dvdd = np.empty(m), np.zeros(m), np.empty(m), np.empty(m)
     q, vn, wn, idx, S, work_rhs, work_x = _workspace(m)
+    code, rate, P = law
+    WL = law_matrix(code, P, W0)
+    o, t1 = np.empty(m), np.empty(m)
     for k in range(steps[0], steps[1]):
         _rule_history(kind, rp, us[0], us[1], us[2], us[3], us[4], h1, h2)
         if viscous:
@@ -567,6 +676,8 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, carry, steps):
             q_min = 0.0
             for b in range(m):
                 q[b] = -(c[b] + base[b])
+            law_vector(code, rate, P, W0, q, v[k - 1], o, t1)
+            for b in range(m):
                 q_min = min(q_min, q[b])
             if q_min >= 0.0:                # v = 0 solves it (no linear solve), as in LCPSolver.solve
                 for b in range(m):
@@ -575,10 +686,13 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, carry, steps):
                     active[b] = False
                 it, err = 0, 0.0
             else:
-                it = bpp(W0, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x)
+                it = bpp(WL, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x, code != 2)
                 err = lcp_error(vn, wn, q)
             if it < 0 or err > tol:
                 return k
+            if code != 0:
+                for b in range(m):
+                    vn[b] += o[b]
             stats[0] += it
             stats[1] = max(stats[1], it)
             stats[3] = max(stats[3], err)
@@ -609,7 +723,15 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, carry, steps):
             t = c[b]
             for e in range(m):
                 t -= W0[b, e] * dv[e]
-            psi[k, b] = t
+            t1[b] = t
             v[k, b] = vn[b]
             dv_prev[b] = dv[b]
+        for b in range(m):
+            if code == 2:
+                t = 0.0
+                for e in range(m):
+                    t += P[b, e] * t1[e]
+                psi[k, b] = t
+            else:
+                psi[k, b] = t1[b]
     return 0

@@ -49,20 +49,25 @@ def march_direct(stepper, N, v_b, psi0, solver, *, dt, bilateral=False, callback
     -------
     du, dudot : (K+1, n) ; v, psi : (K+1, m) ; log : StepLog
     """
+    law = stepper.model.law
     if bilateral:                           # the same (Python) operations as the LCP march
-        return sweep_direct(stepper, N, v_b, psi0, callback=callback, compiled=False)
+        du, dud, v, psi, log = sweep_direct(stepper, N, v_b, psi0, callback=callback, compiled=False)
+        return du, dud, v, law.rows(psi), log
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
+    psi[0] = law.rows(psi0)
     W0 = stepper.W0
+    WL = law.matrix(W0)
     base = W0 @ v_b
     for k in range(1, N + 1):
         _, psi_free = stepper.predict()
-        res = solver.solve(W0, -(psi_free + base), active=log.active)
+        o = law.offset(v[k - 1])
+        res = solver.solve(WL, law.vector(W0, -(psi_free + base), o), active=log.active)
         if not log.record(k, k * dt, res):
             return du[:k], dud[:k], v[:k], psi[:k], log
-        dvk = res.v - v_b
+        v[k] = res.v + o
+        dvk = v[k] - v_b
         du[k], dud[k] = stepper.correct(dvk)
-        v[k] = res.v
-        psi[k] = psi_free - W0 @ dvk
+        psi[k] = law.rows(psi_free - W0 @ dvk)
         if callback is not None:
             callback(k, N)
     return du, dud, v, psi, log
@@ -112,10 +117,12 @@ def march_direct_compiled(stepper, N, v_b, psi0, *, dt, max_iter, tol, bilateral
     tables = (arrays["f"], arrays["offset"], mats[-1] @ v_b)
     flags = (float(arrays["c0"]), arrays["alpha"], bool(arrays["viscous"]), bool(bilateral),
              int(max_iter), float(tol))
-    carry = compiled.direct_start(N + 1, n, m, v_b, np.ascontiguousarray(psi0, dtype=float),
+    law = stepper.model.law
+    carry = compiled.direct_start(N + 1, n, m, v_b, np.ascontiguousarray(law.rows(psi0), dtype=float),
                                   arrays["ustart"])
+    law_arrays = law.compiled()
     run = lambda n0, n1: compiled.direct_steps(arrays["kind"], arrays["rp"], mats, arrays["sparse"],
-                                               tables, v_b, flags, carry, (n0, n1))
+                                               tables, v_b, flags, law_arrays, carry, (n0, n1))
     if callback is None:
         failed = run(1, N + 1)
     else:

@@ -26,12 +26,14 @@ def use_compiled(engine, compiled_ok, run, *, option, needs, steps) -> bool:
     return engine == "compiled" or (engine == "auto" and compiled_ok and compiled_pays(steps))
 
 
-def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto", option="cq_options"):
+def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto", option="cq_options",
+                  law=None):
     """March the CLCP with stored weights ``W (N+1, m, m)``; return ``(v, psi, log)``.
 
     ``history``: ``"naive"`` or ``"fft"`` (default: FFT-blocked above
     :data:`FFT_HISTORY_MIN_STEPS` steps); ``engine``: ``"auto"``, ``"compiled"`` (naive history
-    and block principal pivoting only) or ``"python"``.
+    and block principal pivoting only) or ``"python"``; ``law``: the model's
+    :class:`~unilateral.constraints.StepLaw` (default: contact only).
     """
     W = W.copy()
     W[0] = 0.5 * (W[0] + W[0].T)
@@ -45,7 +47,8 @@ def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto",
                     needs="history='naive' and lcp='bpp'", steps=N):
         run.stats["engine"] = "compiled"
         return march_cq_compiled("naive", (W, psi_affine), v_b, dt=disc.dt, tol=solver.tol,
-                                 max_iter=solver.max_iter or 10 * W.shape[1] + 10, callback=run.callback)
+                                 max_iter=solver.max_iter or 10 * W.shape[1] + 10, callback=run.callback,
+                                 law=law)
     run.stats["engine"] = "python"
     return march_cq(W[0], HISTORIES[history](W), psi_affine, v_b, solver, dt=disc.dt,
-                    bilateral=run.bilateral, callback=run.callback)
+                    bilateral=run.bilateral, callback=run.callback, law=law)

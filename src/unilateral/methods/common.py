@@ -155,7 +155,7 @@ def clcp_on_matrix_model(model, load, initial, disc, run, march):
     K = v.shape[0] - 1
     du, dud, _, _, _ = sweep_direct(base.stepper(disc, condensed=False), K, v_b, base.init.psi, v - v_b)
     run.timer.lap("recover")
-    return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, psiL=psiL[: K + 1],
+    return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, psiL=model.law.rows(psiL[: K + 1]),
                   u=base.init.u + du, udot=dud)
 
 
@@ -205,7 +205,7 @@ def contact_alternations(v) -> np.ndarray:
 
 def _chatter_warnings(model, stats, v) -> list:
     """``stats["chatter"]`` and a warning when contacts switch back and forth step to step."""
-    counts = contact_alternations(v)
+    counts = contact_alternations(v) * ~model.law.rate       # yield and slip accumulate: not contacts
     names = list(model.constraint_names)
     stats["chatter"] = {"alternations": {names[i]: int(c) for i, c in enumerate(counts) if c},
                         "total": int(counts.sum())}
@@ -282,7 +282,12 @@ def _step_lcp_warnings(model, stats) -> list:
     W0 = step_lcp_matrix(model, stats.get("rule"), stats["dt"])
     if W0 is None:
         return []
-    check = p_matrix_check(W0)
+    # the contacts' block (a slip or yield pair has opposite columns: never a P-matrix, one solution)
+    contacts = np.flatnonzero(~model.law.rate)
+    if contacts.size == 0:
+        return []
+    check = p_matrix_check(W0[np.ix_(contacts, contacts)])
+    check["worst_minor_rows"] = [int(contacts[i]) for i in check.get("worst_minor_rows", [])]
     stats["step_lcp"] = check
     if check["P_matrix"]:
         return []
@@ -299,7 +304,8 @@ def failed_at_start(model, init, run) -> Solution:
     run.stats["time"] = run.timer.laps()
     run.stats["steps_done"] = 0
     n_u = None if init.u is None else init.u[None]
-    return Solution(t=np.zeros(1), v=init.v[None], psi=init.psi[None], psiL=init.psi[None],
+    psi = model.law.rows(init.psi)[None]
+    return Solution(t=np.zeros(1), v=init.v[None], psi=psi, psiL=psi,
                     u=n_u, udot=None if init.udot is None else init.udot[None], success=False,
                     message=init.message, stats=run.stats,
                     dof_names=list(getattr(model, "dof_names", [])),

@@ -59,7 +59,7 @@ class CQ(Method):
         def clcp(psiL, v_b):
             W = cq_weights(MatrixKernel(model), disc.N, disc.dt, disc.rule, **weight_options)
             run.timer.lap("weights")
-            return march_weights(W, psiL, v_b, disc, run, **march)
+            return march_weights(W, psiL, v_b, disc, run, law=model.law, **march)
 
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
 
@@ -85,7 +85,7 @@ class CQ(Method):
         run.timer.lap("weights")
         if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
             Lambda0 = model.Lambda_real(0.0)
-            v_b, iters, message = static_lcp(Lambda0, psiL[0], run.solver)
+            v_b, iters, message = static_lcp(model.law.matrix(Lambda0), model.law.rows(psiL[0]), run.solver)
             run.stats["static_lcp_iterations"] = iters
             if message:
                 return failed_at_start(model, InitialState(v=v_b, psi=psiL[0], message=message), run)
@@ -105,7 +105,7 @@ class CQ(Method):
                 raise TypeError(f"initial must be 'static', 'rest' or dict(v0=...), got {V.describe(initial)}")
             # v jumps to v_b at t = 0: its convolution is the CQ step response sum_{j<=n} W_j v_b.
             psi_affine = psiL - np.cumsum(W, axis=0) @ v_b
-        v, psi, log = march_weights(W, psi_affine, v_b, disc, run, **march)
+        v, psi, log = march_weights(W, psi_affine, v_b, disc, run, law=model.law, **march)
         run.timer.lap("steps")
         K = v.shape[0] - 1
-        return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, psiL=psiL[: K + 1])
+        return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, psiL=model.law.rows(psiL[: K + 1]))

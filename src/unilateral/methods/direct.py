@@ -47,7 +47,7 @@ class Direct(Method):
     def solve(self, model, load, initial, disc, run):
         engine = V.choice(f"{self.option_name}['engine']", self.config.get("engine", "auto"), ENGINES)
         run.stats["n"] = model.n
-        full_space = (model.sparse and model.m > FULL_SPACE_MIN_M
+        full_space = (model.sparse and model.m > FULL_SPACE_MIN_M and model.law.trivial
                       and isinstance(run.solver, BlockPrincipalPivoting))
         compiled_ok = (not full_space and isinstance(run.solver, BlockPrincipalPivoting)
                        and type(disc.rule).__module__ == "unilateral.rules")

@@ -71,10 +71,10 @@ class Modal(Method):
                 run.stats["engine"] = "compiled"
                 return march_cq_compiled("recursive", (W0, *history.arrays(), psi_affine), v_b, dt=disc.dt,
                                          tol=solver.tol, max_iter=solver.max_iter or 10 * model.m + 10,
-                                         callback=run.callback)
+                                         callback=run.callback, law=model.law)
             run.stats["engine"] = "python"
             return march_cq(W0, history, psi_affine, v_b, solver, dt=disc.dt, bilateral=run.bilateral,
-                            callback=run.callback)
+                            callback=run.callback, law=model.law)
 
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
 

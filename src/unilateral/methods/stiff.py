@@ -107,7 +107,8 @@ def _conditioned_model(model, split) -> Model:
     return Model(M=congruent(model.M), K=split.K, F=F, H=model.H, C=congruent(model.C), g=g,
                  F_v=F_v, H_v=model.H_v, q_imposed=q_imposed,
                  dof_names=_names(model, split),
-                 constraint_names=list(model.constraint_names), natural=conditioned_nat)
+                 constraint_names=list(model.constraint_names), natural=conditioned_nat,
+                 families=model.families)
 
 
 def _names(model, split):

@@ -597,6 +597,13 @@ class FoundationModel:
         return self.constraint_names
 
     @property
+    def law(self):
+        """Contacts only (:func:`unilateral.constraints.contact_law`)."""
+        from ..constraints import contact_law
+
+        return contact_law(self.m)
+
+    @property
     def sparse(self) -> bool:
         return sp.issparse(self.K)
 

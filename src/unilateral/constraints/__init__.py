@@ -1,0 +1,14 @@
+"""Constraint families and their laws: contact, yield and friction in one convolutional LCP.
+
+A :class:`~unilateral.model.Model` is a linear structure plus constraint families
+(``Model(..., families=[...])``): :class:`Contact` (the paper's unilateral contact),
+:class:`Yield` (plastic multipliers) and :class:`Friction` (Coulomb slips). The methods see only
+the :class:`StepLaw` assembled from them (``model.law``), which turns each step's LCP of the
+paper into the LCP of the mixed problem with the same matrix ``W0``.
+"""
+
+from .families import ConstraintFamily, Contact, Friction, Yield
+from .law import StepLaw, contact_law, default_families, step_law
+
+__all__ = ["ConstraintFamily", "Contact", "Friction", "StepLaw", "Yield", "contact_law", "default_families",
+           "step_law"]

@@ -1,0 +1,126 @@
+"""Constraint families: groups of constraint unknowns that share a law.
+
+A model's ``m`` unknowns ``v`` (columns of ``F``, rows and columns of ``H``) are split into
+families. Each family names its unknowns (indices into ``0..m-1``) and says
+
+* its **law**: ``"holonomic"`` (the paper's contact: ``v >= 0, psi <= 0, psi^T v = 0``) or
+  ``"rate"`` (plasticity and friction: the unknown is a multiplier that only accumulates, and
+  complementarity holds for its increment, ``d lambda >= 0, phi <= 0, phi^T d lambda = 0``);
+* its **rows**: the constraint function of an unknown is, by default, its own ``psi`` (the
+  associated law, ``psi = F^T u - H v - g``); friction replaces the ``psi`` of a slip by
+  ``psi_slip + mu psi_normal`` (``T - mu N``): a non-associated law, a non-symmetric step LCP;
+* its **kind** (``"contact"``, ``"yield"``, ``"friction"``), for reports and figures.
+
+Methods never look at families: they receive the :class:`~unilateral.constraints.law.StepLaw`
+that :func:`~unilateral.constraints.law.step_law` assembles from them.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+
+def _indices(name, value) -> np.ndarray:
+    idx = np.atleast_1d(np.asarray(value))
+    if idx.ndim != 1 or (idx.size and not np.issubdtype(idx.dtype, np.integer)):
+        raise ValueError(f"{name} must be a sequence of constraint indices (integers), got {value!r}")
+    return idx.astype(np.int64)
+
+
+class ConstraintFamily:
+    """Unknowns ``indices`` (k,) of a model that obey one law.
+
+    Parameters
+    ----------
+    indices : sequence of int
+        Which of the model's ``m`` unknowns belong to the family.
+    name : str, optional
+        A label for reports (default: the kind).
+    """
+
+    #: ``"holonomic"`` or ``"rate"``.
+    law: ClassVar[str] = "holonomic"
+    #: What the family models, for reports and figures.
+    kind: ClassVar[str] = "contact"
+
+    def __init__(self, indices, *, name=None):
+        self.indices = _indices("indices", indices)
+        self.name = str(name or self.kind)
+
+    def row_coupling(self):
+        """Entries ``(row, column, factor)`` added to the identity row map (none by default)."""
+        return ()
+
+    def check(self, m: int) -> None:
+        """Raise if an index lies outside ``0..m-1``."""
+        bad = self.indices[(self.indices < 0) | (self.indices >= m)]
+        if bad.size:
+            raise ValueError(f"constraint family {self.name!r} names unknown {int(bad[0])}, but the model "
+                             f"has m = {m} unknowns (indices 0..{m - 1})")
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.indices.tolist()}, name={self.name!r})"
+
+
+class Contact(ConstraintFamily):
+    """The paper's unilateral contact: ``v >= 0`` (opening), ``psi <= 0`` (reaction), ``psi v = 0``."""
+
+    law = "holonomic"
+    kind = "contact"
+
+
+class Yield(ConstraintFamily):
+    """Plastic multipliers: ``lambda`` only grows; ``d lambda >= 0, phi <= 0, phi d lambda = 0``.
+
+    ``phi = F^T u - H lambda - g`` is the yield function of one face of a piecewise-linear yield
+    surface: ``F`` carries the plastic strain into the structure as an imposed strain, ``H`` holds
+    its self-stress and the hardening, ``g`` the yield force. A two-sided surface
+    (``-F_c <= N <= F_t``) is two multipliers with opposite columns.
+    """
+
+    law = "rate"
+    kind = "yield"
+
+
+class Friction(ConstraintFamily):
+    """Coulomb slip multipliers of 2D contacts: ``|T| <= mu N``, slip increments in the sense of ``T``.
+
+    Each slip pair ``(s+, s-)`` is two multipliers with opposite columns (the tangential force
+    ``T = psi(s+) = -psi(s-)``); their constraint functions are ``psi(s+-) + mu psi(n)``, i.e.
+    ``+-T - mu N <= 0`` with ``N = -psi(n)`` the compressive force of the normal contact ``n``.
+    With ``normal = None`` the normal force is a constant already in ``g`` (a flat slider).
+
+    Parameters
+    ----------
+    indices : sequence of int, the slip multipliers (``s+`` and ``s-`` of every pair)
+    normal : sequence of int or None, per slip multiplier the index of its normal contact
+        (``-1``: constant normal force)
+    mu : float or sequence of float, per slip multiplier, >= 0
+    """
+
+    law = "rate"
+    kind = "friction"
+
+    def __init__(self, indices, *, normal=None, mu=0.0, name=None):
+        super().__init__(indices, name=name)
+        k = self.indices.size
+        self.normal = (np.full(k, -1, dtype=np.int64) if normal is None
+                       else _indices("normal", normal))
+        self.mu = np.broadcast_to(np.asarray(mu, dtype=float), (k,)).copy()
+        if self.normal.shape != (k,):
+            raise ValueError(f"normal must name one contact per slip multiplier ({k}), got {self.normal.size}")
+        if np.any(~np.isfinite(self.mu)) or np.any(self.mu < 0):
+            raise ValueError(f"mu must be finite and >= 0 (friction coefficients), got {self.mu.tolist()}")
+
+    def row_coupling(self):
+        return tuple((int(i), int(n), float(mu)) for i, n, mu in zip(self.indices, self.normal, self.mu)
+                     if n >= 0 and mu != 0.0)
+
+    def check(self, m: int) -> None:
+        super().check(m)
+        bad = self.normal[(self.normal >= m) | (self.normal < -1)]
+        if bad.size:
+            raise ValueError(f"friction family {self.name!r} names normal contact {int(bad[0])}, but the model "
+                             f"has m = {m} unknowns")
