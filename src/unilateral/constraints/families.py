@@ -53,6 +53,11 @@ class ConstraintFamily:
         """Entries ``(row, column, factor)`` added to the identity row map (none by default)."""
         return ()
 
+    def pairs(self):
+        """Pairs ``(i, j)`` of unknowns with opposite columns (the two faces of a two-sided
+        surface): never both active, which the pivoting solvers respect (none by default)."""
+        return ()
+
     def check(self, m: int) -> None:
         """Raise if an index lies outside ``0..m-1``."""
         bad = self.indices[(self.indices < 0) | (self.indices >= m)]
@@ -78,10 +83,30 @@ class Yield(ConstraintFamily):
     surface: ``F`` carries the plastic strain into the structure as an imposed strain, ``H`` holds
     its self-stress and the hardening, ``g`` the yield force. A two-sided surface
     (``-F_c <= N <= F_t``) is two multipliers with opposite columns.
+
+    Parameters
+    ----------
+    indices : sequence of int
+        The multipliers; with ``two_sided`` (default) in pairs ``(+ face, - face)``.
+    two_sided : bool
+        The indices come in pairs of opposite faces of two-sided surfaces.
+    name : str, optional
     """
 
     law = "rate"
     kind = "yield"
+
+    def __init__(self, indices, *, two_sided=True, name=None):
+        super().__init__(indices, name=name)
+        self.two_sided = bool(two_sided)
+        if self.two_sided and self.indices.size % 2:
+            raise ValueError(f"a two-sided yield family needs its multipliers in pairs (+ face, - face); "
+                             f"got {self.indices.size} indices (give two_sided=False for one-sided faces)")
+
+    def pairs(self):
+        if not self.two_sided:
+            return ()
+        return tuple(zip(self.indices[0::2].tolist(), self.indices[1::2].tolist()))
 
 
 class Friction(ConstraintFamily):
@@ -94,7 +119,7 @@ class Friction(ConstraintFamily):
 
     Parameters
     ----------
-    indices : sequence of int, the slip multipliers (``s+`` and ``s-`` of every pair)
+    indices : sequence of int, the slip multipliers in pairs (``s+``, ``s-``)
     normal : sequence of int or None, per slip multiplier the index of its normal contact
         (``-1``: constant normal force)
     mu : float or sequence of float, per slip multiplier, >= 0
@@ -113,6 +138,11 @@ class Friction(ConstraintFamily):
             raise ValueError(f"normal must name one contact per slip multiplier ({k}), got {self.normal.size}")
         if np.any(~np.isfinite(self.mu)) or np.any(self.mu < 0):
             raise ValueError(f"mu must be finite and >= 0 (friction coefficients), got {self.mu.tolist()}")
+        if k % 2:
+            raise ValueError(f"friction slips come in pairs (s+, s-); got {k} indices")
+
+    def pairs(self):
+        return tuple(zip(self.indices[0::2].tolist(), self.indices[1::2].tolist()))
 
     def row_coupling(self):
         return tuple((int(i), int(n), float(mu)) for i, n, mu in zip(self.indices, self.normal, self.mu)

@@ -34,11 +34,14 @@ class StepLaw:
     rate : (m,) bool, True for unknowns complementary in their increments
     P : (m, m) row map of the constraint functions, or None (identity)
     kinds : tuple of m str, ``"contact"``, ``"yield"`` or ``"friction"``
+    partner : (m,) int, the opposite face of a two-sided pair (-1: none); a pivoting solver never
+        makes both active (their columns are opposite: the pair's block of ``W0`` is singular)
     """
 
     rate: np.ndarray
     P: np.ndarray | None
     kinds: tuple
+    partner: np.ndarray
 
     @property
     def m(self) -> int:
@@ -78,9 +81,9 @@ class StepLaw:
         return q if self.P is None else self.P @ q
 
     def compiled(self):
-        """``(code, rate (m,) float, P (m, m))`` for the compiled marches."""
+        """``(code, rate (m,) float, P (m, m), partner (m,) int)`` for the compiled marches."""
         P = np.eye(self.m) if self.P is None else np.ascontiguousarray(self.P)
-        return self.code, self.rate.astype(float), P
+        return self.code, self.rate.astype(float), P, self.partner
 
     def active_changes(self, v) -> np.ndarray:
         """Per step and unknown (N+1, m), whether it is active: open contact, yielding, slipping."""
@@ -94,7 +97,8 @@ class StepLaw:
 
 def contact_law(m: int) -> StepLaw:
     """The law of ``m`` contact unknowns (the paper's LCP)."""
-    return StepLaw(rate=np.zeros(m, dtype=bool), P=None, kinds=("contact",) * m)
+    return StepLaw(rate=np.zeros(m, dtype=bool), P=None, kinds=("contact",) * m,
+                   partner=np.full(m, -1, dtype=np.int64))
 
 
 def step_law(families, m: int) -> StepLaw:
@@ -121,10 +125,13 @@ def step_law(families, m: int) -> StepLaw:
     rate = np.zeros(m, dtype=bool)
     kinds = ["contact"] * m
     P = None
+    partner = np.full(m, -1, dtype=np.int64)
     for family in families:
         rate[family.indices] = family.law == "rate"
         for i in family.indices:
             kinds[i] = family.kind
+        for i, j in family.pairs():
+            partner[i], partner[j] = j, i
     for family in families:
         for row, col, factor in family.row_coupling():
             if rate[col]:
@@ -133,7 +140,7 @@ def step_law(families, m: int) -> StepLaw:
             if P is None:
                 P = np.eye(m)
             P[row, col] += factor
-    return StepLaw(rate=rate, P=P, kinds=tuple(kinds))
+    return StepLaw(rate=rate, P=P, kinds=tuple(kinds), partner=partner)
 
 
 def default_families(m: int):

@@ -92,7 +92,7 @@ def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol, callback=None, law=
         march = compiled.march_naive if kind == "naive" else compiled.march_recursive
         v, psi, stats, failed = march(*args, v_b, max_iter, tol, arrays)
     else:
-        v, psi, stats, failed = _chunked(compiled, kind, args, v_b, max_iter, tol, callback, arrays)
+        v, psi, stats, failed = _chunked(compiled, kind, args, v_b, max_iter, tol, callback, law=arrays)
     psi[0] = law.rows(args[-1][0])
     log = StepLog.of_compiled(v_b, stats, failed, dt=dt, max_iter=max_iter, tol=tol)
     if len(v):
@@ -100,7 +100,7 @@ def march_cq_compiled(kind, args, v_b, *, dt, max_iter, tol, callback=None, law=
     return v, psi, log
 
 
-def _chunked(compiled, kind, args, v_b, max_iter, tol, callback, law):
+def _chunked(compiled, kind, args, v_b, max_iter, tol, callback, *, law):
     """The compiled march over chunks of steps, calling ``callback(k, N)`` after each."""
     psi_affine = args[-1]
     N = psi_affine.shape[0] - 1

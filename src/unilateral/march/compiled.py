@@ -98,12 +98,16 @@ def _lu_solve_principal(W, idx, k, rhs, S, x):
 
 
 @njit(cache=True)
-def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmetric=True):
+def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmetric, partner):
     """Block principal pivoting for ``w = W v + q >= 0, v >= 0, v.w = 0``.
 
     ``W`` symmetric positive definite on the principal submatrices it visits (Cholesky), or with
     ``symmetric=False`` a nonsymmetric matrix whose visited principal submatrices are
     nonsingular (LU with partial pivoting: the step LCP of friction).
+    ``partner`` (int, m; -1: none) pairs unknowns with opposite columns (two-sided yield and
+    slip): an unknown does not enter while its partner stays active, and of two partners that
+    would enter together only the one with the smaller ``w`` does (both active would make
+    ``W_AA`` singular; in a solution at most one is).
     ``active`` (bool, m) is the warm start and is updated in place to the final active set
     (``v > 0``). ``v`` and ``w`` are outputs. Returns the number of linear solves, or minus
     that number if the method failed (``W_AA`` not positive definite or singular, or no
@@ -162,9 +166,19 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmet
             tries -= 1
         else:                               # Murty: flip only the largest infeasible index
             active[last] = not active[last]
+            if active[last] and partner[last] >= 0:
+                active[partner[last]] = False
             continue
         for i in range(m):
-            if (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps):
+            flip = (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps)
+            if flip and not active[i] and partner[i] >= 0:
+                p = partner[i]
+                stays = active[p] and not v[p] < -eps_v
+                enters = not active[p] and w[p] < w[i]
+                flip = not (stays or enters)
+            work_x[i] = 1.0 if flip else 0.0        # the solve's workspace is free until the next solve
+        for i in range(m):
+            if work_x[i] != 0.0:
                 active[i] = not active[i]
     return -max_iter
 
@@ -238,10 +252,10 @@ def _law_step(law, W0, WL, q, v_prev, vn, wn, active, max_iter, work, o, t):
     """The step LCP of the law on the associated vector ``q``: ``vn`` the new unknowns, ``wn``
     the LCP's ``w = -P psi``, ``q`` left as the LCP vector. Returns the solves (negative: failed)
     and the LCP error."""
-    code, rate, P = law
+    code, rate, P, partner = law
     idx, S, rhs, x = work
     law_vector(code, rate, P, W0, q, v_prev, o, t)
-    it = bpp(WL, q, active, vn, wn, max_iter, idx, S, rhs, x, code != 2)
+    it = bpp(WL, q, active, vn, wn, max_iter, idx, S, rhs, x, code != 2, partner)
     err = lcp_error(vn, wn, q)
     if code != 0:
         for a in range(vn.shape[0]):
@@ -627,7 +641,7 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
     rhs, x, acc = np.empty(n), np.empty(n), np.empty(n)
     c, dv, dvd, dvdd = np.empty(m), np.zeros(m), np.empty(m), np.empty(m)
     q, vn, wn, idx, S, work_rhs, work_x = _workspace(m)
-    code, rate, P = law
+    code, rate, P, partner = law
     WL = law_matrix(code, P, W0)
     o, t1 = np.empty(m), np.empty(m)
     for k in range(steps[0], steps[1]):
@@ -686,7 +700,7 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
                     active[b] = False
                 it, err = 0, 0.0
             else:
-                it = bpp(WL, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x, code != 2)
+                it = bpp(WL, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x, code != 2, partner)
                 err = lcp_error(vn, wn, q)
             if it < 0 or err > tol:
                 return k
