@@ -194,3 +194,12 @@ def test_block_that_lifts_off_while_sliding():
     work = np.sum(T[1:] * ds)                          # friction work on the slip increments
     assert np.sum(np.abs(ds)[~open_[1:]]) > 0.05       # it slides in contact too
     assert work == pytest.approx(np.sum(mu * N[1:] * np.abs(ds)), rel=1e-6)     # T from kt (u - s): 1e-8
+
+
+def test_a_failed_friction_step_says_what_to_change():
+    model, load = mixed_model(2)
+    sol = ul.solve(model, load, dt=2e-3, t_end=1.0, method="direct", lcp_options={"max_iter": 1})
+    assert not sol.success
+    assert "stopped after" in sol.message and "friction constraints ['c1', 'c2']" in sol.message
+    assert "lcp='lemke'" in sol.message and "kt" in sol.message
+    assert sol.v.shape[0] < 501                       # the steps before the failure are kept

@@ -22,7 +22,8 @@ import pytest
 import unilateral
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
-SCRIPTS = ("bouncing_mass.py", "rocking_tower.py", "pounding_frames.py", "convergence_bdf2.py", "soil_kernels.py")
+SCRIPTS = ("bouncing_mass.py", "rocking_tower.py", "pounding_frames.py", "convergence_bdf2.py", "soil_kernels.py",
+           "sliding_block.py")
 MODEL_FILES = ("liolios1990.toml", "pounding.toml", "winkler_beam.toml")
 NUMBER = r"([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)"
 
@@ -72,6 +73,17 @@ def test_bouncing_mass_event_is_exact_and_cq_converges(outputs):
     coarse, = _numbers(out, r"dt = 0.001 s: peak uplift [\d.]+ m, largest error {N} m")
     fine, = _numbers(out, r"dt = 0.0005 s: peak uplift [\d.]+ m, largest error {N} m")
     assert 1e-7 < fine < coarse < 1e-4
+
+
+def test_sliding_block_matches_newmarks_closed_form(outputs):
+    out = outputs["sliding_block.py"]
+    exact, t_stop = _numbers(out, r"closed form: permanent slip {N} m, block stops at t = {N} s")
+    assert exact == pytest.approx(0.519367991845, rel=1e-9)
+    errors = [abs(float(x)) for x in re.findall(r"relative error ([-+][\d.e+-]+)", out)]
+    assert len(errors) == 3 and errors[0] > errors[1] > errors[2]      # converges as dt shrinks
+    assert _numbers(out, r"(?m)^slip error {N} at dt")[0] < 1e-4
+    stops = [float(x) for x in re.findall(r"stops at t = ([\d.]+) s", out)]
+    assert stops[-1] == pytest.approx(t_stop, abs=2e-4)
 
 
 def test_rocking_tower_equilibrium_and_energy(outputs):

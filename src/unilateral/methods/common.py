@@ -171,7 +171,7 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     stats["time"] = run.timer.laps()
     if log.failure:
         success = False
-        message = f"stopped after {len(t) - 1} of {N} steps: {log.failure}"
+        message = f"stopped after {len(t) - 1} of {N} steps: {log.failure}" + _friction_hint(model)
     else:
         success = True
         message = f"{N} steps, {stats['contact_changes']} contact changes"
@@ -182,6 +182,17 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     return Solution(t=t, v=v, psi=psi, psiL=psiL, u=u, udot=udot, success=success,
                     message=message, stats=stats, dof_names=list(getattr(model, "dof_names", [])),
                     constraint_names=list(model.constraint_names))
+
+
+def _friction_hint(model) -> str:
+    """What to change when a step LCP with friction rows (nonsymmetric) could not be solved."""
+    law = model.law
+    if law.P is None:
+        return ""
+    names = [model.constraint_names[i] for i in np.flatnonzero(np.any(law.P != np.eye(law.m), axis=1))]
+    return (f"; the step LCP of the friction constraints {names[:6]} is nonsymmetric and a P-matrix only "
+            "while mu |W_ns| < W_ss (docs/theory.md, section 13): use lcp='lemke', a smaller dt, a stiffer "
+            "tangential stiffness kt or a smaller mu")
 
 
 #: A constraint that switches and switches back on consecutive steps this often is chattering.
