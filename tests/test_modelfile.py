@@ -147,7 +147,7 @@ ERRORS = {
                      'spring); did you mean "beam"?'),
     "typo in a key": (modify(unilateral__1__k=None, unilateral__1__stifness=200.0),
                       'model.toml: unilateral[1].stifness: unknown key (did you mean "k"? valid keys: type, name, '
-                      "node, k, c, direction, gap, capacity)"),
+                      "node, k, c, direction, gap, capacity, mu, kt, ct)"),
     "EI for I": (modify(elements__0__I=None, elements__0__EI=3e5),
                  'model.toml: elements[0].EI: unknown key (did you mean "I"?'),
     "negative stiffness": (modify(unilateral__0__k=-200.0), "model.toml: unilateral[0].k = -200.0: must be > 0"),
@@ -163,7 +163,8 @@ ERRORS = {
     "missing key": (modify(elements__1__A=None),
                     "model.toml: elements[1].A: missing key (required keys: type, name, node_i, node_j, E, A, I)"),
     "missing type": (modify(unilateral__0__type=None),
-                     "model.toml: unilateral[0].type: missing key (valid unilateral element types: cable, gap, soil)"),
+                     "model.toml: unilateral[0].type: missing key (valid unilateral element types: cable, gap, hinge, "
+                     "slider, soil, yield)"),
     "unknown section": (modify(analysis=None, analysys={"dt": 0.1, "t_end": 1.0}),
                         'model.toml: analysys: unknown section (did you mean "analysis"?'),
     "unknown choice": (modify(analysis__lcp="lemk"),

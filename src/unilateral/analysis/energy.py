@@ -1,18 +1,21 @@
 """Energy balance of a solved structure, step by step.
 
 From the equations of motion in natural form, ``M u'' + C u' + G sigma = q`` with
-``sigma = E eps + E_v eps'``, ``eps = G^T u - B v - theta``, and ``B^T sigma = psi + r`` (``A = 0``):
+``sigma = E eps + E_v eps'``, ``eps = G^T u - B v - theta``, and ``B^T sigma = psi + A v + r``:
 
     W_in = (T - T_0) + (U - U_0) + D_damping + D_contact
 
 * ``T = u'^T M u' / 2``: kinetic energy (relative to the ground under a ground motion);
-* ``U = sum eps^T E eps / 2``: elastic energy, of the bilateral elements (``elastic_structure``) and
-  of the unilateral elements (``elastic_unilateral``);
+* ``U = sum eps^T E eps / 2``: elastic energy, of the bilateral elements (``elastic_structure``,
+  beams with plastic hinges included) and of the unilateral elements (``elastic_unilateral``: soil,
+  gaps, cables, yield links, sliders);
 * ``D_damping = int u'^T C u' dt``: dissipated by Rayleigh damping and attached dashpots;
-* ``D_contact = int (eps'^T E_v eps' + (r - psi)^T v') dt``: dissipated by the Kelvin dashpots of
-  contacts, by slip at a capacity ``r``, and by the reactions at the switches of contact
-  (``psi^T v' = 0`` in continuous time; the discrete contact switch loses ``-psi^T dv`` over a
-  step, which vanishes as ``dt -> 0``);
+* ``D_contact = int (eps'^T E_v eps' + (B^T sigma)^T v') dt``, ``B^T sigma = psi + A v + r`` with
+  the elastic and Kelvin ``sigma``: dissipated by the Kelvin dashpots of contacts, by slip at a
+  capacity ``r``, by plastic flow and friction (``(psi + r)^T v'``, ``psi = 0`` while a face yields
+  or a contact slips), stored by kinematic hardening (``v^T A v / 2``), and lost by the reactions
+  at the switches of contact (``psi^T v' = 0`` in continuous time; the discrete contact switch
+  loses ``-psi^T dv`` over a step, which vanishes as ``dt -> 0``);
 * ``W_in = int q^T u' dt``: the work of the applied loads (gravity, pulses, ``-M r a_g``).
 
 The integrals use the trapezoidal rule on the step increments, e.g.
@@ -74,10 +77,11 @@ class EnergyBalance:
         [eps; E eps] = S [u; v] - [theta; E theta],  S = [A; E A],  A = [G^T, -B]
         [M u'; C u'; E_v eps'] = R [u'; v']          (eps' = A [u'; v'])
 
-    The strains are reordered, the bilateral ones first and the unilateral ones (in the order of
-    ``v``) last, so that both parts are blocks of rows; the rows of ``C u'`` without damping and
-    of ``E_v eps'`` without Kelvin elements are left out. Small matrices are multiplied dense,
-    large ones sparse.
+    The strains are reordered, those of the bilateral elements first and those of the unilateral
+    elements (``Structure.unilateral_strains``) last, so that both parts are blocks of rows; the
+    rows of ``C u'`` without damping and of ``E_v eps'`` without Kelvin elements are left out. The
+    work on ``v'`` takes ``B^T sigma`` per unknown. Small matrices are multiplied dense, large ones
+    sparse.
 
     Parameters
     ----------
@@ -87,7 +91,7 @@ class EnergyBalance:
     def __init__(self, structure):
         nat = structure.natural
         n, (ne, m) = structure.M.shape[0], nat.B.shape
-        unilateral = np.asarray(structure.constraint_strains, dtype=int)
+        unilateral = structure.unilateral_strains
         order = np.concatenate([np.setdiff1d(np.arange(ne), unilateral), unilateral])
         A = sp.hstack([sp.csr_matrix(nat.G).T, -sp.csr_matrix(nat.B)]).tocsr()[order]
         E = sp.csr_matrix(nat.E)[order][:, order]
@@ -98,13 +102,13 @@ class EnergyBalance:
             rates.append(sp.hstack([structure.C, zeros]))
         if nat.E_v is not None:
             rates.append(sp.csr_matrix(nat.E_v)[order][:, order] @ A)
-        self.n, self.ne, self.bilateral = n, ne, ne - m
+        self.n, self.ne, self.bilateral = n, ne, ne - unilateral.size
         self.damped, self.kelvin = structure.C is not None, nat.E_v is not None
         self.S = _prepared(sp.vstack([A, E @ A]))
         self.offset = np.concatenate([theta, E @ theta])[:, None]
         self.imposed = bool(self.offset.any())
         self.R = _prepared(sp.vstack(rates))
-        self.b = np.asarray(nat.B.sum(axis=0)).ravel()[:, None]     # b of each unilateral element
+        self.Bt = _prepared(sp.csr_matrix(nat.B)[order].T)           # (m, ne): B^T sigma per unknown
 
     def __call__(self, state, q) -> dict:
         """The energies of :func:`energy_balance` of a run.
@@ -127,13 +131,13 @@ class EnergyBalance:
         du = np.diff(x[:n], axis=1)
         work = _cumulative(_work(q, du))
         damping = _cumulative(_pairs(rates[n:2 * n], du)) if self.damped else np.zeros(x.shape[1])
-        sigma_b = Eeps[nb:] * self.b                                      # b sigma, elastic part
+        sigma_b = self.Bt @ Eeps                                          # B^T sigma, elastic part
         increments = 0.0
         if self.kelvin:
             viscous = rates[2 * n if self.damped else n:]
             increments = _pairs(viscous, np.diff(eps, axis=1))
-            sigma_b = sigma_b + viscous[nb:] * self.b
-        # work of b sigma = psi + r on v': the capacity slip and the contact switches
+            sigma_b = sigma_b + self.Bt @ viscous
+        # work of B^T sigma = psi + A v + r on v': capacity slip, plastic flow, friction, contact switches
         increments = increments + _pairs(sigma_b, np.diff(x[n:], axis=1))
         contact = _cumulative(increments)
         T0, U0 = kinetic[0], elastic_s[0] + elastic_u[0]

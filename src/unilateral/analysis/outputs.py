@@ -13,7 +13,7 @@ tables end there, and in ``results.nc`` its values after that are NaN.
                            (end forces, reactions, base shear, overturning moment, drifts,
                            accelerations, energies, modes), each with ``long_name`` and ``units``
 ``displacements.csv``      the unilateral case, one column per DOF (``bilateral_...`` likewise)
-``constraints.csv``        uplift ``v`` and reaction ``psi`` per unilateral element
+``constraints.csv``        ``v`` (uplift, plastic multiplier, slip) and ``psi`` per constraint unknown
 ``element_forces.csv``     end forces ``name:N_i`` ... ``name:M_j`` per element (frames)
 ``base.csv``               base shear, base vertical force, overturning moment, drifts, energies
 ``summary.json``           the key figures (static state, peaks with their times, periods,
@@ -273,21 +273,24 @@ def _with_results(ds, res, multi, names):
 
 
 def _with_constraint_coords(ds, structure):
-    """Position, kind and gap of each unilateral element, as coordinates along ``constraint``."""
+    """Position, kind and gap of each constraint unknown, as coordinates along ``constraint``.
+
+    The kind of a contact is its element's (``soil``, ``gap``, ``cable``), that of a plastic
+    multiplier ``yield`` and of a slip ``friction``.
+    """
     if getattr(structure, "foundation", None) is not None and "constraint" in ds.dims:
         return ds.assign_coords(structure.foundation.constraint_coords())      # the footing's patches
     if not structure.m:
         return ds
-    by_name = {e.name: e for e in structure.elements}
     x, y, kind, gap = [], [], [], []
-    for name in structure.constraint_names:
-        e = by_name.get(name)
-        nodes = [node for node, _ in e.dofs] if e is not None else []
-        xy = np.mean([structure.coords[node] for node in nodes], axis=0) if nodes and structure.coords else (np.nan, np.nan)
+    for e, u in structure.constraints:
+        nodes = [u.node] if u.node is not None else [node for node, _ in e.dofs]
+        xy = np.mean([structure.coords[node] for node in nodes], axis=0) if structure.coords else (np.nan, np.nan)
         x.append(float(xy[0]))
         y.append(float(xy[1]))
-        kind.append(e.kind if e is not None else "")
-        gap.append(float(-e.theta[0]) if e is not None and e.kind != "cable" else 0.0)
+        contact = u.kind == "contact"
+        kind.append(e.kind if contact else u.kind)
+        gap.append(float(-e.theta[u.row]) if contact and e.kind != "cable" else 0.0)
     return ds.assign_coords(constraint_x=("constraint", x), constraint_y=("constraint", y),
                             constraint_kind=("constraint", kind), constraint_gap=("constraint", gap))
 

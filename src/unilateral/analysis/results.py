@@ -18,7 +18,7 @@ variable                  dims                                   content
 ``overturning_moment``    time                                   about ``overturning_point``
 ``storey_drift``          time, storey                           ``ux`` upper - lower
 ``drift_ratio``           time, storey                           drift / storey height
-``constraint_deformation`` time, constraint                      total strain of unilateral elements
+``constraint_deformation`` time, constraint                      total strain of each constraint's strain
 ``energy_*``              time                                   :mod:`unilateral.analysis.energy`
 ``mode_period``,          mode; mode, dof                        bilateral periods and shapes
 ``mode_shape``, ...
@@ -154,7 +154,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         if structure.m:
             e, _ = structure.element_deformations(h.u, h.v)
             put("constraint_deformation", ("time", "constraint"), case, e,
-                "total deformation of the unilateral element (soil, gap: opening positive; cable: elongation)", L)
+                ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
+                 "slip: tangential motion; hinge: end rotation in rad)"), L)
         energy = None
         if load_samples is not None:
             energy = energy_balance(structure, h, np.asarray(load_samples)[: len(t)])

@@ -27,8 +27,8 @@ from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_pa
                      translate, value_problem)
 from .matrices import dof_index, read_matrix_model, read_vector
 from .schema import (FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap,
-                     HalfSinePulse, ModelFile, Node, RampLoad, RectangularPulse, Soil, Spring, TableLoad,
-                     TriangularPulse, iter_fields)
+                     HalfSinePulse, Hinge, ModelFile, Node, RampLoad, RectangularPulse, Slider, Soil, Spring,
+                     TableLoad, TriangularPulse, YieldLink, iter_fields)
 
 
 _TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
@@ -169,7 +169,7 @@ def _check(document: ModelFile, folder: Path) -> None:
     """Raise :class:`Problems` listing every inconsistency of a validated document."""
     problems = (_mode_problems(document) + _duplicate_problems(document)
                 + _reference_problems(document, folder) + _record_problems(document)
-                + _foundation_problems(document))
+                + _foundation_problems(document) + _unilateral_problems(document))
     if problems:
         raise Problems(problems)
 
@@ -256,6 +256,50 @@ def _record_problems(document: ModelFile) -> list[str]:
             problems.append(f"{key_path(('loads', 'ground_motion', k, 'units'))}: missing key (a plain-text "
                             'record needs the units of its values, e.g. units = "g" or "cm/s2")')
     return problems
+
+
+def _unilateral_problems(document: ModelFile) -> list[str]:
+    """Keys of ``[[unilateral]]`` entries that go together: friction, yield forces, hinges on beams."""
+    problems = []
+    beams = [e.name for e in document.elements if isinstance(e, Beam)]
+    hinged = {}
+    for k, e in enumerate(document.unilateral):
+        at = ("unilateral", k)
+        if isinstance(e, Soil | Gap):
+            problems += _friction_problems(at, e)
+        elif isinstance(e, YieldLink):
+            problems += _yield_force_problems(at, e)
+        elif isinstance(e, Hinge):
+            if e.beam not in beams:
+                problems.append(value_problem((*at, "beam"), e.beam, f"no beam {toml_value(e.beam)} in [[elements]] "
+                                              f"(beams are {compact_ids(beams)})") + did_you_mean(e.beam, beams))
+            elif (e.beam, e.end) in hinged:
+                problems.append(value_problem((*at, "end"), e.end, f"beam {toml_value(e.beam)} already has a hinge "
+                                              f"at this end ({key_path(hinged[(e.beam, e.end)])}); one per end"))
+            hinged.setdefault((e.beam, e.end), (*at, "end"))
+    return problems
+
+
+def _friction_problems(at, e) -> list[str]:
+    """A contact with friction needs ``kt``; ``kt`` and ``ct`` need ``mu``."""
+    if e.mu is None:
+        return [value_problem((*at, key), getattr(e, key), "a friction parameter: give the friction coefficient "
+                              "mu too, or remove it") for key in ("kt", "ct") if getattr(e, key)]
+    if e.kt is None:
+        return [f"{key_path((*at, 'kt'))}: missing key (friction, mu = {toml_value(e.mu)}, needs the stick "
+                "stiffness kt [F/L] > 0)"]
+    return []
+
+
+def _yield_force_problems(at, e) -> list[str]:
+    """A yield link takes ``Fy``, or ``Fy_t`` and ``Fy_c``."""
+    if e.Fy is not None:
+        return [value_problem((*at, key), getattr(e, key), "give either Fy (both ways) or Fy_t and Fy_c, not both")
+                for key in ("Fy_t", "Fy_c") if getattr(e, key) is not None]
+    if e.Fy_t is None and e.Fy_c is None:
+        return [f"{key_path((*at, 'Fy'))}: missing key (give the yield force Fy [F], or Fy_t and Fy_c)"]
+    return [f"{key_path((*at, key))}: missing key (Fy_t and Fy_c go together; or give Fy for both)"
+            for key in ("Fy_t", "Fy_c") if getattr(e, key) is None]
 
 
 def _foundation_problems(document: ModelFile) -> list[str]:
@@ -376,11 +420,20 @@ def _add_element(fr: Frame2D, e) -> None:
         case Dashpot():
             fr.dashpot(e.name, e.node_i, e.c, j=e.node_j, direction=e.direction)
         case Soil():
-            fr.soil(e.name, e.node, e.k, c=e.c, direction=e.direction, gap=e.gap, capacity=e.capacity)
+            fr.soil(e.name, e.node, e.k, c=e.c, direction=e.direction, gap=e.gap, capacity=e.capacity, mu=e.mu,
+                    kt=e.kt, ct=e.ct)
         case Gap():
-            fr.gap(e.name, e.node_i, e.node_j, e.k, gap=e.gap, c=e.c, direction=e.direction)
+            fr.gap(e.name, e.node_i, e.node_j, e.k, gap=e.gap, c=e.c, direction=e.direction, mu=e.mu, kt=e.kt,
+                   ct=e.ct)
         case Cable():
             fr.cable(e.name, e.node_i, e.node_j, e.E, e.A, slack=e.slack, capacity=e.capacity)
+        case YieldLink():
+            fr.yield_link(e.name, e.node, e.node_j, k=e.k, Fy=e.Fy, Fy_t=e.Fy_t, Fy_c=e.Fy_c, direction=e.direction,
+                          hardening=e.hardening)
+        case Hinge():
+            fr.hinge(e.name, e.beam, e.end, My=e.My, k=e.k, hardening=e.hardening)
+        case Slider():
+            fr.slider(e.name, e.node, mu=e.mu, N=e.N, k=e.k, direction=e.direction)
 
 
 # ---------------------------------------------------------------------- loads

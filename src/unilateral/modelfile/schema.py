@@ -220,6 +220,9 @@ class Soil(Table):
     direction: Direction = Field("uy", description="Direction in which the node separates from the soil.")
     gap: float = Field(0.0, description="Initial gap [length]; negative: an initial penetration.")
     capacity: NonNegative = Field(0.0, description="Tension carried before separating [force].")
+    mu: NonNegative | None = Field(None, description="Coulomb friction coefficient (none: no friction).")
+    kt: Positive | None = Field(None, description="Stick stiffness along the soil [force/length]; required with mu.")
+    ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
 
 
 class Gap(Table):
@@ -233,6 +236,9 @@ class Gap(Table):
     gap: float = Field(0.0, description="Clearance that must close before contact [length].")
     c: NonNegative = Field(0.0, description="Contact viscosity [force time/length].")
     direction: Direction | None = Field(None, description="Default: from node_i towards node_j.")
+    mu: NonNegative | None = Field(None, description="Coulomb friction coefficient (none: no friction).")
+    kt: Positive | None = Field(None, description="Stick stiffness across the gap [force/length]; required with mu.")
+    ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
 
 
 class Cable(Table):
@@ -248,13 +254,53 @@ class Cable(Table):
     capacity: NonNegative = Field(0.0, description="Compression carried before going slack [force].")
 
 
-Unilateral = Annotated[Union[Soil, Gap, Cable], Field(discriminator="type", title="unilateral element type")]
+class YieldLink(Table):
+    """Zero-length elastic-plastic spring from node to the ground (no node_j) or to node_j."""
+
+    type: Literal["yield"]
+    name: Name
+    node: NodeRef
+    node_j: NodeRef | None = None
+    direction: Direction = "ux"
+    k: Positive = Field(description="Elastic stiffness [force/length] ([force length] along rz).")
+    Fy: Positive | None = Field(None, description="Yield force both ways [force]; or give Fy_t and Fy_c.")
+    Fy_t: Positive | None = Field(None, description="Yield force in tension [force].")
+    Fy_c: Positive | None = Field(None, description="Yield force in compression [force].")
+    hardening: NonNegative = Field(0.0, description="Kinematic hardening modulus over k (post-yield k h/(1+h)).")
+
+
+class Hinge(Table):
+    """Plastic hinge at an end of a beam: rigid-plastic (no k) or an elastic-plastic rotational spring."""
+
+    type: Literal["hinge"]
+    name: Name
+    beam: Annotated[str, Field(min_length=1, description="Name of the beam in [[elements]].")]
+    end: Literal["i", "j"] = Field(title="beam end")
+    My: Positive = Field(description="Yield moment [force length].")
+    k: Positive | None = Field(None, description="Rotational stiffness [force length/rad]; none: rigid-plastic.")
+    hardening: NonNegative = Field(0.0, description="Kinematic hardening modulus over k (over 4EI/L without k).")
+
+
+class Slider(Table):
+    """Flat sliding bearing under a node: Coulomb friction mu N behind a stick spring k."""
+
+    type: Literal["slider"]
+    name: Name
+    node: NodeRef
+    mu: NonNegative = Field(description="Friction coefficient.")
+    N: Positive = Field(description="Constant normal (compressive) force [force].")
+    k: Positive = Field(description="Stick stiffness [force/length].")
+    direction: Direction = Field("ux", description="Sliding direction.")
+
+
+Unilateral = Annotated[Union[Soil, Gap, Cable, YieldLink, Hinge, Slider],
+                       Field(discriminator="type", title="unilateral element type")]
 
 
 class Rayleigh(Table):
     """Rayleigh damping C = a0 M + a1 K: either zeta, f1 and f2 [1/time], or a0 [1/time] and/or a1
-    [time] (a missing coefficient is 0). K holds the unilateral springs as if bonded, so a1 K
-    damps them in tension too; prefer a1 = 0 with stiff contacts."""
+    [time] (a missing coefficient is 0). K is that of the bilateral elements: the [[unilateral]]
+    elements get no a1 damping (give contacts their dashpot c)."""
 
     zeta: NonNegative | None = None
     f1: Positive | None = None

@@ -1,8 +1,9 @@
 """Build structures in natural form: a 2-D frame builder with unilateral elements.
 
 :class:`Frame2D` collects nodes, supports, rigid links, beams, bars, springs, dashpots, masses and
-the unilateral elements of Liolios (1990) — tensionless soil, pounding gaps and slack cables —
-and :meth:`Frame2D.build` assembles them (sparse) into a :class:`Structure`: the natural form
+the unilateral elements of Liolios (1990) — tensionless soil, pounding gaps and slack cables, with
+Coulomb friction on contacts — with yield links, plastic hinges and sliders, and
+:meth:`Frame2D.build` assembles them (sparse) into a :class:`Structure`: the natural form
 ``G, E, B, A, r, theta`` (and ``E_v`` of Kelvin elements), ``M``, ``C`` and the :class:`DofMap`.
 :meth:`Structure.to_model` gives the :class:`unilateral.Model` for :func:`unilateral.solve`.
 

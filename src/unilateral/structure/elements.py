@@ -3,7 +3,7 @@
 Every element has ``k`` natural strains, each a linear combination of the nodal DOFs
 ``(ux, uy, rz)`` of its end nodes, ``e = a u_elem``, and natural stresses (Liolios 1990, eqs. 1-4)
 
-    sigma = E (e - b v - theta) + E_v (e' - b v')
+    sigma = E (e - B v - theta) + E_v (e' - B v')
 
 ``ux``, ``uy`` are displacements along global x and y, ``rz`` the counter-clockwise rotation.
 Strain conventions (checked in ``tests/test_structure.py``):
@@ -13,24 +13,75 @@ Strain conventions (checked in ``tests/test_structure.py``):
   ``E = [[EA/L, 0, 0], [0, 4EI/L, 2EI/L], [0, 2EI/L, 4EI/L]]``; stresses: axial force (tension
   positive) and the end moments acting on the element (counter-clockwise positive).
 - bar and cable: ``[elongation]``, ``E = [[EA/L]]``, axial force tension positive.
-- spring, dashpot, soil and gap ("directional" elements between an end ``i`` and an end ``j``,
-  either of which may be the ground): ``[d . (u_j - u_i)]`` for a unit direction ``d`` (or the
-  relative rotation for ``"rz"``): the extension of the element, positive when ``j`` moves away
-  from ``i`` along ``d``; force tension positive.
+- spring, dashpot, soil, gap, yield link and slider ("directional" elements between an end ``i``
+  and an end ``j``, either of which may be the ground): ``[d . (u_j - u_i)]`` for a unit direction
+  ``d`` (or the relative rotation for ``"rz"``): the extension of the element, positive when ``j``
+  moves away from ``i`` along ``d``; force tension positive. A contact with friction adds the
+  tangential strain ``t . (u_j - u_i)``, ``t`` the direction ``d`` turned 90 degrees clockwise
+  (``t = x`` for ``d = y``), and the tangential force ``T`` along ``t``.
 
-Unilateral elements have one strain and ``b = +1`` (contacts: soil, gap; ``v`` = separation) or
-``b = -1`` (cables; ``v`` = slack shortening). With ``psi = b sigma - r <= 0`` a contact carries
-compression and at most the tension ``r``; a cable carries tension and at most the compression ``r``.
+**Constraint unknowns.** An element carries any number of :class:`Unknown` s, each a column of
+``B``: a strain row of the element, its ``B`` entry ``b`` (+1 or -1), its resistance ``r`` and its
+family (``"contact"``, ``"yield"`` or ``"friction"``, :mod:`unilateral.constraints`); the element's
+``A`` couples its unknowns (kinematic hardening). With ``psi = B^T sigma - A v - r``:
+
+- a contact (soil, gap: ``b = +1``, ``v`` = separation; cable: ``b = -1``, ``v`` = slack
+  shortening) carries compression (a cable: tension) and at most the force ``r``;
+- a yield pair (``"name.plastic+"``, ``b = +1``, ``r = F_t``; ``"name.plastic-"``, ``b = -1``,
+  ``r = F_c``) on one strain keeps its force in ``-F_c <= sigma <= F_t``; ``v`` are the cumulative
+  plastic multipliers, the plastic strain is ``v+ - v-``;
+- a slip pair (``"name.slip+"``, ``"name.slip-"``) on a tangential strain keeps
+  ``|T| <= mu N``, ``N`` the compression of its contact ``"name"`` (or a constant ``N`` in ``r``).
 """
 
 from __future__ import annotations
 
 from collections.abc import Hashable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 DOF_NAMES = ("ux", "uy", "rz")
+#: Elements between two ends along a direction (either end may be the ground).
+DIRECTIONAL_KINDS = ("spring", "dashpot", "soil", "gap", "yield", "slider")
+#: The families of constraint unknowns (:mod:`unilateral.constraints`).
+UNKNOWN_KINDS = ("contact", "yield", "friction")
+
+
+@dataclass(frozen=True)
+class Unknown:
+    """One constraint unknown of an element: a column of ``B`` and its law.
+
+    Attributes
+    ----------
+    name : str
+        The constraint's name (``"soil3"``, ``"soil3.slip+"``, ``"brace.plastic-"``).
+    row : int
+        The element's strain (row of ``Element.a``) the unknown enters, with ``B`` entry ``b``.
+    b : float
+        +1 or -1.
+    r : float
+        Resistance, >= 0 [force, or force length for a rotation]: a contact's capacity, a yield
+        force or moment, a slider's ``mu N``.
+    kind : str
+        ``"contact"``, ``"yield"`` or ``"friction"``: the family of the unknown.
+    normal : str or None
+        Friction: the name of the contact whose compression ``N`` bounds the slip (``|T| <= mu N``);
+        None: the normal force is constant, in ``r``.
+    mu : float
+        Friction coefficient, >= 0.
+    node : node id or None
+        Where the unknown acts, for reports (None: the element's nodes).
+    """
+
+    name: str
+    row: int
+    b: float
+    r: float = 0.0
+    kind: str = "contact"
+    normal: str | None = None
+    mu: float = 0.0
+    node: Hashable | None = None
 
 
 @dataclass(frozen=True)
@@ -41,7 +92,8 @@ class Element:
     ----------
     name : str
     kind : str
-        ``"beam"``, ``"bar"``, ``"cable"``, ``"spring"``, ``"dashpot"``, ``"soil"`` or ``"gap"``.
+        ``"beam"``, ``"bar"``, ``"cable"``, ``"spring"``, ``"dashpot"``, ``"soil"``, ``"gap"``,
+        ``"yield"`` (yield link) or ``"slider"``.
     dofs : tuple of (node, dof) pairs, length d
         The nodal DOFs the strains depend on (``dof`` in ``"ux"``, ``"uy"``, ``"rz"``).
     a : (k, d) ndarray
@@ -53,10 +105,10 @@ class Element:
     E_v : (k, k) ndarray or None
         Viscosity of a Kelvin element (dashpot in parallel with the spring, in series with the
         contact), or None.
-    b : float
-        ``B`` entry of a unilateral element's single strain (+1 contact, -1 cable); 0 if bilateral.
-    r : float
-        Resistance (capacity) of a unilateral element, >= 0.
+    unknowns : tuple of Unknown
+        The constraint unknowns the element carries (none for a bilateral element).
+    A : (u, u) ndarray or None
+        Interaction of the element's ``u`` unknowns (kinematic hardening); None: zero.
     """
 
     name: str
@@ -66,19 +118,28 @@ class Element:
     E: np.ndarray
     theta: np.ndarray
     E_v: np.ndarray | None = None
-    b: float = 0.0
-    r: float = 0.0
+    unknowns: tuple = ()
+    A: np.ndarray | None = None
 
     @property
     def unilateral(self) -> bool:
-        return self.b != 0.0
+        """Every strain of the element passes through an unknown (soil, gap, cable, yield link,
+        slider): its force is the constraint's, so it takes no stiffness-proportional damping.
+        A beam with a plastic hinge is not unilateral."""
+        return bool(self.unknowns) and {u.row for u in self.unknowns} == set(range(self.E.shape[0]))
+
+    @property
+    def interaction(self) -> np.ndarray:
+        """``A`` (u, u) of the element's unknowns (zero without hardening)."""
+        u = len(self.unknowns)
+        return np.zeros((u, u)) if self.A is None else self.A
 
     @property
     def strain_labels(self) -> tuple[str, ...]:
         """Names of the natural strains, e.g. ``("col.axial", "col.rot_i", "col.rot_j")``."""
         if self.kind == "beam":
             return tuple(f"{self.name}.{s}" for s in ("axial", "rot_i", "rot_j"))
-        return (self.name,)
+        return (self.name, f"{self.name}.tangential")[: self.E.shape[0]]
 
 
 def chord(where: str, i: Hashable, xi: np.ndarray, j: Hashable, xj: np.ndarray):
@@ -126,10 +187,11 @@ def bar(name, i, xi, j, xj, *, E, A, axial_strain=0.0) -> Element:
 
 
 def cable(name, i, xi, j, xj, *, E, A, slack=0.0, capacity=0.0) -> Element:
-    """Tension-only cable ``i -> j``: a bar with ``b = -1`` (``v`` = slack shortening),
+    """Tension-only cable ``i -> j``: a bar with one contact ``b = -1`` (``v`` = slack shortening),
     ``theta = slack`` and ``r = capacity`` (the compression it carries before going slack)."""
     L, dofs, a = _axial("cable", name, i, xi, j, xj)
-    return Element(name, "cable", dofs, a, np.array([[E * A / L]]), np.array([slack]), b=-1.0, r=capacity)
+    return Element(name, "cable", dofs, a, np.array([[E * A / L]]), np.array([slack]),
+                   unknowns=(Unknown(name, 0, -1.0, capacity),))
 
 
 def _axial(kind, name, i, xi, j, xj):
@@ -139,7 +201,7 @@ def _axial(kind, name, i, xi, j, xj):
     return L, dofs, np.array([[-c, -s, c, s]])
 
 
-def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, b=0.0, r=0.0) -> Element:
+def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, unknowns=(), A=None) -> Element:
     """Element of the relative motion ``d . (u_j - u_i)`` of two ends (``None`` = ground).
 
     Parameters
@@ -148,17 +210,93 @@ def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, b=0.0, r=0.0) -
         The direction ``d`` (see :func:`direction_terms`).
     k : stiffness (for a dashpot: its viscosity)
     c : viscosity of a Kelvin dashpot in parallel with ``k`` (0: none)
-    theta, b, r : imposed strain, ``B`` entry and resistance (see :class:`Element`)
+    theta : imposed strain
+    unknowns, A : the constraint unknowns on the strain (row 0) and their interaction (see :class:`Element`)
     """
-    dofs, coef = [], []
-    for node, sign in ((i, -1.0), (j, 1.0)):
-        if node is not None:
-            for dof, value in terms:
-                dofs.append((node, dof))
-                coef.append(sign * value)
+    dofs, a = _relative(i, j, (terms,))
     E_v = np.array([[c]]) if c > 0 else None
-    return Element(name, kind, tuple(dofs), np.array([coef]), np.array([[k]]), np.array([theta]),
-                   E_v=E_v, b=b, r=r)
+    return Element(name, kind, dofs, a, np.array([[k]]), np.array([theta]), E_v=E_v, unknowns=tuple(unknowns), A=A)
+
+
+def frictional(name, kind, i, j, terms, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, capacity=0.0) -> Element:
+    """A contact along ``d`` (``terms``) with Coulomb friction along ``t``, ``d`` turned clockwise.
+
+    Strains ``[d . (u_j - u_i), t . (u_j - u_i)]``, stiffness ``diag(k, kt)`` [force/length],
+    Kelvin viscosity ``diag(c, ct)`` [force time/length]; unknowns: the contact ``name`` (row 0,
+    ``b = +1``, capacity ``r``) and the slips ``name.slip+``, ``name.slip-`` (row 1, friction
+    coefficient ``mu`` on the compression of ``name``).
+    """
+    dofs, a = _relative(i, j, (terms, tangent_terms(f"{kind} {name!r}", terms)))
+    E_v = np.diag([c, ct]) if c > 0 or ct > 0 else None
+    unknowns = (Unknown(name, 0, 1.0, capacity), *pair(name, 1, "friction", normal=name, mu=mu))
+    return Element(name, kind, dofs, a, np.diag([k, kt]), np.array([theta, 0.0]), E_v=E_v, unknowns=unknowns)
+
+
+def pair(name, row, kind, *, r=(0.0, 0.0), normal=None, mu=0.0, node=None) -> tuple[Unknown, Unknown]:
+    """The two unknowns (``b = +1``, ``b = -1``) of a two-sided yield surface or a slip on strain ``row``.
+
+    Named ``name.plastic+``/``name.plastic-`` (``kind="yield"``) or ``name.slip+``/``name.slip-``
+    (``kind="friction"``); ``r`` = (positive, negative) resistance, e.g. ``(F_t, F_c)``.
+    """
+    suffix = "plastic" if kind == "yield" else "slip"
+    return tuple(Unknown(f"{name}.{suffix}{sign}", row, b, resistance, kind, normal, mu, node)
+                 for sign, b, resistance in (("+", 1.0, r[0]), ("-", -1.0, r[1])))
+
+
+def kinematic_hardening(modulus) -> np.ndarray:
+    """``A`` (2, 2) of a yield pair with linear kinematic hardening ``modulus`` (force per unit of
+    the pair's strain: force/length, or force length/rad for a rotation):
+    ``psi+- = +-(sigma - modulus (v+ - v-)) - r+-``."""
+    return modulus * np.array([[1.0, -1.0], [-1.0, 1.0]])
+
+
+def hinge(beam_element, name, end, *, My, k=None, modulus=0.0) -> Element:
+    """``beam_element`` with a plastic hinge at ``end`` (``"i"`` or ``"j"``).
+
+    The plastic rotation ``v+ - v-`` enters the end rotation (``rot_i`` or ``rot_j``) as an
+    imposed strain; the yield pair ``name.plastic+-`` keeps the end moment in ``-My <= M <= My``
+    [force length]. With ``k`` [force length/rad] an elastic rotational spring lies in series:
+    its flexibility ``1/k`` is added to the beam's on that rotation (the spring's massless inner
+    node condensed out), so the beam's stiffness becomes ``(E^-1 + e e^T / k)^-1``.
+    ``modulus`` [force length/rad] is the kinematic hardening of the pair.
+    """
+    row = {"i": 1, "j": 2}[end]
+    E = beam_element.E
+    if k is not None:
+        flexibility = np.linalg.inv(E)
+        flexibility[row, row] += 1.0 / k
+        E = np.linalg.inv(flexibility)
+        E = 0.5 * (E + E.T)
+    node = beam_element.dofs[0 if end == "i" else 3][0]
+    unknowns = pair(name, row, "yield", r=(My, My), node=node)
+    n = len(beam_element.unknowns)
+    A = np.zeros((n + 2, n + 2))
+    A[:n, :n] = beam_element.interaction
+    A[n:, n:] = kinematic_hardening(modulus)
+    return replace(beam_element, E=E, unknowns=beam_element.unknowns + unknowns, A=A)
+
+
+def _relative(i, j, directions):
+    """DOFs and strain rows ``(len(directions), d)`` of the motions ``dir . (u_j - u_i)``."""
+    names = [dof for dof in DOF_NAMES if any(dof == d for terms in directions for d, _ in terms)]
+    ends = [(node, sign) for node, sign in ((i, -1.0), (j, 1.0)) if node is not None]
+    dofs = tuple((node, dof) for node, _ in ends for dof in names)
+    a = np.array([[sign * dict(terms).get(dof, 0.0) for _, sign in ends for dof in names] for terms in directions])
+    return dofs, a
+
+
+def tangent_terms(where: str, terms) -> tuple[tuple[str, float], ...]:
+    """``(dof, coefficient)`` pairs of ``t``, the direction ``terms`` turned 90 degrees clockwise.
+
+    ``t = (d_y, -d_x)``: ``"ux"`` for ``d = "uy"``, ``-uy`` for ``d = "ux"``; ``(t, d)`` is oriented
+    as ``(x, y)``. Raises ``ValueError`` for a rotation (``"rz"``), which has no tangent.
+    """
+    d = dict(terms)
+    if "rz" in d:
+        raise ValueError(f"{where}: friction (mu) needs a translational direction ('ux', 'uy' or a vector), "
+                         "not 'rz'")
+    dx, dy = d.get("ux", 0.0), d.get("uy", 0.0)
+    return tuple((dof, x) for dof, x in (("ux", dy), ("uy", -dx)) if x != 0.0)
 
 
 def direction_terms(where: str, direction) -> tuple[tuple[str, float], ...]:

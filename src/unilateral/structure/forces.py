@@ -6,8 +6,8 @@ Global axes ``x`` (right), ``y`` (up), moments and rotations counter-clockwise p
 
 *End forces* (:func:`end_forces`) are the forces and moments **acting on the element at its
 ends**, from the nodes, in the element's local axes: ``x`` along the chord from end ``i`` to
-end ``j``, ``y`` the chord turned 90 degrees counter-clockwise; for a spring, dashpot, soil or gap
-element ``x`` is its direction ``d`` (from end ``i``, or the ground, to end ``j``). Components
+end ``j``, ``y`` the chord turned 90 degrees counter-clockwise; for a spring, dashpot, soil, gap,
+yield link or slider ``x`` is its direction ``d`` (from end ``i``, or the ground, to end ``j``). Components
 ``N_i, V_i, M_i, N_j, V_j, M_j``. An element without span loads is in equilibrium:
 
     N_i + N_j = 0,   V_i + V_j = 0,   M_i + M_j + V_j L = 0
@@ -19,7 +19,7 @@ dashpot's end forces are its viscous force ``c e'``.
 
 *Reactions* (:func:`reactions`) are the forces **the ground exerts on the structure**: at each
 supported DOF (``node.dof``), and through every element attached to the ground (soil, springs,
-dashpots with one end on the ground). They include every force the elements transmit: elastic,
+dashpots, yield links and sliders with one end on the ground). They include every force the elements transmit: elastic,
 Kelvin, attached dashpots and the stiffness-proportional Rayleigh part ``a1 K u'`` (the element
 forces ``a1 E e'``), so that the structure as a whole is in equilibrium. The *base shear* is the
 sum of their ``x`` components, the *base vertical force* the sum of their ``y`` components, and the
@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .elements import DOF_NAMES
+from .elements import DIRECTIONAL_KINDS, DOF_NAMES
 
 END_COMPONENTS = ("N_i", "V_i", "M_i", "N_j", "V_j", "M_j")
 
@@ -307,9 +307,11 @@ def end_forces(structure, h: Histories) -> dict:
 
     Returns
     -------
-    dict name -> (N+1, 6) array of ``N_i, V_i, M_i, N_j, V_j, M_j``. For springs, dashpots, soil
-    and gaps ``N_j = sigma`` (tension positive) and ``N_i = -sigma``; ``V``, ``M`` are zero except
-    for a rotational spring (``M_j = sigma``, ``M_i = -sigma``).
+    dict name -> (N+1, 6) array of ``N_i, V_i, M_i, N_j, V_j, M_j``. For springs, dashpots, soil,
+    gaps, yield links and sliders ``N_j = sigma`` (tension positive) and ``N_i = -sigma``; ``V``,
+    ``M`` are zero except for a rotational spring or yield link (``M_j = sigma``, ``M_i = -sigma``)
+    and a contact with friction: its tangential force ``T`` acts along ``t``, the direction ``d``
+    turned clockwise, i.e. along minus the local ``y``, so ``V_j = -T`` and ``V_i = T``.
     """
     sigma = stresses(structure, h)
     coords = structure.coords or {}
@@ -333,6 +335,9 @@ def _local(e, coords, sigma):
     column = 2 if rotational else 0
     out[:, column] = -sigma[:, 0]
     out[:, 3 + column] = sigma[:, 0]
+    if sigma.shape[1] == 2:                             # the tangential force of a contact with friction
+        out[:, 1] = sigma[:, 1]
+        out[:, 4] = -sigma[:, 1]
     return out
 
 
@@ -371,7 +376,7 @@ def nodal_forces(structure, h: Histories) -> np.ndarray:
 def _ground_elements(structure):
     """Elements with one end on the ground: directional elements on a single node."""
     return [e for e in list(structure.elements) + list(structure.dashpots)
-            if e.kind in ("spring", "dashpot", "soil", "gap") and len({node for node, _ in e.dofs}) == 1]
+            if e.kind in DIRECTIONAL_KINDS and len({node for node, _ in e.dofs}) == 1]
 
 
 def reactions(structure, h: Histories) -> dict:
@@ -410,7 +415,7 @@ def reactions(structure, h: Histories) -> dict:
             s = (h.udot @ _free_a(structure, e).T) @ e.E.T
         f = np.zeros((len(h.t), 3))
         for col, (node, dof) in enumerate(e.dofs):
-            f[:, DOF_NAMES.index(dof)] -= s[:, 0] * e.a[0, col]
+            f[:, DOF_NAMES.index(dof)] -= s @ e.a[:, col]
         ground[e.name] = f
         at[e.name] = e.dofs[0][0]
     return {"support": support, "ground_elements": ground, "at": at}
@@ -456,10 +461,10 @@ class BaseForceOperator:
     where ``sigma_tot = E eps + E_v eps' + a1 E_b G^T u'`` (``E_b``: the bilateral elements),
     ``eps = G^T u - B v - theta``, ``eps' = G^T u' - B v'`` and ``sigma_d = E_d G_d^T u'``, so
 
-        X = P^T E [G^T, -B],   X_d = P^T (E_v + a1 E_b) [G^T, -B] + P_d^T E_d [G_d^T, 0],
+        X = P^T E [G^T, -B],   X_d = P^T E_v [G^T, -B] + P^T a1 E_b [G^T, 0] + P_d^T E_d [G_d^T, 0],
         c = -P^T E theta
 
-(``E_b B = 0``: ``B`` acts on the strains of unilateral elements only).
+(the Rayleigh part acts on the total strain rate, plastic hinge rotations of beams included).
 
     A run's base forces then cost two products of its :class:`StateRows` with (3, n + m)
     matrices instead of every element's forces at every step; they equal :func:`base_forces` of
@@ -489,12 +494,12 @@ class BaseForceOperator:
         strains = sp.hstack([sp.csr_matrix(nat.G).T, -sp.csr_matrix(nat.B)]).tocsr()     # [G^T, -B]
         EtP = np.asarray(nat.E.T @ P)
         viscous = np.zeros_like(P) if nat.E_v is None else np.asarray(nat.E_v.T @ P)
+        X_d = np.asarray(strains.T @ viscous).T
         a1 = structure.rayleigh[1] if structure.rayleigh else 0.0
         if a1:
             bilateral = np.ones(P.shape[0], dtype=bool)
-            bilateral[structure.constraint_strains] = False
-            viscous = viscous + a1 * np.asarray(nat.E.T @ (P * bilateral[:, None]))
-        X_d = np.asarray(strains.T @ viscous).T
+            bilateral[structure.unilateral_strains] = False
+            X_d[:, :structure.n] += a1 * np.asarray(nat.G @ (nat.E.T @ (P * bilateral[:, None]))).T
         for e, weights in zip(structure.dashpots, P_d):
             X_d[:, :structure.n] += (_free_a(structure, e).T @ (e.E.T @ weights[None])).T
         return cls(X=np.asarray(strains.T @ EtP).T, X_d=X_d, c=-(nat.theta(0.0) @ EtP))
@@ -532,7 +537,7 @@ def _ground_weights(structure, point) -> tuple[np.ndarray, np.ndarray]:
         w = e.a @ W[rows]
         if e.name in ground:
             node = e.dofs[0][0]
-            w[0] -= sum(e.a[0, col] * _arm(coords[node], dof, point) for col, (_, dof) in enumerate(e.dofs))
+            w -= e.a @ np.array([_arm(coords[node], dof, point) for _, dof in e.dofs])
         return w
 
     P = np.zeros((structure.natural.G.shape[1], 3))

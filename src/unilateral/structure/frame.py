@@ -24,8 +24,10 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.linalg import block_diag
 
 from ..loads.units import STANDARD_GRAVITY
+from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
 from . import elements as el
 from .dofs import DofMap, node_list
@@ -35,10 +37,15 @@ class Frame2D:
     """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
 
     Nodes have the DOFs ``ux``, ``uy`` (along global x, y) and ``rz`` (counter-clockwise). Define
-    nodes first, then supports, links, elements and masses in any order, then :meth:`build`.
-    Every element name must be unique. Each unilateral element (:meth:`soil`, :meth:`cable`,
-    :meth:`gap`) adds one unilateral unknown ``v >= 0`` and one reaction ``psi <= 0``, named
-    after the element.
+    nodes first, then supports, links, elements and masses in any order (a :meth:`hinge` after its
+    beam), then :meth:`build`. Every element name must be unique.
+
+    Each contact (:meth:`soil`, :meth:`cable`, :meth:`gap`) adds one unilateral unknown ``v >= 0``
+    and one reaction ``psi <= 0``, named after the element; a contact with friction (``mu``) adds
+    two slip multipliers ``"name.slip+"``, ``"name.slip-"``. A :meth:`yield_link` or a
+    :meth:`hinge` adds two plastic multipliers ``"name.plastic+"``, ``"name.plastic-"`` (yield
+    family), a :meth:`slider` two slips ``"name.slip+"``, ``"name.slip-"`` (friction family);
+    for these ``psi`` is the yield function, ``<= 0``.
     """
 
     def __init__(self):
@@ -48,6 +55,8 @@ class Frame2D:
         self._elements: list[el.Element] = []
         self._dashpots: list[el.Element] = []
         self._names: set = set()
+        self._beams: dict = {}
+        self._hinges: dict = {}
         self._mass: dict = {}
         self._rayleigh: tuple[float, float] | None = None
         self._foundation = None
@@ -124,8 +133,9 @@ class Frame2D:
         """Rayleigh damping ``C += a0 M + a1 K`` (either coefficient may be left at 0).
 
         ``K`` here is the stiffness of the bilateral elements only: a unilateral element (soil,
-        gap, cable) gets no stiffness-proportional damping, which would act across an open
-        contact. Give a contact its own dashpot (``c``) instead.
+        gap, cable, yield link, slider) gets no stiffness-proportional damping, which would act
+        across an open contact or a slip. Give a contact its own dashpot (``c``) instead. A beam
+        with a :meth:`hinge` keeps it, acting on its total end rotation (plastic part included).
         """
         if self._rayleigh is not None:
             a0, a1 = self._rayleigh
@@ -155,9 +165,11 @@ class Frame2D:
         where = self._label("beam", name)
         self._two_nodes(where, i, j)
         E, A, I = (_real(where, arg, value, ">0") for arg, value in (("E", E), ("A", A), ("I", I)))
-        self._add(el.beam(name, i, self._coords[i], j, self._coords[j], E=E, A=A, I=I,
+        element = el.beam(name, i, self._coords[i], j, self._coords[j], E=E, A=A, I=I,
                           axial_strain=_real(where, "axial_strain", axial_strain),
-                          curvature=_real(where, "curvature", curvature)))
+                          curvature=_real(where, "curvature", curvature))
+        self._beams[name] = element
+        self._add(element)
 
     def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
         """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
@@ -181,7 +193,8 @@ class Frame2D:
         self._names.add(name)
 
     # ------------------------------------------------------------------ unilateral elements
-    def soil(self, name, node, k, *, c=0.0, direction="uy", gap=0.0, capacity=0.0) -> None:
+    def soil(self, name, node, k, *, c=0.0, direction="uy", gap=0.0, capacity=0.0, mu=None, kt=None,
+             ct=0.0) -> None:
         """Tensionless soil element under ``node``: spring ``k`` and dashpot ``c`` in parallel (a
         Kelvin element, ``E_v = c``) in series with a unilateral contact.
 
@@ -193,28 +206,42 @@ class Frame2D:
 
         Parameters
         ----------
-        gap : initial gap between node and soil (imposed strain ``theta = -gap``); negative: an
-            initial penetration (preload)
-        capacity : the tension ``r >= 0`` the element carries before separating (default 0)
+        k : stiffness, force/length;  c : viscosity, force time/length
+        gap : initial gap between node and soil (imposed strain ``theta = -gap``), length;
+            negative: an initial penetration (preload)
+        capacity : the tension ``r >= 0`` the element carries before separating, force (default 0)
+        mu : Coulomb friction coefficient >= 0, or None (no friction: the node slides freely)
+        kt : stick stiffness, force/length, > 0; required with ``mu``
+        ct : viscosity of a Kelvin dashpot in parallel with ``kt``, force time/length (default 0)
+
+        With ``mu``, a tangential strain ``t . u_node`` (``t`` the direction turned 90 degrees
+        clockwise: ``"ux"`` for ``"uy"``) carries the force ``T = kt (e_t - s+ + s-) + ct (...)'``
+        with ``|T| <= mu N``, ``N = capacity - sigma`` the compression of the contact (``N = 0``:
+        no tangential force once the node has lifted off); the slips ``s+-`` are the unknowns
+        ``"name.slip+"``, ``"name.slip-"``.
         """
         where = self._label("soil", name)
         self._node(where, "node", node)
-        self._add(self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap, capacity=capacity))
+        self._add(self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap,
+                                capacity=capacity, friction=_friction(where, mu, kt, ct)))
 
-    def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None) -> None:
+    def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None, mu=None, kt=None, ct=0.0) -> None:
         """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
-        (with a Kelvin dashpot ``c`` in parallel) that engages when the gap closes.
+        (force/length, with a Kelvin dashpot ``c``, force time/length, in parallel) that engages
+        when the gap closes.
 
         Strain ``e = d . (u_j - u_i)``: the opening of the gap along ``direction``, which points
         from ``i`` to ``j`` (default: the unit vector from node ``i`` to node ``j``). The link
-        engages when ``e <= -gap``; ``v >= 0`` is the gap opening, force as :meth:`soil` with
-        capacity 0.
+        engages when ``e <= -gap`` (length); ``v >= 0`` is the gap opening, force as :meth:`soil`
+        with capacity 0. ``mu``, ``kt``, ``ct``: Coulomb friction across the closed gap, as for
+        :meth:`soil` (tangential strain ``t . (u_j - u_i)``).
         """
         where = self._label("gap", name)
         self._two_nodes(where, i, j)
         if direction is None:
             _, direction = el.chord(where, i, self._coords[i], j, self._coords[j])
-        self._add(self._contact("gap", where, name, i, j, k=k, c=c, direction=direction, gap=gap, capacity=0.0))
+        self._add(self._contact("gap", where, name, i, j, k=k, c=c, direction=direction, gap=gap, capacity=0.0,
+                                friction=_friction(where, mu, kt, ct)))
 
     def cable(self, name, i, j, E, A, *, slack=0.0, capacity=0.0) -> None:
         """Tension-only cable (bar) from node ``i`` to node ``j`` that goes slack in compression.
@@ -229,6 +256,95 @@ class Frame2D:
         self._add(el.cable(name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
                            A=_real(where, "A", A, ">0"), slack=_real(where, "slack", slack),
                            capacity=_real(where, "capacity", capacity, ">=0")))
+
+    # ------------------------------------------------------------------ plasticity and friction
+    def yield_link(self, name, node_i, node_j=None, *, k, Fy=None, Fy_t=None, Fy_c=None, direction="ux",
+                   hardening=0.0) -> None:
+        """Zero-length elastic-plastic spring from ``node_i`` to the ground (``node_j=None``) or to
+        ``node_j``, along ``direction`` (as :meth:`spring`).
+
+        Force ``sigma = k (e - v+ + v-)`` (tension positive) with ``-Fy_c <= sigma - Hk (v+ - v-) <= Fy_t``:
+        the plastic multipliers ``"name.plastic+"`` (tension) and ``"name.plastic-"`` (compression)
+        grow only while their face yields; the plastic deformation is ``v+ - v-``. Linear kinematic
+        hardening ``Hk = hardening k`` gives the post-yield stiffness ``k h / (1 + h)``.
+
+        Parameters
+        ----------
+        k : elastic stiffness, force/length (force length/rad along ``"rz"``), > 0
+        Fy : yield force both ways, force (force length along ``"rz"``), > 0; or
+        Fy_t, Fy_c : yield forces in tension and compression, > 0 (e.g. a buckling-restrained
+            brace, ``Fy_c > Fy_t``)
+        hardening : ``h = Hk / k >= 0`` (0: perfectly plastic)
+        """
+        where, ends, terms = self._ends("yield_link", name, node_i, node_j, direction, ("node_i", "node_j"))
+        k = _real(where, "k", k, ">0")
+        r = _yield_forces(where, Fy, Fy_t, Fy_c)
+        A = el.kinematic_hardening(_hardening(where, hardening) * k)
+        self._add(el.directional(name, "yield", *ends, terms, k, unknowns=el.pair(name, 0, "yield", r=r), A=A))
+
+    def slider(self, name, node, *, mu, N, k, direction="ux") -> None:
+        """Flat sliding bearing under ``node``: a stick spring ``k`` in series with Coulomb
+        friction under the constant normal force ``N``.
+
+        A :meth:`yield_link` to the ground with ``Fy = mu N`` both ways, whose slips
+        ``"name.slip+"``, ``"name.slip-"`` form a friction family with a constant normal force
+        (:class:`~unilateral.constraints.Friction` with ``normal=None``; its law is that of a yield
+        pair, and results report it as friction). ``N`` does not follow the vertical response;
+        support or connect the node vertically by other elements.
+
+        Parameters
+        ----------
+        mu : friction coefficient, >= 0
+        N : normal (compressive) force, force, > 0
+        k : stick stiffness, force/length, > 0
+        direction : ``"ux"`` (default), ``"uy"`` or a vector: the sliding direction
+        """
+        where, ends, terms = self._ends("slider", name, node, None, direction, ("node", None))
+        if "rz" in dict(terms):
+            raise ValueError(f"{where}: direction='rz' is not a sliding direction; use 'ux', 'uy' or a vector")
+        k = _real(where, "k", k, ">0")
+        force = _real(where, "mu", mu, ">=0") * _real(where, "N", N, ">0")
+        self._add(el.directional(name, "slider", *ends, terms, k,
+                                 unknowns=el.pair(name, 0, "friction", r=(force, force))))
+
+    def hinge(self, name, beam, end, *, My, k=None, hardening=0.0) -> None:
+        """Plastic hinge at the end ``"i"`` or ``"j"`` of the beam ``beam`` (define the beam first).
+
+        The end moment ``M`` (the beam's natural stress ``rot_i`` or ``rot_j``: the moment acting
+        on the beam at that end, counter-clockwise positive) stays in ``-My <= M - Hk (v+ - v-) <= My``;
+        the plastic rotation ``v+ - v-`` (rad) of the multipliers ``"name.plastic+"``,
+        ``"name.plastic-"`` is an imposed strain on that end rotation.
+
+        ``k=None``: a rigid-plastic hinge in the beam itself; ``hardening`` is relative to the
+        beam's ``4EI/L`` (``Hk = hardening 4EI/L``). ``k`` given: an elastic-plastic rotational
+        spring in series between the beam end and the node (elastic rotation ``M/k``, post-yield
+        stiffness ``k h / (1 + h)`` with ``Hk = hardening k``); the spring's massless inner node is
+        condensed into the beam's stiffness, so no DOF is added. Stiffness-proportional Rayleigh
+        damping acts on the beam's total end rotation, plastic part included.
+
+        Parameters
+        ----------
+        My : yield moment, force length, > 0
+        k : rotational stiffness of the spring, force length/rad, > 0, or None (rigid-plastic)
+        hardening : ``h >= 0``
+        """
+        where = self._label("hinge", name)
+        if beam not in self._beams:
+            beams = ", ".join(repr(b) for b in list(self._beams)[:10]) or "none"
+            raise ValueError(f"{where}: beam={beam!r} is not a beam of the frame (beams: {beams})")
+        if end not in ("i", "j"):
+            raise ValueError(f"{where}: end={end!r} is not valid; use 'i' or 'j'")
+        if (beam, end) in self._hinges:
+            raise ValueError(f"{where}: end {end!r} of beam {beam!r} already has the hinge "
+                             f"{self._hinges[(beam, end)]!r}; one hinge per beam end")
+        My = _real(where, "My", My, ">0")
+        k = None if k is None else _real(where, "k", k, ">0")
+        reference = k if k is not None else self._beams[beam].E[1, 1]          # k or 4EI/L
+        modulus = _hardening(where, hardening) * reference
+        p = next(p for p, e in enumerate(self._elements) if e.name == beam)
+        self._elements[p] = el.hinge(self._elements[p], name, end, My=My, k=k, modulus=modulus)
+        self._hinges[(beam, end)] = name
+        self._names.add(name)
 
     # ------------------------------------------------------------------ foundation on a soil medium
     def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
@@ -322,12 +438,12 @@ class Frame2D:
                                for e in self._elements]) if kelvin else None
         theta = np.concatenate([e.theta for e in self._elements]) if self._elements else np.zeros(0)
         starts = np.cumsum([0] + [e.E.shape[0] for e in self._elements])
-        unilateral = [p for p, e in enumerate(self._elements) if e.unilateral]
-        rows = starts[unilateral].astype(int)
-        m = len(unilateral)
-        B = sp.csr_matrix(([self._elements[p].b for p in unilateral], (rows, np.arange(m))),
-                          shape=(G.shape[1], m))
-        r = np.array([self._elements[p].r for p in unilateral])
+        columns = [(int(starts[p]) + u.row, u) for p, e in enumerate(self._elements) for u in e.unknowns]
+        rows = np.array([row for row, _ in columns], dtype=int)
+        m = len(columns)
+        B = sp.csr_matrix(([u.b for _, u in columns], (rows, np.arange(m))), shape=(G.shape[1], m))
+        r = np.array([u.r for _, u in columns])
+        A = block_diag(*[e.interaction for e in self._elements if e.unknowns]) if m else np.zeros((0, 0))
         nodal_mass = np.array([self._mass.get(node, np.zeros(3)) for node in dofs.nodes])
         M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
         K = (G @ E @ G.T).tocsr()
@@ -337,12 +453,12 @@ class Frame2D:
                 on_soil |= {(node, dof) for node, dof, _ in terms}
         _check_stiffness(K, dofs, exempt=on_soil)
         C = self._damping(dofs, M)
-        natural = NaturalForm(G=G, E=E, B=B, A=np.zeros((m, m)), r=r, theta=ConstantStrain(theta), E_v=E_v)
+        natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=ConstantStrain(theta), E_v=E_v)
         return Structure(
             natural=natural, M=M, C=C, dofs=dofs,
             element_names=tuple(e.name for e in self._elements),
             strain_names=tuple(s for e in self._elements for s in e.strain_labels),
-            constraint_names=tuple(self._elements[p].name for p in unilateral),
+            constraint_names=tuple(u.name for _, u in columns),
             constraint_strains=rows, nodal_mass=nodal_mass,
             elements=tuple(self._elements), dashpots=tuple(self._dashpots),
             coords={node: xy.copy() for node, xy in self._coords.items()}, rayleigh=self._rayleigh,
@@ -390,29 +506,34 @@ class Frame2D:
             nodes = node_list(list(self._coords))
             raise ValueError(f"{where}: {arg}={node!r} is not defined (nodes: {nodes})")
 
-    def _two_nodes(self, where, i, j) -> None:
-        self._node(where, "i", i)
-        self._node(where, "j", j)
+    def _two_nodes(self, where, i, j, labels=("i", "j")) -> None:
+        self._node(where, labels[0], i)
+        self._node(where, labels[1], j)
         if i == j:
-            raise ValueError(f"{where}: i and j are the same node {i!r}")
+            raise ValueError(f"{where}: {labels[0]} and {labels[1]} are the same node {i!r}")
 
     def _directional(self, kind, name, i, j, k, direction) -> el.Element:
-        where = self._label(kind, name)
-        self._node(where, "i", i)
-        if j is not None:
-            self._two_nodes(where, i, j)
+        where, ends, terms = self._ends(kind, name, i, j, direction)
         coefficient = "c" if kind == "dashpot" else "k"
-        k = _real(where, coefficient, k, ">0")
-        terms = el.direction_terms(where, direction)
-        ends = (None, i) if j is None else (i, j)
-        return el.directional(name, kind, *ends, terms, k)
+        return el.directional(name, kind, *ends, terms, _real(where, coefficient, k, ">0"))
 
-    def _contact(self, kind, where, name, i, j, *, k, c, direction, gap, capacity) -> el.Element:
-        return el.directional(
-            name, kind, i, j, el.direction_terms(where, direction), _real(where, "k", k, ">0"),
-            c=_real(where, "c", c, ">=0"), theta=-_real(where, "gap", gap), b=1.0,
-            r=_real(where, "capacity", capacity, ">=0"),
-        )
+    def _ends(self, kind, name, i, j, direction, labels=("i", "j")):
+        """``(where, ends, terms)`` of a directional element from node ``i`` to the ground or ``j``
+        (``labels``: the names of the arguments ``i`` and ``j``, for messages)."""
+        where = self._label(kind, name)
+        self._node(where, labels[0], i)
+        if j is not None:
+            self._two_nodes(where, i, j, labels)
+        return where, ((None, i) if j is None else (i, j)), el.direction_terms(where, direction)
+
+    def _contact(self, kind, where, name, i, j, *, k, c, direction, gap, capacity, friction) -> el.Element:
+        terms = el.direction_terms(where, direction)
+        contact = dict(k=_real(where, "k", k, ">0"), c=_real(where, "c", c, ">=0"), theta=-_real(where, "gap", gap))
+        capacity = _real(where, "capacity", capacity, ">=0")
+        if friction is None:
+            return el.directional(name, kind, i, j, terms, unknowns=(el.Unknown(name, 0, 1.0, capacity),), **contact)
+        mu, kt, ct = friction
+        return el.frictional(name, kind, i, j, terms, kt=kt, ct=ct, mu=mu, capacity=capacity, **contact)
 
 
 @dataclass(frozen=True, eq=False)
@@ -422,7 +543,8 @@ class Structure:
     Attributes
     ----------
     natural : NaturalForm
-        ``G`` (n, ne) csr, ``E`` (ne, ne) csr, ``B`` (ne, m) csr, ``A`` (m, m) zero, ``r`` (m,),
+        ``G`` (n, ne) csr, ``E`` (ne, ne) csr, ``B`` (ne, m) csr, ``A`` (m, m) dense (kinematic
+        hardening of yield pairs, else zero), ``r`` (m,),
         ``theta`` (constant imposed strains, as a function of time), ``E_v`` (ne, ne) csr or None.
     M : (n, n) csr mass matrix (lumped, transformed by the rigid links)
     C : (n, n) csr damping of attached dashpots and Rayleigh damping, or None; the Kelvin
@@ -430,8 +552,11 @@ class Structure:
     dofs : DofMap
     element_names : names of the elements of the natural form, in strain order
     strain_names : (ne,) names of the natural strains (``"col.axial"``, ``"col.rot_i"``, ...)
-    constraint_names : (m,) names of the unilateral elements, the order of ``v`` and ``psi``
-    constraint_strains : (m,) int, the strain (row of ``G^T u``) of each unilateral element
+    constraint_names : (m,) names of the constraint unknowns, the order of ``v`` and ``psi``: a
+        contact has its element's name, the unknowns of slips and yield pairs
+        ``"name.slip+"``, ``"name.slip-"``, ``"name.plastic+"``, ``"name.plastic-"``
+    constraint_strains : (m,) int, the strain (row of ``G^T u``) each unknown enters (two unknowns
+        of a pair share one)
     nodal_mass : (n_nodes, 3) lumped ``(m, m, J)`` per node, in the order of ``dofs.nodes``
     elements : the :class:`~unilateral.structure.elements.Element` objects of the natural form,
         in strain order (empty for a structure built by hand)
@@ -469,14 +594,47 @@ class Structure:
 
     @property
     def m(self) -> int:
-        """Number of unilateral unknowns."""
+        """Number of constraint unknowns."""
         return len(self.constraint_names)
+
+    @property
+    def constraints(self) -> tuple:
+        """``(element, unknown)`` of each constraint unknown, in the order of ``v``
+        (:class:`~unilateral.structure.elements.Unknown`)."""
+        return tuple((e, u) for e in self.elements for u in e.unknowns)
+
+    @property
+    def unilateral_strains(self) -> np.ndarray:
+        """Strain rows of the unilateral elements (soil, gap, cable, yield link, slider: every strain
+        of theirs carries an unknown): no stiffness-proportional damping, ``elastic_unilateral`` energy."""
+        rows, start = [], 0
+        for e in self.elements:
+            k = e.E.shape[0]
+            if e.unilateral:
+                rows.extend(range(start, start + k))
+            start += k
+        return np.array(rows, dtype=int)
+
+    def families(self) -> list:
+        """The constraint families of the unknowns: one :class:`~unilateral.constraints.Contact`,
+        one :class:`~unilateral.constraints.Yield` and one :class:`~unilateral.constraints.Friction`
+        (each only if it has unknowns)."""
+        pairs = self.constraints
+        index = {u.name: k for k, (_, u) in enumerate(pairs)}
+        of = {kind: [k for k, (_, u) in enumerate(pairs) if u.kind == kind] for kind in el.UNKNOWN_KINDS}
+        families = [family(of[kind]) for kind, family in (("contact", Contact), ("yield", Yield)) if of[kind]]
+        if of["friction"]:
+            slips = [pairs[k][1] for k in of["friction"]]
+            normal = [-1 if u.normal is None else index[u.normal] for u in slips]
+            families.append(Friction(of["friction"], normal=normal, mu=[u.mu for u in slips]))
+        return families
 
     def to_model(self):
         """The problem to solve: a :class:`Model` or, with a foundation, a ``FoundationModel``.
 
         Without a foundation: the reduced problem (eqs. 13-16) via :meth:`Model.from_natural`; DOF
-        names are ``"node.dof"`` (e.g. ``"3.uy"``), constraint names the unilateral element names.
+        names are ``"node.dof"`` (e.g. ``"3.uy"``), constraint names :attr:`constraint_names`, and the
+        constraint families those of :meth:`families`.
         With a foundation (:meth:`Frame2D.foundation`): the
         :class:`~unilateral.soil.FoundationModel` of the frame's ``M, K, C`` without the soil, ``T``
         of the footing, the soil's ``Phi(s)`` and the footing's gap; constraint names are the
@@ -491,7 +649,7 @@ class Structure:
             nat.G, nat.E, nat.B, M=self.M, A=nat.A, r=nat.r,
             theta=nat.theta(0.0),                   # the builder's imposed strains are constant
             C=self.C, E_v=nat.E_v, dof_names=self.dofs.names,
-            constraint_names=list(self.constraint_names),
+            constraint_names=list(self.constraint_names), families=self.families(),
         )
 
     def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, -1.0)) -> np.ndarray:
@@ -549,34 +707,38 @@ class Structure:
         return -np.asarray(self.M @ self.influence(direction)).ravel(), a_g
 
     def element_deformations(self, u, v) -> tuple[np.ndarray, np.ndarray]:
-        """Deformations of the unilateral elements.
+        """Deformations of the strains of the constraint unknowns (:attr:`constraint_strains`).
 
         Parameters
         ----------
-        u : (..., n) displacements;  v : (..., m) unilateral deformations
+        u : (..., n) displacements;  v : (..., m) constraint unknowns
 
         Returns
         -------
         e : (..., m) total strain: the relative displacement along the element (soil, gap:
-            positive = separating) or the elongation (cable)
-        eps : (..., m) elastic part ``e - b v - theta`` (force ``= k eps`` plus the Kelvin part)
+            positive = separating; a slip: the tangential motion), the elongation (cable, yield
+            link) or the beam's end rotation (hinge)
+        eps : (..., m) elastic part ``e - (B v)_row - theta`` (force ``= k eps`` plus the Kelvin part)
         """
         u = np.asarray(u, dtype=float)
         v = np.asarray(v, dtype=float)
         rows = self.constraint_strains
         Gu = self.natural.G[:, rows]
-        e = (Gu.T @ u.reshape(-1, self.n).T).T.reshape(u.shape[:-1] + (self.m,))
-        b = np.asarray(self.natural.B.sum(axis=0)).ravel()        # one entry per column
-        return e, e - b * v - self.natural.theta(0.0)[rows]
+        steps = int(np.prod(u.shape[:-1]))
+        e = (Gu.T @ u.reshape(steps, self.n).T).T.reshape(u.shape[:-1] + (self.m,))
+        Bv = (self.natural.B[rows] @ v.reshape(steps, self.m).T).T.reshape(e.shape)
+        return e, e - Bv - self.natural.theta(0.0)[rows]
 
     def element_forces(self, t, u, v, udot=None, vdot=None) -> np.ndarray:
-        """Forces (tension positive) of the unilateral elements, ``sigma`` of their strains.
+        """Forces (tension positive) of the strains of the constraint unknowns, ``sigma`` of
+        :attr:`constraint_strains` (a hinge: the end moment, counter-clockwise on the beam).
 
         Parameters
         ----------
         t : (N,) times;  u, udot : (N, n);  v, vdot : (N, m)
-            ``udot`` and ``vdot`` are needed with Kelvin elements. ``psi = b sigma - r`` holds,
-            so from a :class:`~unilateral.Solution` the force is also ``b (psi + r)``.
+            ``udot`` and ``vdot`` are needed with Kelvin elements. ``psi = b sigma - A v - r``
+            holds for the associated ``psi`` (a :class:`~unilateral.Solution` holds ``P psi``:
+            a slip's ``psi + mu psi_normal``), so for a contact the force is also ``b (psi + r)``.
 
         Returns
         -------
@@ -661,3 +823,44 @@ def _real(where, arg, value, bound=None) -> float:
     if bound == ">=0" and x < 0:
         raise ValueError(f"{where}: {arg}={value!r} must be >= 0")
     return x
+
+
+def _friction(where, mu, kt, ct):
+    """``(mu, kt, ct)`` of a contact with Coulomb friction, or None without ``mu``."""
+    if mu is None:
+        extra = [arg for arg, value in (("kt", kt), ("ct", ct)) if value is not None and value != 0.0]
+        if extra:
+            raise ValueError(f"{where}: {extra[0]} is a friction parameter; give the friction coefficient mu "
+                             "too (or remove it)")
+        return None
+    mu = _real(where, "mu", mu, ">=0")
+    if kt is None:
+        raise ValueError(f"{where}: friction (mu={mu!r}) needs the stick stiffness kt (force/length, > 0)")
+    return mu, _real(where, "kt", kt, ">0"), _real(where, "ct", ct, ">=0")
+
+
+def _yield_forces(where, Fy, Fy_t, Fy_c) -> tuple[float, float]:
+    """``(Fy_t, Fy_c)`` from ``Fy`` (both ways) or from both ``Fy_t`` and ``Fy_c``."""
+    if Fy is not None:
+        if Fy_t is not None or Fy_c is not None:
+            raise ValueError(f"{where}: give either Fy (both ways) or Fy_t and Fy_c, not both")
+        Fy = _real(where, "Fy", Fy, ">0")
+        return Fy, Fy
+    if Fy_t is None or Fy_c is None:
+        missing = "Fy" if Fy_t is None and Fy_c is None else ("Fy_t" if Fy_t is None else "Fy_c")
+        raise ValueError(f"{where}: {missing} is missing; give the yield force Fy (both ways) or both Fy_t "
+                         "(tension) and Fy_c (compression), > 0")
+    return _real(where, "Fy_t", Fy_t, ">0"), _real(where, "Fy_c", Fy_c, ">0")
+
+
+def _hardening(where, value) -> float:
+    """The kinematic hardening ratio ``h >= 0``.
+
+    Softening (``-1 < h < 0``) would make the model's ``A`` indefinite, which
+    :meth:`Model.from_natural` refuses.
+    """
+    h = _real(where, "hardening", value)
+    if h < 0:
+        raise ValueError(f"{where}: hardening={value!r} must be >= 0 (the ratio of the kinematic hardening "
+                         "modulus to the elastic stiffness; softening is not supported)")
+    return h
