@@ -10,7 +10,7 @@ from .. import _validate as V
 from ..initial import InitialState, given_state, static_state
 from ..linalg import transpose_times
 from ..march.direct import sweep_direct
-from ..march.stepper import DENSE_STEPPING_MAX_N, StructureStepper
+from ..march.stepper import COMPILED_MAX_N, StructureStepper
 from ..result import Solution
 
 
@@ -119,8 +119,8 @@ class BaseState:
         K_ub = model.K @ u_b
         F_vb = model.F @ v_b
         HFu = transpose_times(model.F, u_b) - model.H @ v_b
-        if tables and model.n <= DENSE_STEPPING_MAX_N:
-            # small models: the compiled sweeps take every step's load and offset as arrays
+        if tables and model.n <= COMPILED_MAX_N:
+            # small and medium models: the compiled loops take every step's load and offset as arrays
             load_inc = loads.table() + (F_vb - K_ub)
             g = (model.g(0.0) if model.g_is_constant
                  else np.array([model.g(k * disc.dt) for k in range(disc.N + 1)]))
