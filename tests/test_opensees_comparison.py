@@ -51,3 +51,22 @@ def test_both_codes_converge_to_the_same_reference():
         errors.append(np.abs(theirs - reference[::stride]).max() / np.abs(reference).max())
     assert errors[0] > errors[1] > errors[2]
     assert errors[-1] < 0.05
+
+
+def test_benchmark_smoke(tmp_path):
+    """``benchmarks/opensees_frames.py --quick`` prints its table and writes its JSON (no timing asserted)."""
+    import json
+    import os
+    import subprocess
+
+    out = tmp_path / "frames.json"
+    script = Path(__file__).resolve().parents[1] / "benchmarks" / "opensees_frames.py"
+    proc = subprocess.run([sys.executable, str(script), "--quick", "--repeat", "1", "--out", str(out)],
+                          capture_output=True, text=True, timeout=900, env={**os.environ, "MPLBACKEND": "Agg"})
+    assert proc.returncode == 0, proc.stderr
+    assert "us/step" in proc.stdout and "OpenSees s" in proc.stdout
+    rows = json.loads(out.read_text())["rows"]
+    assert [r["storeys"] for r in rows] == [3, 6, 9, 12]
+    for r in rows:
+        assert r["yield_events"] > 0 and r["opensees_failed_step"] == 0
+        assert r["drift_difference_over_peak"] < 1e-8
