@@ -203,3 +203,18 @@ def test_a_failed_friction_step_says_what_to_change():
     assert "stopped after" in sol.message and "friction constraints ['c1', 'c2']" in sol.message
     assert "lcp='lemke'" in sol.message and "kt" in sol.message
     assert sol.v.shape[0] < 501                       # the steps before the failure are kept
+
+
+def test_pgs_is_refused_for_friction():
+    model, load = mixed_model(2)
+    with pytest.raises(ValueError, match="lcp='pgs' needs a symmetric step LCP"):
+        ul.solve(model, load, dt=2e-3, t_end=0.1, lcp="pgs")
+
+
+def test_lemke_solves_the_friction_steps_as_pivoting_does():
+    model, load = mixed_model(3)
+    kw = dict(dt=2e-3, t_end=1.0, method=Direct(engine="python"))
+    ref = ul.solve(model, load, **kw)
+    sol = ul.solve(model, load, lcp="lemke", **kw)
+    assert ref.success and sol.success
+    np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())

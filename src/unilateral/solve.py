@@ -83,6 +83,9 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
             "a TimeKernelModel is solved by product integration of its time-domain kernel: "
             "pass only dt, t_end, initial, lcp, lcp_options, bilateral (method='auto', load=None)")
     run = RunContext.from_user(lcp, lcp_options, bilateral, callback)
+    if run.solver.symmetric_only and not model.law.symmetric:
+        raise ValueError(f"lcp={run.solver.name!r} needs a symmetric step LCP, but the friction constraints make "
+                         "it nonsymmetric (rows +-T - mu N): use lcp='bpp' (the default) or 'lemke'")
     stiff = StiffCoordinates.of(model)      # penalty-stiff elements: solve in separated coordinates
     if stiff is not None:
         model, load, initial = stiff.conditioned, stiff.load(load, disc.N), stiff.initial(initial)

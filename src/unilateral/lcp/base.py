@@ -255,6 +255,8 @@ class LCPSolver(ABC):
     name: ClassVar[str]
     #: Largest problem size the method accepts (None: unlimited).
     max_size: ClassVar[int | None] = None
+    #: The method needs a symmetric ``W`` (friction makes the step LCP nonsymmetric).
+    symmetric_only: ClassVar[bool] = False
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)

@@ -36,6 +36,7 @@ class ProjectedGaussSeidel(LCPSolver):
     """
 
     name = "pgs"
+    symmetric_only = True
 
     def __init__(self, *, tol=1e-10, max_iter=None, omega=1.0):
         super().__init__(tol=tol, max_iter=max_iter)
