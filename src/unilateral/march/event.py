@@ -24,6 +24,21 @@ Decision
     switches, which solves the rate-level LCP when several constraints change at once. With
     Kelvin contacts the reaction jumps at closure (``v'`` jumps to 0): the value level decides.
 
+Rate-type unknowns
+    A plastic multiplier (:class:`~unilateral.constraints.Yield`) or a slip
+    (:class:`~unilateral.constraints.Friction`) only grows and is complementary to its constraint
+    function ``phi`` (a row of ``P psi``) in its increments. An *active* one (yielding, slipping)
+    is handled as an open contact: ``phi_i = 0`` is held and ``lambda_i`` is free. An *inactive*
+    one is held at its **frozen** value, the ``lambda_i`` it had when it stopped (an imposed
+    constant, like a gap, where a closed contact is held at 0). Its events: an inactive one's
+    ``phi_i`` reaching 0 from below (yield, slip), as a closed contact's reaction; an active one's
+    rate ``lambda_i'`` reaching 0 from above (elastic unloading, stick), where an open contact's
+    gap reaches 0. At a decision an active rate unknown is admissible when the first
+    non-negligible term of ``(lambda', lambda'' d, lambda''' d^2/2, lambda'''' d^3/6)`` is positive
+    (the rate level), an inactive one as a closed contact. ``event_kinds`` names the changes
+    "open"/"close" (contacts), "yield"/"unload" (plastic multipliers), "slip"/"stick" (slips).
+    Friction on a Kelvin contact (the row map ``P`` meeting ``F_v``, ``H_v``) is refused.
+
 Output on the grid ``t_k`` is the **left limit** ``lim_{t -> t_k-}`` (at ``t_0`` the initial
 state): at a grid time that coincides with an event or a load jump, u, u', v and psi are those
 before it. (Only quantities that can jump differ from the right limit: psi of a Kelvin contact at
@@ -72,7 +87,9 @@ def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=100
     t_grid : (N+1,) increasing output times; the initial state is at ``t_grid[0]``.
     u0, udot0 : (n,) initial displacement and velocity (only the velocity of the DOFs with mass
         matters; the others follow from the equations).
-    v0 : (m,) initial unilateral deformations (``v0 > 0``: open).
+    v0 : (m,) initial unilateral deformations (``v0 > 0``: open) and rate unknowns (the
+        multipliers accumulated so far; all start inactive, the decision at ``t_grid[0]`` activates
+        those on their yield surface).
     tol : float
         Accuracy (s) of the event times.
     max_events : int
@@ -83,9 +100,15 @@ def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=100
     u, udot : (N+1, n);  v, psi : (N+1, m)
         Left limits at the grid times.
     info : dict
-        ``event_times`` (k,), ``event_constraints`` (k,) int, ``event_kinds`` (k,) "open"/"close",
+        ``event_times`` (k,), ``event_constraints`` (k,) int, ``event_kinds`` (k,) "open"/"close"
+        (contacts), "yield"/"unload" (plastic multipliers), "slip"/"stick" (slips),
         ``events`` (number of contact changes), ``decisions``, ``configurations``,
         ``undecided`` (decisions where no candidate was strictly admissible), ``substeps``.
+
+    Raises
+    ------
+    ValueError
+        A time-dependent ``g``, a load without an exact form, friction on a Kelvin contact.
     """
     t_grid = np.asarray(t_grid, dtype=float)
     if t_grid.ndim != 1 or t_grid.size < 1 or np.any(np.diff(t_grid) <= 0):
@@ -96,8 +119,9 @@ def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=100
                          "function of time")
     gen = load_generator(model, load, t_grid)
     mats = _matrices(model)
+    _check_law(model.law, mats)
     u0, udot0, v0 = (np.asarray(a, dtype=float).reshape(size) for a, size in ((u0, n), (udot0, n), (v0, m)))
-    march = _March(model, mats, gen, t_grid, (u0, udot0, v0), tol=tol, max_events=max_events)
+    march = _March(model.law, mats, gen, t_grid, (u0, udot0, v0), tol=tol, max_events=max_events)
     return march.run()
 
 
@@ -112,9 +136,26 @@ def _matrices(model):
     return M, C, K, F, Fv, H, Hv, g
 
 
+def _check_law(law, mats):
+    """Refuse friction rows that take their normal force from a Kelvin contact (``F_v``, ``H_v``)."""
+    if law.P is None:
+        return
+    _, _, _, _, Fv, _, Hv, _ = mats
+    normals = np.flatnonzero(np.any((law.P != 0) & ~np.eye(law.m, dtype=bool), axis=0))
+    if np.any(Fv[:, normals] != 0) or np.any(Hv[normals] != 0) or np.any(Hv[:, normals] != 0):
+        raise ValueError("method='event' does not solve friction on a Kelvin contact (the normal force "
+                         "of a friction row has a viscous part F_v, H_v); use method='cq', 'modal' or "
+                         "'direct'")
+
+
+#: Names of an unknown's changes by its kind: (becomes inactive, becomes active).
+CHANGE_NAMES = {"contact": ("close", "open"), "yield": ("unload", "yield"), "friction": ("stick", "slip")}
+
+
 class _March:
-    def __init__(self, model, mats, gen, t_grid, state0, *, tol, max_events):
+    def __init__(self, law, mats, gen, t_grid, state0, *, tol, max_events):
         u0, udot0, v0 = state0
+        self.law = law
         self.mats, self.gen, self.grid = mats, gen, t_grid
         self.tol, self.max_events = float(tol), int(max_events)
         self.u0, self.udot0, self.v0 = u0, udot0, v0
@@ -131,7 +172,7 @@ class _March:
         except np.linalg.LinAlgError:
             uq = np.zeros(n)
         psi0 = F.T @ u0 + Fv.T @ udot0 - H @ v0 - g
-        self.psi0 = psi0
+        self.psi0 = law.rows(psi0)
         uref = max(np.abs(uq).max(initial=0.0), np.abs(u0).max(initial=0.0), np.abs(v0).max(initial=0.0))
         psiref = max(np.abs(F.T @ uq).max(initial=0.0), np.abs(psi0).max(initial=0.0),
                      np.abs(g).max(initial=0.0), np.abs(F).max(initial=0.0) * uref)
@@ -141,6 +182,8 @@ class _March:
         self.vref = vref if vref > 0 else 1.0
         self.configs = {}
         self.omega_load = max([f.omega for _, f in gen.terms if f.has_trig], default=0.0)
+        self.wref = self._reference_rate(t_grid)
+        self.rateref = self.vref * self.wref
         # uniform grid: full intervals use the canonical step (no drift from t_k - t_{k-1})
         steps = np.diff(t_grid)
         self.dt = float(steps.mean()) if steps.size else 0.0
@@ -150,20 +193,43 @@ class _March:
         self.undecided = 0
         self.substeps = 0
         self.same_time = 0
-        self.last_event = -np.inf
+        self.last_decision = -np.inf
+
+    def _reference_rate(self, t_grid):
+        """A frequency (1/s) that turns ``vref`` into the size of a rate ``lambda'``: the fastest of
+        the elastic structure (every unknown inactive), of the load and ``1 / span`` of the grid."""
+        span = t_grid[-1] - t_grid[0]
+        try:
+            elastic = Config(self.mats, self.gen, np.zeros(self.m, dtype=bool), self.law).max_rate
+        except ValueError:
+            elastic = 0.0
+        return max(elastic, self.omega_load, 1.0 / span if span > 0 else 1.0)
 
     # ------------------------------------------------------------------ configurations
     def config(self, open_mask):
+        """The :class:`Config` of the active set ``open_mask`` (cached; ValueError if singular)."""
         key = tuple(bool(b) for b in open_mask)
         cfg = self.configs.get(key)
+        if isinstance(cfg, ValueError):
+            raise cfg
         if cfg is None:
-            cfg = Config(self.mats, self.gen, np.array(key, dtype=bool))
-            cfg.zero = np.where(cfg.open, ZERO_RTOL * self.vref, ZERO_RTOL * self.psiref)
+            try:
+                cfg = Config(self.mats, self.gen, np.array(key, dtype=bool), self.law)
+            except ValueError as exc:
+                self.configs[key] = exc
+                raise
+            cfg.scale = self._scales(cfg.open)
+            cfg.zero = ZERO_RTOL * cfg.scale
             cfg.absE, cfg.absA = np.abs(cfg.E), np.abs(cfg.A)
             freq = max(cfg.max_frequency, self.omega_load)
             cfg.hmax = SUBSTEP_RADIANS / freq if freq > 0 else np.inf
             self.configs[key] = cfg
         return cfg
+
+    def _scales(self, open_mask):
+        """Per unknown, the size of its event function: a reaction (inactive), a gap (open
+        contact) or a rate (active rate unknown)."""
+        return np.where(open_mask, np.where(self.law.rate, self.rateref, self.vref), self.psiref)
 
     # ------------------------------------------------------------------ main loop
     def run(self):
@@ -192,7 +258,7 @@ class _March:
         stops += [(b, None, True) for b, flag in on_grid.items() if flag is False]
         stops.sort(key=lambda s: s[0])
 
-        cfg = self.config(self.v0 > 0)
+        cfg = self.config((self.v0 > 0) & ~self.law.rate)
         Y = cfg.state_from(self.u0, self.udot0, self.v0, gen.state(t0, "right"))
         cfg, Y = self.decide(cfg, Y, t0, ())
         t = t0
@@ -206,7 +272,7 @@ class _March:
                 prev_grid = k
             if is_bp:
                 Y = Y.copy()
-                Y[cfg.ny:] = gen.state(t, "right")
+                Y[cfg.ny: cfg.ny + gen.size] = gen.state(t, "right")
             if is_bp or pending:
                 cfg, Y = self.decide(cfg, Y, t, pending or ())
         info = {
@@ -215,7 +281,7 @@ class _March:
             "event_kinds": np.array(self.event_kinds, dtype=object),
             "events": len(self.event_times),
             "decisions": self.decisions,
-            "configurations": len(self.configs),
+            "configurations": sum(isinstance(c, Config) for c in self.configs.values()),
             "undecided": self.undecided,
             "substeps": self.substeps,
             "tol": self.tol,
@@ -274,62 +340,81 @@ class _March:
 
     # ------------------------------------------------------------------ decisions
     def decide(self, cfg, Y, t, forced):
-        """Choose the admissible contact set at ``t`` (see the module docstring)."""
+        """Choose the admissible configuration at ``t`` (see the module docstring)."""
         self.decisions += 1
-        u, ud, v = cfg.U @ Y, cfg.UD @ Y, cfg.V @ Y
-        z = Y[cfg.ny:]
-        # the massive velocity is continuous; state_from projects u' on the massive DOFs
+        self._guard(t)
         e = cfg.E @ Y
-        near = np.where(cfg.open, CRITICAL_RTOL * self.vref, CRITICAL_RTOL * self.psiref)
+        near = CRITICAL_RTOL * cfg.scale
         critical = set(int(i) for i in forced) | set(np.flatnonzero(e > -near).tolist())
         if not critical:
             return cfg, Y
+        # the massive velocity is continuous; state_from projects u' on the massive DOFs
+        state = (cfg.U @ Y, cfg.UD @ Y, cfg.V @ Y, Y[cfg.ny: cfg.ny + self.gen.size])
+        new, Yn, violation = self._choose(cfg, state, critical, t)
+        if violation > 0.0:
+            self.undecided += 1
+        self._record(cfg, new, t)
+        return new, Yn
+
+    def _choose(self, cfg, state, critical, t):
+        """The first admissible candidate, else the least violating: ``(config, Y, violation)``.
+
+        Candidates switch the ``critical`` unknowns of ``cfg``, fewest switches first; the set
+        grows by the unknowns that a candidate makes jump. A singular candidate (both faces of a
+        yield pair active, say) is skipped.
+        """
         delta = 1e-6 * (self.dt if self.dt > 0 else 1.0)
+        failure = None
         for _ in range(self.m + 1):
             crit = sorted(critical)
             best, best_violation, grown = None, np.inf, False
             for switches in _patterns(len(crit)):
                 mask = cfg.open.copy()
-                for i, s in zip(crit, switches):
-                    if s:
-                        mask[i] = not mask[i]
-                new = self.config(mask)
-                Yn = new.state_from(u, ud, v, z)
+                mask[[i for i, s in zip(crit, switches) if s]] ^= True
+                try:
+                    new = self.config(mask)
+                except ValueError as exc:
+                    failure = failure or exc
+                    continue
+                Yn = new.state_from(*state)
                 violation, jumped = self._violation(new, Yn, crit, delta)
                 if jumped:
                     critical |= jumped
                     grown = True
                     continue
                 if violation <= 0.0:
-                    best, best_violation = (new, Yn), 0.0
-                    break
+                    return new, Yn, 0.0
                 if violation < best_violation:
                     best, best_violation = (new, Yn), violation
-            if best_violation <= 0.0 or not grown:
+            if not grown:
                 break
         if best is None:
+            if failure is not None:
+                raise failure
             raise RuntimeError(f"no admissible contact set at t = {t!r}")
-        if best_violation > 0.0:
-            self.undecided += 1
-        new, Yn = best
+        return best + (best_violation,)
+
+    def _guard(self, t):
+        """Raise if decisions keep coming back to the same time ``t`` (no admissible set)."""
+        if abs(t - self.last_decision) <= 10 * self.tol:
+            self.same_time += 1
+            if self.same_time > 4 * self.m + 10:
+                raise RuntimeError(f"the decisions keep coming back to t = {t!r} (no admissible "
+                                   "contact set found)")
+        else:
+            self.same_time = 0
+        self.last_decision = t
+
+    def _record(self, cfg, new, t):
+        """Log the changes from ``cfg`` to ``new`` at ``t``."""
         changed = np.flatnonzero(new.open != cfg.open)
-        if changed.size:
-            if abs(t - self.last_event) <= 10 * self.tol:
-                self.same_time += 1
-                if self.same_time > 4 * self.m + 10:
-                    raise RuntimeError(f"the contact set keeps changing at t = {t!r} (no admissible "
-                                       "contact set found)")
-            else:
-                self.same_time = 0
-            self.last_event = t
-            for i in changed:
-                self.event_times.append(float(t))
-                self.event_constraints.append(int(i))
-                self.event_kinds.append("open" if new.open[i] else "close")
-            if len(self.event_times) > self.max_events:
-                raise RuntimeError(f"more than {self.max_events} contact changes by t = {t!r} "
-                                   "(chattering?); raise max_events if this is expected")
-        return new, Yn
+        for i in changed:
+            self.event_times.append(float(t))
+            self.event_constraints.append(int(i))
+            self.event_kinds.append(CHANGE_NAMES[self.law.kinds[i]][int(new.open[i])])
+        if len(self.event_times) > self.max_events:
+            raise RuntimeError(f"more than {self.max_events} contact changes by t = {t!r} "
+                               "(chattering?); raise max_events if this is expected")
 
     def _violation(self, cfg, Y, crit, delta):
         """How much the critical constraints leave their admissible side just after now (<= 0:
@@ -342,7 +427,10 @@ class _March:
             noise.append(_noise(cfg.absE, absW))
         scale = np.array([delta ** k / math.factorial(k) for k in range(4)])[:, None]
         terms = np.array(D) * scale                                          # (4, m)
-        thr = np.maximum(np.array(noise) * scale, cfg.zero[None, :])
+        # a derivative is negligible below round-off and below zero * wref^k (the size of "zero"
+        # in the units of the derivative)
+        floor = np.array([(self.wref * delta) ** k / math.factorial(k) for k in range(4)])[:, None]
+        thr = np.maximum(np.array(noise) * scale, floor * cfg.zero[None, :])
         thr[0] = np.maximum(thr[0], 1e3 * cfg.zero)
         crit_mask = np.zeros(self.m, dtype=bool)
         crit_mask[crit] = True

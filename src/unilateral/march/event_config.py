@@ -1,19 +1,26 @@
-"""One contact configuration of the event-driven march: an exact linear first-order system.
+"""One configuration of the event-driven march: an exact linear first-order system.
 
-With the constraints of the open set ``O`` open (``psi_O = 0``, ``v_O`` free) and the others
-closed (``v_C = 0``), the unknowns ``x = (u, v_O)`` obey the linear system
+A configuration says which constraint unknowns are *active*: open contacts, yielding plastic
+multipliers, slipping friction multipliers (the set ``O``: their constraint function is held at
+zero, the unknown is free), and which are *inactive* (the set ``C``: a closed contact is held at
+``v_i = 0``, an inactive rate unknown at its frozen value ``f_i``, the multiplier reached when it
+last stopped). With the row map ``P`` of the law (:mod:`unilateral.constraints`; ``P = I`` but for
+friction rows), the unknowns ``x = (u, v_O)`` obey the linear system
 
-    M~ x'' + C~ x' + K~ x = (q(t), -g_O)
+    M~ x'' + C~ x' + K~ x = (q(t) + F_C f, -(P~ g)_O - (P~ H)_OC f)
 
-    M~ = [[M, 0], [0, 0]],  C~ = [[C, -F_vO], [-F_vO^T, H_vOO]],  K~ = [[K, -F_O], [-F_O^T, H_OO]]
+    M~ = [[M, 0], [0, 0]],  C~ = [[C, -F_vO], [-(P~ F_v^T)_O, (P~ H_v)_OO]],
+    K~ = [[K, -F_O], [-(P~ F^T)_O, (P~ H)_OO]]
 
-(the second block row is ``-psi_O = 0``). As in :mod:`unilateral.modal_dense`, orthonormal
-coordinates split ``x`` by its dynamics: ``T2`` the range of ``M~`` (second order), ``T1`` the range
-of ``C~`` without mass (first order: a massless foundation on dashpots, the gap of an open Kelvin
-contact), ``T0`` neither (condensed statically, exactly). The state is ``y = (a2, a1, a2')`` and,
-with the load generator ``z' = S z`` (:mod:`unilateral.march.event_load`), the augmented system
-``Y = (y, z)``, ``Y' = A Y`` is integrated exactly by ``expm``. Every output (u, u', v, v', psi)
-is a linear map of ``Y``.
+(the second block row is ``-(P psi)_O = 0``; ``P~`` is ``P`` with its columns of other active
+unknowns dropped, whose ``psi`` is zero; ``f = 0`` for closed contacts). As in
+:mod:`unilateral.modal_dense`, orthonormal coordinates split ``x`` by its dynamics: ``T2`` the
+range of ``M~`` (second order), ``T1`` the range of ``C~`` without mass (first order: a massless
+foundation on dashpots, the gap of an open Kelvin contact), ``T0`` neither (condensed
+statically, exactly). The state is ``y = (a2, a1, a2')`` and, with the load generator
+``z' = S z`` (:mod:`unilateral.march.event_load`) and the frozen values of the rate unknowns
+(``f' = 0``), the augmented system ``Y = (y, z, f)``, ``Y' = A Y`` is integrated exactly by
+``expm``. Every output (u, u', v, v', the constraint functions) is a linear map of ``Y``.
 """
 
 from __future__ import annotations
@@ -23,74 +30,58 @@ import scipy.linalg as sla
 
 #: Eigenvalues below this fraction of the largest count as zero (mass, damping).
 RANK_TOL = 1e-12
+#: A condensed stiffness whose scaled condition number exceeds this is singular.
+MAX_CONDITION = 1.0 / (64 * np.finfo(float).eps)
 
 
 class Config:
-    """The exact linear system of one contact configuration.
+    """The exact linear system of one configuration.
+
+    Parameters
+    ----------
+    mats : (M, C, K, F, F_v, H, H_v, g) dense arrays
+    gen : LoadGenerator
+    open_mask : (m,) bool, the active unknowns
+    law : StepLaw, the rate mask and the row map ``P``
 
     Attributes
     ----------
     open : (m,) bool
-    A : (ny + nz, ny + nz) augmented system matrix
-    U, UD, V, VD, PSI, E : output maps (rows, ny + nz) of u, u', v, v', psi and the event
-        functions ``e`` (``psi_i`` for closed constraints, ``-v_i`` for open ones; ``e <= 0``
-        is admissible)
+    A : (NY, NY) augmented system matrix, ``NY = ny + nz``; ``Y = (y, z, f)`` with ``z`` the
+        load generator's state (``Y[ny:ny + gen.size]``) and ``f`` the frozen values of the rate
+        unknowns (``Y[ny + gen.size:]``)
+    U, UD, V, VD, PSI, E : output maps (rows, NY) of u, u', v, v', the constraint functions
+        ``P psi`` and the event functions ``e``: ``P psi`` for inactive unknowns, ``-v_i`` for open
+        contacts, ``-v_i'`` for active rate unknowns (``e <= 0`` is admissible)
     """
 
-    def __init__(self, mats, gen, open_mask):
+    def __init__(self, mats, gen, open_mask, law):
         M, C, K, F, Fv, H, Hv, g = mats
         n, m = K.shape[0], F.shape[1]
-        O = np.flatnonzero(open_mask)
-        o = O.size
         self.open = np.asarray(open_mask, dtype=bool).copy()
-        N = n + o
-        Mt = np.zeros((N, N))
-        Mt[:n, :n] = M
-        Ct = np.zeros((N, N))
-        Ct[:n, :n] = C
-        Ct[:n, n:] = -Fv[:, O]
-        Ct[n:, :n] = -Fv[:, O].T
-        Ct[n:, n:] = Hv[np.ix_(O, O)]
-        Kt = np.zeros((N, N))
-        Kt[:n, :n] = K
-        Kt[:n, n:] = -F[:, O]
-        Kt[n:, :n] = -F[:, O].T
-        Kt[n:, n:] = H[np.ix_(O, O)]
+        self.rate = np.asarray(law.rate, dtype=bool)
+        O = np.flatnonzero(self.open)
+        Mt, Ct, Kt, R, S = _augmented(mats, gen, self.open, law)
+        N = Mt.shape[0]
         T2, Tn = _split(Mt, np.eye(N), "the mass matrix")
         T1, T0 = _split(Ct, Tn, "the damping matrix with the open Kelvin contacts")
         n2, n1, n0 = T2.shape[1], T1.shape[1], T0.shape[1]
         if n0 and np.abs(Ct @ T0).max() > 1e-9 * max(np.abs(Ct).max(), 1e-300):
             raise ValueError("the damping matrix (with the Kelvin terms of the open contacts) is not "
                              "positive semidefinite; method='event' needs C, H_v PSD")
-        # load of the augmented rows: (q, -g_O) = R z
-        nz = gen.size
-        R = np.zeros((N, nz))
-        R[:n] = gen.Gq
-        R[n:, 0] = -g[O]
         Kb = lambda A_, B_: A_.T @ Kt @ B_
         Cb = lambda A_, B_: A_.T @ Ct @ B_
-        if n0:
-            K00 = Kb(T0, T0)
-            try:
-                chol = sla.cho_factor(0.5 * (K00 + K00.T))
-            except sla.LinAlgError:
-                raise ValueError(
-                    "a contact configuration leaves coordinates without mass, damping or stiffness "
-                    f"(open constraints {O.tolist()}): the structure becomes a mechanism there, or an "
-                    "open contact has no stiffness H (a rigid contact); method='event' needs H_OO > 0 "
-                    "or a Kelvin dashpot on every open contact") from None
-            solve0 = lambda X: sla.cho_solve(chol, X)
-        else:
-            solve0 = lambda X: np.zeros((0,) + np.shape(X)[1:])
+        solve0 = _condensed_solver(Kb(T0, T0), law.P is None, O)
         # condensation of T0:  a0 = K00^-1 (T0^T R z - K02 a2 - K01 a1)
         Ta = np.hstack([T2, T1])
         X0a = solve0(Kb(T0, Ta))                                  # (n0, n2+n1)
         X0z = solve0(T0.T @ R)                                    # (n0, nz)
         Kc = Kb(Ta, Ta) - Kb(Ta, T0) @ X0a
         Rc = Ta.T @ R - Kb(Ta, T0) @ X0z
+        nz = S.shape[0]
         ny = 2 * n2 + n1
         NY = ny + nz
-        # index maps of Y = (a2, a1, w2, z)
+        # index maps of Y = (a2, a1, w2, z, f)
         i2, i1, iw, iz = (np.arange(n2), n2 + np.arange(n1), n2 + n1 + np.arange(n2), ny + np.arange(nz))
         ia = np.concatenate([i2, i1])
         Ca = Cb(Ta, Ta)
@@ -115,7 +106,7 @@ class Config:
         A[i2, iw] = 1.0
         A[i1] = L1
         A[iw] = L2
-        A[np.ix_(iz, iz)] = gen.S
+        A[np.ix_(iz, iz)] = S
         # outputs
         P2, P1, PW = (np.eye(NY)[idx] for idx in (i2, i1, iw))
         L0 = np.zeros((n0, NY))
@@ -123,7 +114,7 @@ class Config:
         L0[:, iz] = X0z
         # a0' = K00^-1 (T0^T R S z - K02 w2 - K01 a1')
         L0d = np.zeros((n0, NY))
-        L0d[:, iz] = solve0(T0.T @ R @ gen.S)
+        L0d[:, iz] = solve0(T0.T @ R @ S)
         if n0:
             K0a = Kb(T0, Ta)
             L0d -= solve0(K0a[:, :n2] @ PW + K0a[:, n2:] @ L1)
@@ -133,11 +124,14 @@ class Config:
         self.V = np.zeros((m, NY))
         self.VD = np.zeros((m, NY))
         self.V[O], self.VD[O] = Xo[n:], Xd[n:]
+        self.V[:, iz[gen.size:]] += _frozen(self.open, self.rate)
         PSI = F.T @ self.U + Fv.T @ self.UD - H @ self.V - Hv @ self.VD
         PSI[:, iz[0]] -= g
+        if law.P is not None:
+            PSI = law.P @ PSI
         PSI[O] = 0.0
         self.PSI = PSI
-        self.E = np.where(self.open[:, None], -self.V, PSI)
+        self.E = np.where(self.open[:, None], np.where(self.rate[:, None], -self.VD, -self.V), PSI)
         self.A = A
         self.T2, self.T1 = T2, T1
         self.n, self.ny, self.nz = n, ny, nz
@@ -148,10 +142,13 @@ class Config:
         self._cache = {}
 
     def state_from(self, u, udot, v, z) -> np.ndarray:
-        """``Y`` from the continuous quantities: u, the massive part of u', v on the open set, z."""
+        """``Y`` from the continuous quantities: u, the massive part of u', v, the load state z.
+
+        The rate unknowns are frozen at their values ``v`` (used where they are inactive).
+        """
         x = np.concatenate([u, v[self.O]])
         xd = np.concatenate([udot, np.zeros(self.O.size)])
-        return np.concatenate([self.T2.T @ x, self.T1.T @ x, self.T2.T @ xd, z])
+        return np.concatenate([self.T2.T @ x, self.T1.T @ x, self.T2.T @ xd, z, v[self.rate]])
 
     def propagator(self, h: float) -> np.ndarray:
         """``expm(A h)`` (cached for repeated step sizes)."""
@@ -176,6 +173,79 @@ class Config:
                 P[j] = step @ P[j - 1]
             self._cache[key] = P
         return P
+
+
+def _frozen(open_mask, rate) -> np.ndarray:
+    """``W`` (m, r): the values ``W f`` of the unknowns held at the frozen values ``f`` of the r rate
+    unknowns (the inactive ones; zero rows for the others)."""
+    idx = np.flatnonzero(rate)
+    W = np.zeros((rate.size, idx.size))
+    W[idx, np.arange(idx.size)] = ~open_mask[idx]
+    return W
+
+
+def _active_rows(P, open_mask) -> np.ndarray:
+    """``P~_O`` (o, m): the rows of ``P`` of the active unknowns, without the columns of the other
+    active unknowns (their ``psi`` is held at zero)."""
+    O = np.flatnonzero(open_mask)
+    if P is None:
+        return np.eye(open_mask.size)[O]
+    rows = P[O].copy()
+    rows[:, O] = np.eye(O.size)
+    return rows
+
+
+def _augmented(mats, gen, open_mask, law):
+    """``M~, C~, K~`` (N, N), the load map ``R`` (N, nz) of ``(z, f)`` and ``S`` (nz, nz) of ``z' = S z``,
+    ``f' = 0`` (see the module docstring)."""
+    M, C, K, F, Fv, H, Hv, g = mats
+    n = K.shape[0]
+    O = np.flatnonzero(open_mask)
+    N = n + O.size
+    Pt = _active_rows(law.P, open_mask)
+    W = _frozen(open_mask, law.rate)
+    Mt, Ct, Kt = np.zeros((N, N)), np.zeros((N, N)), np.zeros((N, N))
+    Mt[:n, :n] = M
+    Ct[:n, :n], Ct[:n, n:], Ct[n:, :n], Ct[n:, n:] = C, -Fv[:, O], -Pt @ Fv.T, (Pt @ Hv)[:, O]
+    Kt[:n, :n], Kt[:n, n:], Kt[n:, :n], Kt[n:, n:] = K, -F[:, O], -Pt @ F.T, (Pt @ H)[:, O]
+    nq, r = gen.size, W.shape[1]
+    R = np.zeros((N, nq + r))
+    R[:n, :nq], R[:n, nq:] = gen.Gq, F @ W
+    R[n:, 0], R[n:, nq:] = -Pt @ g, -Pt @ H @ W
+    S = np.zeros((nq + r, nq + r))
+    S[:nq, :nq] = gen.S
+    return Mt, Ct, Kt, R, S
+
+
+def _condensed_solver(K00, symmetric, O):
+    """``X -> K00^-1 X`` for the statically condensed coordinates.
+
+    Raises
+    ------
+    ValueError
+        ``K00`` is singular: coordinates without mass, damping or stiffness, or two dependent
+        active unknowns (both faces of a yield or slip pair).
+    """
+    if K00.shape[0] == 0:
+        return lambda X: np.zeros((0,) + np.shape(X)[1:])
+    message = ("a configuration leaves coordinates without mass, damping or stiffness (active constraints "
+               f"{O.tolist()}): the structure becomes a mechanism there, an open contact has no stiffness H "
+               "(a rigid contact), or two active unknowns are dependent; method='event' needs H_OO > 0 or a "
+               "Kelvin dashpot on every open contact")
+    row = np.abs(K00).max(axis=1)
+    if not np.all(row > 0):
+        raise ValueError(message)
+    s = 1.0 / np.sqrt(row)
+    if np.linalg.cond(s[:, None] * K00 * s[None, :]) > MAX_CONDITION:
+        raise ValueError(message)
+    if not symmetric:
+        lu = sla.lu_factor(K00)
+        return lambda X: sla.lu_solve(lu, X)
+    try:
+        chol = sla.cho_factor(0.5 * (K00 + K00.T))
+    except sla.LinAlgError:
+        raise ValueError(message) from None
+    return lambda X: sla.cho_solve(chol, X)
 
 
 def _split(A, basis, name):

@@ -23,8 +23,13 @@ class Event(Method):
     The output on the grid is the left limit at each ``t_k``; the rule is not used. For small
     models (n up to a few hundred): it is the yardstick of the convergence tests.
 
-    ``stats`` has ``event_times``, ``event_constraints``, ``event_kinds`` ("open"/"close") and
-    ``contact_changes``.
+    Yield and friction families (:mod:`unilateral.constraints`) are followed the same way: a
+    yielding or slipping multiplier is free with its constraint function held at zero, an
+    inactive one is held at its frozen value; friction whose normal contact is a Kelvin element
+    is refused (use ``cq``, ``modal`` or ``direct``).
+
+    ``stats`` has ``event_times``, ``event_constraints``, ``event_kinds`` ("open"/"close",
+    "yield"/"unload", "slip"/"stick") and ``contact_changes``.
 
     Options
     -------
