@@ -18,15 +18,8 @@ class SingularMatrixError(ValueError):
     """The matrix to factorise is singular (or numerically so)."""
 
 
-#: Sparse matrices up to this size are factorised densely (LAPACK): for them a dense LU and its
-#: solves with many right-hand sides cost less than SuperLU's.
-DENSE_FACTOR_MAX_N = 256
-
-
 class Factorization:
     """LU factorisation of a square matrix, reused across right-hand sides.
-
-    Sparse matrices of at most :data:`DENSE_FACTOR_MAX_N` rows are factorised densely.
 
     Parameters
     ----------
@@ -37,8 +30,6 @@ class Factorization:
 
     def __init__(self, A, what: str = "matrix"):
         self.shape = A.shape
-        if sp.issparse(A) and A.shape[0] <= DENSE_FACTOR_MAX_N:
-            A = A.toarray()
         self.sparse = sp.issparse(A)
         try:
             with warnings.catch_warnings():
@@ -70,8 +61,6 @@ class Factorization:
                 b = b.toarray()
             return self._lu.solve(np.asarray(b, dtype=np.result_type(b, self._lu.U.dtype)))
         lu, piv = self._lu
-        if sp.issparse(b):
-            b = b.toarray()
         if np.iscomplexobj(b) and not np.iscomplexobj(lu):
             return self.solve(b.real) + 1j * self.solve(b.imag)
         # LAPACK getrs directly: scipy's lu_solve wrapper costs more than the solve for small n
