@@ -16,6 +16,9 @@ from .run_context import RunContext
 
 __all__ = ["METHODS", "solve"]
 
+#: The problems :func:`solve` takes.
+MODEL_CLASSES = (Model, KernelModel, TimeKernelModel, FoundationModel)
+
 
 def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="static",
           lcp="bpp", lcp_options=None, bilateral=False, cq_options=None, modal_options=None,
@@ -72,7 +75,7 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
     Solution
     """
     disc = Discretization.from_user(dt, t_end, rule)
-    if not isinstance(model, (Model, KernelModel, TimeKernelModel, FoundationModel)):
+    if not isinstance(model, MODEL_CLASSES):          # the boundary: what solve() takes
         raise TypeError(f"model must be a unilateral.Model, KernelModel, TimeKernelModel or FoundationModel, "
                         f"got {V.describe(model)}")
     options = {name: value for name, value in (("cq", cq_options), ("modal", modal_options),

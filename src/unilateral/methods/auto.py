@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import functools
+
 from ..kernels import KernelModel, TimeKernelModel
 from ..lcp import BlockPrincipalPivoting
 from ..march.stepper import DENSE_STEPPING_MAX_N
+from ..model import Model
 from ..soil.foundation_model import FoundationModel
 from .cq import CQ
 from .direct import FULL_SPACE_MIN_M, Direct
@@ -12,12 +15,15 @@ from .modal import FoundationPolesRefused, Modal, PolesRefused
 from .time_kernel import TimeKernelMethod
 
 
+@functools.singledispatch
 def choose_method(model, rule, solver, options):
     """The method of ``method="auto"`` and the reason (measured in the benchmark suite).
 
+    One rule per model class (registered below; a new model class registers its own).
+
     Parameters
     ----------
-    model : Model, KernelModel or TimeKernelModel
+    model : Model, KernelModel, TimeKernelModel or FoundationModel
     rule : Rule
     solver : LCPSolver
     options : dict of method name -> options given (``cq_options`` and the like)
@@ -26,12 +32,21 @@ def choose_method(model, rule, solver, options):
     -------
     method : Method (an instance) ; reason : str
     """
-    if isinstance(model, TimeKernelModel):
-        return TimeKernelMethod(), "a TimeKernelModel is solved by product integration of its Lambda(t)"
-    if isinstance(model, KernelModel):
-        return CQ(**options.get("cq", {})), "a KernelModel is solved by convolution quadrature of its Lambda(s)"
-    if isinstance(model, FoundationModel):
-        return _choose_foundation(model, rule, options)
+    raise TypeError(f"method='auto' has no rule for a {type(model).__name__}")
+
+
+@choose_method.register
+def _(model: TimeKernelModel, rule, solver, options):
+    return TimeKernelMethod(), "a TimeKernelModel is solved by product integration of its Lambda(t)"
+
+
+@choose_method.register
+def _(model: KernelModel, rule, solver, options):
+    return CQ(**options.get("cq", {})), "a KernelModel is solved by convolution quadrature of its Lambda(s)"
+
+
+@choose_method.register
+def _(model: Model, rule, solver, options):
     if "cq" in options:
         return CQ(**options["cq"]), "cq_options were given"
     if "modal" in options:
@@ -46,7 +61,8 @@ def choose_method(model, rule, solver, options):
     return Direct(), f"direct stepping ({space}) is the fastest end to end for this model"
 
 
-def _choose_foundation(model, rule, options):
+@choose_method.register
+def _(model: FoundationModel, rule, solver, options):
     """cq or modal for a FoundationModel (the dual CLCP in the contact forces)."""
     if "cq" in options:
         return CQ(**options["cq"]), "cq_options were given"

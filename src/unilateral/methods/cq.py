@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from .. import _validate as V
@@ -45,15 +47,18 @@ class CQ(Method):
         out["the FFT of the weights (2 x 8 (N+1) m^2 complex)"] = 256.0 * (disc.N + 1) * model.m ** 2
         return out
 
+    def _options(self):
+        """The options of the weights (``L``, ``rho``) and of the march (``history``, ``engine``)."""
+        return ({k: self.config[k] for k in ("L", "rho") if k in self.config},
+                {k: self.config[k] for k in ("history", "engine") if k in self.config})
+
+    @functools.singledispatchmethod
     def solve(self, model, load, initial, disc, run):
-        weight_options = {k: self.config[k] for k in ("L", "rho") if k in self.config}
-        march = {k: self.config[k] for k in ("history", "engine") if k in self.config}
-        if isinstance(model, KernelModel):
-            if load is not None:
-                raise ValueError("load is not used by a KernelModel: its psiL carries the loading; pass load=None")
-            return self._solve_kernel_model(model, initial, disc, run, weight_options, march)
-        if isinstance(model, FoundationModel):
-            return self._solve_foundation(model, load, initial, disc, run, weight_options, march)
+        raise TypeError(f"method='cq' solves a Model, KernelModel or FoundationModel, not a {type(model).__name__}")
+
+    @solve.register
+    def _(self, model: Model, load, initial, disc, run):
+        weight_options, march = self._options()
         run.stats["n"] = model.n
 
         def clcp(psiL, v_b):
@@ -62,6 +67,16 @@ class CQ(Method):
             return march_weights(W, psiL, v_b, disc, run, law=model.law, **march)
 
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
+
+    @solve.register
+    def _(self, model: KernelModel, load, initial, disc, run):
+        if load is not None:
+            raise ValueError("load is not used by a KernelModel: its psiL carries the loading; pass load=None")
+        return self._solve_kernel_model(model, initial, disc, run, *self._options())
+
+    @solve.register
+    def _(self, model: FoundationModel, load, initial, disc, run):
+        return self._solve_foundation(model, load, initial, disc, run, *self._options())
 
     def _solve_foundation(self, model, load, initial, disc, run, weight_options, march):
         from ..history import HISTORIES

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+
 from .. import _validate as V
 from ..kernels import PoleResidueKernel
 from ..march.clcp import march_cq, march_cq_compiled
@@ -46,10 +48,20 @@ class Modal(Method):
     models = (Model, FoundationModel)
     options = ("modes", "engine")
 
+    @functools.singledispatchmethod
     def solve(self, model, load, initial, disc, run):
-        engine = V.choice("modal_options['engine']", self.config.get("engine", "auto"), ENGINES)
-        if isinstance(model, FoundationModel):
-            return self._solve_foundation(model, load, initial, disc, run, engine)
+        raise TypeError(f"method='modal' solves a Model or FoundationModel, not a {type(model).__name__}")
+
+    def _engine(self):
+        return V.choice("modal_options['engine']", self.config.get("engine", "auto"), ENGINES)
+
+    @solve.register
+    def _(self, model: FoundationModel, load, initial, disc, run):
+        return self._solve_foundation(model, load, initial, disc, run, self._engine())
+
+    @solve.register
+    def _(self, model: Model, load, initial, disc, run):
+        engine = self._engine()
         run.stats["n"] = model.n
         try:
             kernel = PoleResidueKernel.from_model(model, modes=self.config.get("modes"))
