@@ -24,7 +24,7 @@ import unilateral
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SCRIPTS = ("bouncing_mass.py", "rocking_tower.py", "pounding_frames.py", "convergence_bdf2.py", "soil_kernels.py",
            "sliding_block.py")
-MODEL_FILES = ("liolios1990.toml", "pounding.toml", "winkler_beam.toml")
+MODEL_FILES = ("liolios1990.toml", "pounding.toml", "winkler_beam.toml", "yielding_frame.toml")
 NUMBER = r"([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)"
 
 
@@ -187,3 +187,34 @@ def test_winkler_beam_model_file(tmp_path):
     settlement = 0.625 * 9.80665 / 20e3                              # m g / k per node: uniform
     assert s["extra"]["figure"]["static"] == pytest.approx(-settlement, rel=1e-9)
     assert np.isfinite(s["max_lcp_error"]) and s["max_lcp_error"] < 1e-9
+
+
+def test_yielding_frame_model_file(tmp_path):
+    """The frame's beams yield, a footing lifts off and its edges slip, the drifts are 1-3 %; the run
+    prints a line per family and writes the plastic deformations, the hysteresis figure and the
+    ductilities."""
+    from click.testing import CliRunner
+
+    from unilateral.cli import main
+    from unilateral.io import load_netcdf
+
+    out = tmp_path / "yielding_frame"
+    result = CliRunner().invoke(main, ["run", str(EXAMPLES / "yielding_frame.toml"), "--out", str(out),
+                                       "--t-end", "1.5"])
+    assert result.exit_code == 0, result.output
+    yielded, total = _numbers(result.output, r"yield: {N} of {N} hinges yielded, peak ductility")
+    assert total == 15 and yielded >= 12
+    assert re.search(r"friction: \d+ of 6 friction elements slid", result.output)
+    assert "with yield, slip and uplift" in result.output and "linear (constraints held)" in result.output
+    ds = load_netcdf(out / "results.nc")
+    assert ds["plastic_deformation"].dims == ("case", "time", "yield_element")
+    assert ds["plastic_deformation"].sizes["yield_element"] == 15 and "rad" in ds["plastic_deformation"].attrs["units"]
+    assert (out / "hysteresis.png").stat().st_size > 0
+    peaks = json.loads((out / "summary.json").read_text())["results"]["unilateral"]
+    hinges = peaks["yield_elements"]
+    assert all(hinges[f"B{f}_{b}.{end}"]["yielded"] for f in (1, 2, 3) for b in (1, 2) for end in "ij")
+    assert all(hinges[f"C{line}_1.base"]["ductility"]["value"] > 1.0 for line in (1, 2, 3))
+    assert 0.01 < max(abs(d["value"]) for d in peaks["drift_ratio"].values()) < 0.03
+    summary = json.loads((out / "summary.json").read_text())
+    assert max(c["max_v"] for c in summary["constraints"].values()) > 1e-3          # an edge lifts off
+    assert any(f["slid"] for f in peaks["friction_elements"].values())

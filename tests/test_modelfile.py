@@ -97,7 +97,7 @@ def test_liolios1990_file_starts_from_the_static_displacement():
     assert uy3[0] == pytest.approx(-40.0 * 10.0 / (3 * 200e3), rel=1e-9)
 
 
-@pytest.mark.parametrize("name, m", [("winkler_beam", 21), ("pounding", 1)])
+@pytest.mark.parametrize("name, m", [("winkler_beam", 21), ("pounding", 1), ("yielding_frame", 48)])
 def test_examples_load_and_solve(name, m):
     spec = load_model_file(EXAMPLES / f"{name}.toml")
     assert spec.model.m == m

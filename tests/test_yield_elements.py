@@ -374,7 +374,7 @@ def test_frame_results_balance_with_hinges_friction_and_yield_links(rule):
     for key, value in base.items():
         np.testing.assert_allclose(fast[key], value, rtol=0, atol=1e-11 * np.abs(value).max(), err_msg=key)
     energy = energy_balance(st, h, Q)
-    assert energy["contact_dissipated"][-1] > 0.01 * energy["input_work"].max()
+    assert energy["plastic_work"][-1] > 0.01 * energy["input_work"].max() and energy["friction_work"][-1] > 0
     assert energy["max_relative_error"] < (1e-4 if rule == "bdf2" else 1e-9)      # trapezoidal: exact
 
 

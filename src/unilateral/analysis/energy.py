@@ -3,27 +3,34 @@
 From the equations of motion in natural form, ``M u'' + C u' + G sigma = q`` with
 ``sigma = E eps + E_v eps'``, ``eps = G^T u - B v - theta``, and ``B^T sigma = psi + A v + r``:
 
-    W_in = (T - T_0) + (U - U_0) + D_damping + D_contact
+    W_in = (T - T_0) + (U - U_0) + D_damping + D_contact + W_plastic + W_friction
 
 * ``T = u'^T M u' / 2``: kinetic energy (relative to the ground under a ground motion);
 * ``U = sum eps^T E eps / 2``: elastic energy, of the bilateral elements (``elastic_structure``,
   beams with plastic hinges included) and of the unilateral elements (``elastic_unilateral``: soil,
   gaps, cables, yield links, sliders);
 * ``D_damping = int u'^T C u' dt``: dissipated by Rayleigh damping and attached dashpots;
-* ``D_contact = int (eps'^T E_v eps' + (B^T sigma)^T v') dt``, ``B^T sigma = psi + A v + r`` with
-  the elastic and Kelvin ``sigma``: dissipated by the Kelvin dashpots of contacts, by slip at a
-  capacity ``r``, by plastic flow and friction (``(psi + r)^T v'``, ``psi = 0`` while a face yields
-  or a contact slips), stored by kinematic hardening (``v^T A v / 2``), and lost by the reactions
-  at the switches of contact (``psi^T v' = 0`` in continuous time; the discrete contact switch
-  loses ``-psi^T dv`` over a step, which vanishes as ``dt -> 0``);
+* the work of ``B^T sigma = psi + A v + r`` (elastic and Kelvin ``sigma``) on ``v'``, split by the
+  family of the unknowns (:mod:`unilateral.constraints`):
+
+  - ``D_contact = int (eps'^T E_v eps' + (B^T sigma)_c^T v_c') dt``: dissipated by the Kelvin
+    dashpots of the unilateral elements (``c``, ``ct``), by slip at a contact's capacity ``r``, and
+    lost by the reactions at the switches of contact (``psi^T v' = 0`` in continuous time; the
+    discrete contact switch loses ``-psi^T dv`` over a step, which vanishes as ``dt -> 0``);
+  - ``W_plastic = int (B^T sigma)_y^T v_y' dt``: the plastic work of yield links and hinges
+    (``(psi + r)^T v'`` with ``psi = 0`` while a face yields), dissipated, plus the energy stored by
+    kinematic hardening (``v^T A v / 2``);
+  - ``W_friction = int (B^T sigma)_f^T v_f' dt``: the work of the tangential forces on the slips
+    (Coulomb friction), dissipated;
+
 * ``W_in = int q^T u' dt``: the work of the applied loads (gravity, pulses, ``-M r a_g``).
 
 The integrals use the trapezoidal rule on the step increments, e.g.
 ``W_in += (q_n + q_{n-1})^T (u_n - u_{n-1}) / 2``. With these quadratures the balance of the
 trapezoidal time-stepping rule is exact (to round-off) for linear structures, with or without
-contact; other rules leave an error of their order (measured in ``tests/test_energy.py``).
-The relative error is the balance residual over the largest energy of the run (input work,
-kinetic energy, change of elastic energy or energy dissipated).
+contact, yield and friction; other rules leave an error of their order (measured in
+``tests/test_energy.py``). The relative error is the balance residual over the largest energy of
+the run (input work, kinetic energy, change of elastic energy or energy dissipated).
 """
 
 from __future__ import annotations
@@ -49,9 +56,12 @@ def energy_balance(structure, h, q) -> dict:
     Returns
     -------
     dict of (N+1,) arrays: ``kinetic``, ``elastic_structure``, ``elastic_unilateral``,
-    ``damping_dissipated``, ``contact_dissipated``, ``input_work``, ``balance_error`` (the
-    residual ``W_in - dT - dU - D``), ``relative_error`` (the residual over the largest energy
-    of the run: input work, kinetic, change of elastic, or dissipated); and ``max_relative_error`` (float).
+    ``damping_dissipated``, ``contact_dissipated``, ``plastic_work``, ``friction_work``,
+    ``input_work``, ``balance_error`` (the residual ``W_in - dT - dU - D``), ``relative_error``
+    (the residual over the largest energy of the run: input work, kinetic, change of elastic, or
+    dissipated); ``unknown_work`` (m,): the work on each unknown's ``v'`` over the run (a yield
+    pair's plastic work, a slip pair's friction work, summed over its two unknowns); and
+    ``max_relative_error`` (float).
     """
     from ..structure.forces import StateRows
 
@@ -80,8 +90,8 @@ class EnergyBalance:
     The strains are reordered, those of the bilateral elements first and those of the unilateral
     elements (``Structure.unilateral_strains``) last, so that both parts are blocks of rows; the
     rows of ``C u'`` without damping and of ``E_v eps'`` without Kelvin elements are left out. The
-    work on ``v'`` takes ``B^T sigma`` per unknown. Small matrices are multiplied dense, large ones
-    sparse.
+    work on ``v'`` takes ``B^T sigma`` per unknown, summed by family (:func:`unknown_kinds`). Small
+    matrices are multiplied dense, large ones sparse.
 
     Parameters
     ----------
@@ -109,6 +119,8 @@ class EnergyBalance:
         self.imposed = bool(self.offset.any())
         self.R = _prepared(sp.vstack(rates))
         self.Bt = _prepared(sp.csr_matrix(nat.B)[order].T)           # (m, ne): B^T sigma per unknown
+        kinds = unknown_kinds(structure)
+        self.families = {key: kinds == kind for key, kind in FAMILY_TERMS.items()}
 
     def __call__(self, state, q) -> dict:
         """The energies of :func:`energy_balance` of a run.
@@ -132,23 +144,42 @@ class EnergyBalance:
         work = _cumulative(_work(q, du))
         damping = _cumulative(_pairs(rates[n:2 * n], du)) if self.damped else np.zeros(x.shape[1])
         sigma_b = self.Bt @ Eeps                                          # B^T sigma, elastic part
-        increments = 0.0
+        increments = np.zeros(x.shape[1] - 1)                           # of the Kelvin dashpots
         if self.kelvin:
             viscous = rates[2 * n if self.damped else n:]
             increments = _pairs(viscous, np.diff(eps, axis=1))
             sigma_b = sigma_b + self.Bt @ viscous
-        # work of B^T sigma = psi + A v + r on v': capacity slip, plastic flow, friction, contact switches
-        increments = increments + _pairs(sigma_b, np.diff(x[n:], axis=1))
-        contact = _cumulative(increments)
+        # work of B^T sigma = psi + A v + r on v' per unknown: contact switches and capacity slip,
+        # plastic flow, friction
+        per_unknown = 0.5 * (sigma_b[:, 1:] + sigma_b[:, :-1]) * np.diff(x[n:], axis=1)
+        terms = {key: per_unknown[mask].sum(axis=0) for key, mask in self.families.items()}
+        terms["contact_dissipated"] = terms["contact_dissipated"] + increments
+        terms = {key: _cumulative(value) for key, value in terms.items()}
+        dissipated = damping + sum(terms.values())
         T0, U0 = kinetic[0], elastic_s[0] + elastic_u[0]
         elastic = elastic_s + elastic_u - U0
-        residual = work - (kinetic - T0) - elastic - damping - contact
-        scale = max(np.abs(work).max(), kinetic.max(), np.abs(elastic).max(), (damping + contact).max(), 0.0)
+        residual = work - (kinetic - T0) - elastic - dissipated
+        scale = max(np.abs(work).max(), kinetic.max(), np.abs(elastic).max(), dissipated.max(), 0.0)
         relative = np.abs(residual) / scale if scale > 0 else np.zeros_like(residual)
         return {"kinetic": kinetic, "elastic_structure": elastic_s, "elastic_unilateral": elastic_u,
-                "damping_dissipated": damping, "contact_dissipated": contact, "input_work": work,
+                "damping_dissipated": damping, **terms, "input_work": work,
                 "balance_error": residual, "relative_error": relative,
-                "max_relative_error": float(relative.max())}
+                "unknown_work": per_unknown.sum(axis=1), "max_relative_error": float(relative.max())}
+
+
+#: The energy term of each family of constraint unknowns.
+FAMILY_TERMS = {"contact_dissipated": "contact", "plastic_work": "yield", "friction_work": "friction"}
+
+
+def unknown_kinds(structure) -> np.ndarray:
+    """The family (``"contact"``, ``"yield"``, ``"friction"``) of each of the ``m`` unknowns (m,).
+
+    From the elements' :class:`~unilateral.structure.elements.Unknown` s; a structure built by hand
+    (no elements) has contacts only.
+    """
+    m = structure.natural.B.shape[1]
+    kinds = [u.kind for _, u in structure.constraints]
+    return np.array(kinds if len(kinds) == m else ["contact"] * m, dtype=str)
 
 
 def _work(q, du) -> np.ndarray:

@@ -16,6 +16,8 @@ tables end there, and in ``results.nc`` its values after that are NaN.
 ``constraints.csv``        ``v`` (uplift, plastic multiplier, slip) and ``psi`` per constraint unknown
 ``element_forces.csv``     end forces ``name:N_i`` ... ``name:M_j`` per element (frames)
 ``base.csv``               base shear, base vertical force, overturning moment, drifts, energies
+``yield_and_slip.csv``     plastic deformation and force of each yield element, slip, tangential
+                           and normal force of each friction element (frames that have them)
 ``summary.json``           the key figures (static state, peaks with their times, periods,
                            energy balance, LCP error, run time)
 figures                    :mod:`unilateral.figures.results`, drawn from the Dataset written
@@ -129,6 +131,8 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
     ds = to_dataset(cases, units=units, attrs=meta)
     ds.attrs["case_labels"] = json.dumps({name: labels.get(name, name) for name in cases})
     extra_results = None
+    if structure is None and model is not None:
+        ds = _with_model_kinds(ds, model)
     if structure is not None:
         ds = _with_node_displacements(ds, cases, structure, units)
         ds = _with_constraint_coords(ds, structure)
@@ -159,7 +163,8 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         extra["cases"] = {name: {"success": sol.success, "message": sol.message,
                                  "steps_computed": len(sol.t) - 1, "t_reached": float(sol.t[-1])}
                           for name, sol in computed.items()}
-    result = summary(computed[main_name], units=units, extra=extra)
+    kinds = ds["constraint_kind"].values.tolist() if "constraint_kind" in ds.coords else None
+    result = summary(computed[main_name], units=units, extra=extra, kinds=kinds)
     if extra_results is not None:
         result["results"] = to_jsonable(extra_results["peaks"])
     write_json_atomic(out / "summary.json", result)
@@ -295,8 +300,22 @@ def _with_constraint_coords(ds, structure):
                             constraint_kind=("constraint", kind), constraint_gap=("constraint", gap))
 
 
+def _with_model_kinds(ds, model):
+    """The family of each unknown of a model without a structure as ``constraint_kind`` (``contact``,
+    ``yield``, ``friction``), if it has other unknowns than contacts."""
+    kinds = getattr(getattr(model, "law", None), "kinds", ())
+    if "constraint" not in ds.dims or not set(kinds) - {"contact"}:
+        return ds
+    return ds.assign_coords(constraint_kind=("constraint", list(kinds)))
+
+
+#: Columns of ``yield_and_slip.csv``: the variables of :mod:`unilateral.analysis.inelastic`.
+INELASTIC_COLUMNS = {"yield_element": ("plastic_deformation", "yield_force"),
+                     "friction_element": ("slip", "friction_force", "normal_force")}
+
+
 def _save_result_tables(ds, out, *, main_name):
-    """``element_forces.csv`` and ``base.csv`` of the main case."""
+    """``element_forces.csv``, ``base.csv`` and ``yield_and_slip.csv`` of the main case."""
     d = ds.sel(case=main_name) if "case" in ds.dims else ds
     t = d["time"].values
     if "end_force" in d:
@@ -320,6 +339,12 @@ def _save_result_tables(ds, out, *, main_name):
         if str(name).startswith("energy_"):
             columns[str(name)] = d[name].values
     write_text_atomic(out / "base.csv", _csv(columns))
+    columns = {"time": t}
+    for dim, names in INELASTIC_COLUMNS.items():
+        for name in (name for name in names if name in d):
+            columns |= {f"{name}:{label}": d[name].values[:, k] for k, label in enumerate(d[dim].values)}
+    if len(columns) > 1:
+        write_text_atomic(out / "yield_and_slip.csv", _csv(columns))
 
 
 def _csv(columns) -> str:
@@ -344,8 +369,9 @@ def report(result: dict) -> str:
     if fig:
         unit = units.get("length", "") if fig["dof"] != "rz" else "rad"
         lines = [f"{fig['dof']} of node {fig['node']} [{unit}]: static {fig['static']:.4g}"]
+        width = max(15, *(len(label) for label in fig["peak"]))
         for label, peak in fig["peak"].items():
-            lines.append(f"  {label:>15}: max {peak:.4g}, min {fig['minimum'][label]:.4g}")
+            lines.append(f"  {label:>{width}}: max {peak:.4g}, min {fig['minimum'][label]:.4g}")
         text += "\n\n" + "\n".join(lines)
     results = result.get("results") or {}
     if results:
@@ -376,12 +402,73 @@ def _result_lines(results: dict, units: dict) -> list[str]:
         if p.get("drift_ratio"):
             label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
             lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}) at t = {d['t']:.4g} {time}")
+        lines += [f"{' ' * len(head)} {line}" for line in _family_lines(p, units)]
         if p.get("energy"):
             e = p["energy"]
+            terms = " + ".join(f"{e[key]:.4g} ({word})" for key, word in DISSIPATED if key in e)
             lines.append(f"{' ' * len(head)} energy balance: relative error {e['max_relative_error']:.2g}, "
-                         f"input work {e['input_work']:.4g}, dissipated {e['damping_dissipated']:.4g} (damping) "
-                         f"+ {e['contact_dissipated']:.4g} (contact) [{force} {length}]")
+                         f"input work {e['input_work']:.4g}, dissipated {terms} [{force} {length}]")
     return lines
+
+
+#: The dissipation terms of the energy balance in the terminal summary.
+DISSIPATED = (("damping_dissipated", "damping"), ("contact_dissipated", "contact"), ("plastic_work", "plastic"),
+              ("friction_work", "friction"))
+
+
+def _family_lines(p: dict, units: dict) -> list[str]:
+    """The yield and friction lines of a case's peaks ``p``, and then its residual drift."""
+    lines = []
+    if p.get("yield_elements"):
+        lines.append(_yield_line(p["yield_elements"], units))
+    if p.get("friction_elements"):
+        lines.append(_friction_line(p["friction_elements"], units))
+    drift = p.get("residual_drift")
+    if lines and drift:
+        lines.append(f"residual drift ratio {100 * drift['ratio']:.2g} % (storey {drift['storey']}) at the last "
+                     f"step, t = {drift['t']:.4g} {units.get('time', '')}".rstrip())
+    return lines
+
+
+def _yield_line(elements: dict, units: dict) -> str:
+    """``yield: 14 of 18 hinges yielded, peak ductility 3.2 (B1.i), ...``."""
+    kinds = {e["kind"] for e in elements.values()}
+    noun = {"hinge": "hinges", "yield link": "yield links"}.get(kinds.pop(), "") if len(kinds) == 1 else ""
+    yielded = sum(e["yielded"] for e in elements.values())
+    text = f"yield: {yielded or 'none'} of {len(elements)} {noun or 'yield elements'} yielded"
+    if not yielded:
+        ratios = {name: e["peak_force_ratio"]["value"] for name, e in elements.items()}
+        name = max(ratios, key=ratios.get)
+        return text + f", peak force {ratios[name]:.3g} x the yield force ({name})"
+    ductile = {name: e["ductility"]["value"] for name, e in elements.items() if "ductility" in e}
+    if ductile:
+        name = max(ductile, key=ductile.get)
+        text += f", peak ductility {ductile[name]:.3g} ({name})"
+    rigid = {name: e for name, e in elements.items() if "ductility" not in e}
+    if rigid:
+        name, e = max(rigid.items(), key=lambda item: abs(item[1]["peak_plastic_deformation"]["value"]))
+        word = "rotation" if e["unit"] == "rad" else "deformation"
+        text += f", peak plastic {word} {abs(e['peak_plastic_deformation']['value']):.3g} {e['unit']} ({name})"
+    work = [e["plastic_work"] for e in elements.values() if e["plastic_work"] is not None]
+    if work:
+        text += f", plastic work {sum(work):.4g} {units.get('force', '')} {units.get('length', '')}".rstrip()
+    return text
+
+
+def _friction_line(elements: dict, units: dict) -> str:
+    """``friction: 2 of 9 friction elements slid, peak slip 0.012 m (F1), ...``."""
+    length = units.get("length", "")
+    slid = sum(e["slid"] for e in elements.values())
+    if not slid:
+        return f"friction: none of {len(elements)} friction elements slid"
+    name, e = max(elements.items(), key=lambda item: abs(item[1]["peak_slip"]["value"]))
+    text = (f"friction: {slid} of {len(elements)} friction elements slid, peak slip "
+            f"{abs(e['peak_slip']['value']):.3g} {length} ({name}), total slip "
+            f"{sum(e['total_slip'] for e in elements.values()):.3g} {length}")
+    work = [e["friction_work"] for e in elements.values() if e["friction_work"] is not None]
+    if work:
+        text += f", friction work {sum(work):.4g} {units.get('force', '')} {length}".rstrip()
+    return text
 
 
 def _with_unit(label, units, dof):

@@ -19,6 +19,8 @@ variable                  dims                                   content
 ``storey_drift``          time, storey                           ``ux`` upper - lower
 ``drift_ratio``           time, storey                           drift / storey height
 ``constraint_deformation`` time, constraint                      total strain of each constraint's strain
+``plastic_deformation``,  time, yield_element;                   yield and friction elements
+``slip``, ...             time, friction_element                 (:mod:`unilateral.analysis.inelastic`)
 ``energy_*``              time                                   :mod:`unilateral.analysis.energy`
 ``mode_period``,          mode; mode, dof                        bilateral periods and shapes
 ``mode_shape``, ...
@@ -30,13 +32,17 @@ from __future__ import annotations
 import numpy as np
 
 from ..structure import forces as F
-from .energy import energy_balance
+from .energy import energy_balance, unknown_kinds
+from .inelastic import Inelastic
 from .modes import modes
 
 #: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
 MODES_MAX_N = 3000
 ENERGY_KEYS = ("kinetic", "elastic_structure", "elastic_unilateral", "damping_dissipated",
-               "contact_dissipated", "input_work", "balance_error", "relative_error")
+               "contact_dissipated", "plastic_work", "friction_work", "input_work", "balance_error",
+               "relative_error")
+#: The energy terms written only for a structure with unknowns of that family.
+FAMILY_ENERGY = {"plastic_work": "yield", "friction_work": "friction"}
 
 
 def ground_motions_of(structure, load) -> list:
@@ -90,6 +96,9 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         entry[1][case] = np.asarray(array, dtype=float)
 
     foundation = getattr(structure, "foundation", None)
+    inelastic = Inelastic(structure, units)
+    coords |= inelastic.coords()
+    energy_keys = _energy_keys(structure)
     for case, sol in cases.items():
         if sol.u is None or len(sol.t) < 2:
             continue
@@ -151,11 +160,15 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                 "interstorey drift ux(upper) - ux(lower)", L)
             put("drift_ratio", ("time", "storey"), case, np.column_stack([r for _, r in drifts.values()]),
                 "interstorey drift ratio", "1")
+        histories = {}
         if structure.m:
             e, _ = structure.element_deformations(h.u, h.v)
             put("constraint_deformation", ("time", "constraint"), case, e,
                 ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
                  "slip: tangential motion; hinge: end rotation in rad)"), L)
+            histories = inelastic.histories(h, e)
+            for name, (dims, values, long_name, unit) in histories.items():
+                put(name, dims, case, values, long_name, unit)
         energy = None
         if load_samples is not None:
             energy = energy_balance(structure, h, np.asarray(load_samples)[: len(t)])
@@ -163,11 +176,15 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                 from ..structure.foundation import add_soil_energy
 
                 energy = add_soil_energy(energy, contact, h.u)
-            for key in ENERGY_KEYS:
+            for key in energy_keys:
                 put(f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
                     "1" if key == "relative_error" else moment_unit)
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
+        if energy is not None:
+            peaks[case]["energy"] |= {key: float(energy[key][-1]) for key in FAMILY_ENERGY if key in energy_keys}
+        if inelastic:
+            peaks[case] |= inelastic.peaks(t, h, histories, None if energy is None else energy["unknown_work"])
     static = {}
     if foundation is not None:              # the bilateral structure: on the soil's static springs
         try:
@@ -191,6 +208,12 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                 p["periods"] = info["period"].tolist()
     return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"overturning_point": list(point)}}
+
+
+def _energy_keys(structure) -> tuple:
+    """:data:`ENERGY_KEYS` without the plastic and friction work of families the structure lacks."""
+    kinds = set(unknown_kinds(structure).tolist()) if structure.m else set()
+    return tuple(key for key in ENERGY_KEYS if key not in FAMILY_ENERGY or FAMILY_ENERGY[key] in kinds)
 
 
 def _kind(structure, name):
@@ -221,6 +244,7 @@ def _peaks(t, base, ends, reaction, drifts, energy, *, h, ground_motions, struct
                                for name, f in reaction["ground_elements"].items()}
     if drifts:
         out["drift_ratio"] = {label: _abs_peak(t, ratio) for label, (_, ratio) in drifts.items()}
+        out["residual_drift"] = _residual_drift(t, drifts)
     if ground_motions:
         acc = F.absolute_acceleration(structure, h, ground_motions)
         names = structure.dofs.names
@@ -234,3 +258,11 @@ def _peaks(t, base, ends, reaction, drifts, energy, *, h, ground_motions, struct
                          "contact_dissipated": float(energy["contact_dissipated"][-1]),
                          "kinetic_max": float(energy["kinetic"].max())}
     return out
+
+
+def _residual_drift(t, drifts) -> dict:
+    """The storey drifts at the last step: the largest (``storey``, ``drift``, ``ratio``, ``t``) and
+    every storey's (``storeys``: label -> ``drift``, ``ratio``)."""
+    storeys = {label: {"drift": float(d[-1]), "ratio": float(r[-1])} for label, (d, r) in drifts.items()}
+    label = max(storeys, key=lambda s: abs(storeys[s]["ratio"]))
+    return {"storey": label, **storeys[label], "t": float(t[-1]), "storeys": storeys}

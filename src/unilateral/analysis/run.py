@@ -59,8 +59,8 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
                    structure=spec.structure, units=spec.units, figure=spec.figure,
                    title=a.get("title") or path.stem, meta={"model_file": str(path)},
                    cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
-                   labels=None, formats=figures, progress=progress, point=point, storeys=storeys,
-                   figure_process=figure_process)
+                   labels=case_labels(_kinds(spec)), formats=figures, progress=progress, point=point,
+                   storeys=storeys, figure_process=figure_process)
 
 
 def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None, figure_process=None,
@@ -92,6 +92,45 @@ def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None
                    cases=("unilateral", "bilateral"), formats=figures, progress=progress,
                    labels={"unilateral": "with uplift", "bilateral": "without uplift"},
                    figure_process=figure_process)
+
+
+#: What each kind of unknown does in the label of the case that lets it act.
+_ACTIONS = {"yield": "yield", "friction": "slip", "soil": "uplift", "foundation": "uplift", "gap": "pounding",
+            "cable": "slack"}
+_ORDER = ("yield", "slip", "uplift", "pounding", "slack", "contact")
+
+
+def case_labels(kinds) -> dict | None:
+    """Legend labels of the cases ``"unilateral"`` and ``"bilateral"`` of a model with unknowns of ``kinds``.
+
+    Parameters
+    ----------
+    kinds : the kind of each unknown (``"soil"``, ``"gap"``, ``"cable"``, ``"contact"``, ``"yield"``,
+        ``"friction"``)
+
+    Returns
+    -------
+    dict or None
+        None for contacts only (the cases keep their names). With yield or friction the first case
+        is named by what acts (``"with yield, slip and uplift"``) and the second, which holds every
+        unknown at its initial state, ``"elastic"`` (yield only), ``"no slip"`` (friction only) or
+        ``"linear (constraints held)"``.
+    """
+    kinds = set(kinds)
+    if not kinds & {"yield", "friction"}:
+        return None
+    actions = sorted({_ACTIONS.get(kind, "contact") for kind in kinds}, key=_ORDER.index)
+    first = actions[0] if len(actions) == 1 else f"{', '.join(actions[:-1])} and {actions[-1]}"
+    held = {frozenset({"yield"}): "elastic", frozenset({"friction"}): "no slip"}.get(frozenset(kinds),
+                                                                                     "linear (constraints held)")
+    return {"unilateral": f"with {first}", "bilateral": held}
+
+
+def _kinds(spec) -> list[str]:
+    """The kind of each unknown of a model file: the element's for a contact, else its family."""
+    if spec.structure is not None:
+        return [e.kind if u.kind == "contact" else u.kind for e, u in spec.structure.constraints]
+    return list(getattr(getattr(spec.model, "law", None), "kinds", ()))
 
 
 def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:

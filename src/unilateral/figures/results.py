@@ -15,10 +15,16 @@ file                     content
                          envelopes along the foundation
 ``force_deformation``    force against deformation of the unilateral elements (the largest)
 ``gaps``                 relative displacement across each gap element with the gap line
+``hysteresis``           force against deformation of the yield and friction elements, the
+                         largest dissipated energy first (at most :data:`MAX_HYSTERESIS`)
 ``ground_motion``        the input record(s)
 ``base_forces``          base shear and overturning moment
 ``energy``               the energy balance and its relative error
 =======================  ======================================================================
+
+The contact figures (``constraints``, ``force_deformation``, ``gaps``) show the contacts only:
+plastic multipliers and slips (``constraint_kind`` ``yield`` and ``friction``) are no openings and
+their ``psi`` is no contact force; ``hysteresis`` shows them.
 """
 
 from __future__ import annotations
@@ -28,9 +34,12 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.summary import RATE_KINDS
 from .plots import PAGE_WIDTH, _figure, _styled, envelope, save_figure
 
 MAX_PANELS = 6
+#: Most panels of the hysteresis figure.
+MAX_HYSTERESIS = 12
 FORMATS = ("png", "pdf")
 
 
@@ -51,6 +60,11 @@ def length_scale(unit: str, peak: float) -> tuple[str, float]:
     if unit == "m" and 0.0 < peak < 0.5:
         return "mm", 1e3
     return unit, 1.0
+
+
+def rotation_scale(peak: float) -> tuple[str, float]:
+    """Display unit and factor for rotations [rad]: milliradians below 0.5 rad."""
+    return ("mrad", 1e3) if 0.0 < peak < 0.5 else ("rad", 1.0)
 
 
 def force_scale(unit: str, peak: float) -> tuple[str, float]:
@@ -123,8 +137,8 @@ def draw_figures(ds, out_dir, formats=("png",)) -> list[Path]:
     written = []
     for name, draw in (("fig2", history_figure), ("constraints", constraints_figure),
                        ("force_deformation", force_deformation_figure), ("gaps", gaps_figure),
-                       ("ground_motion", ground_motion_figure), ("base_forces", base_forces_figure),
-                       ("energy", energy_figure)):
+                       ("hysteresis", hysteresis_figure), ("ground_motion", ground_motion_figure),
+                       ("base_forces", base_forces_figure), ("energy", energy_figure)):
         fig = draw(ds)
         if fig is not None:
             written += save_figure(fig, out / name, formats)
@@ -158,9 +172,14 @@ def history_figure(ds):
 
 
 def _constraint_data(ds):
+    """The main case with its contacts only (no plastic multipliers, no slips), or None without any."""
     d = _case(ds, main_case(ds))
     if "v" not in d or d.sizes.get("constraint", 0) == 0:
         return None
+    if "constraint_kind" in d.coords:
+        contact = np.flatnonzero(~np.isin(d["constraint_kind"].values.astype(str), RATE_KINDS))
+        if contact.size < d.sizes["constraint"]:
+            d = d.isel(constraint=contact) if contact.size else None
     return d
 
 
@@ -304,6 +323,98 @@ def gaps_figure(ds):
 
 
 @_styled
+def hysteresis_figure(ds):
+    """Force against deformation of the yield and friction elements, the most demanding first.
+
+    One panel per element, at most :data:`MAX_HYSTERESIS`, ordered by the energy dissipated (the
+    work of the force on the plastic deformation or the slip), then by the peak force over the
+    yield force; dashed lines mark the yield forces.
+    """
+    from matplotlib.ticker import MaxNLocator
+
+    d = _case(ds, main_case(ds))
+    panels = _yield_panels(d) + _friction_panels(d)
+    if not panels:
+        return None
+    panels.sort(key=lambda p: (-p["work"], -p["ratio"]))
+    shown = panels[:MAX_HYSTERESIS]
+    scales = _hysteresis_scales(d, shown)
+    ncols = min(3, len(shown))
+    nrows = -(-len(shown) // ncols)
+    title = 0.7 if len(shown) < len(panels) else 0.35
+    height = 0.5 + title + 2.0 * nrows
+    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), height), nrows=nrows, ncols=ncols,
+                        margins=(0.7, 0.4, 0.5, title), gaps=(0.75, 0.75), squeeze=False)
+    for ax in axes.flat[len(shown):]:
+        ax.remove()
+    for ax, p in zip(axes.flat, shown):
+        (xunit, xf), (yunit, yf) = scales[p["x"]], scales[p["y"]]
+        ax.plot(*envelope(xf * p["deformation"], xf * p["deformation"], yf * p["force"])[1:], color="C0",
+                linewidth=0.8, marker="o", markevery=[0], markersize=3)
+        for limit in p["limits"]:
+            ax.axhline(yf * limit, color="C3", linestyle="--", linewidth=0.7)
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
+        ax.set_title(p["name"], loc="left")
+        ax.set_title(p["kind"], loc="right", color="0.4")
+        ax.set(xlabel=_axis(p["xlabel"], xunit), ylabel=_axis(p["ylabel"], yunit))
+    if len(shown) < len(panels):
+        fig.suptitle(f"{len(shown)} of {len(panels)} yield and friction elements, the most dissipative first",
+                     y=1.0 - 0.12 / height, va="top")
+    return fig
+
+
+def _yield_panels(d) -> list[dict]:
+    """Hysteresis panels of the yield elements: deformation, force, yield lines, work, peak over yield."""
+    if "yield_force" not in d:
+        return []
+    force, deformation = d["yield_force"].values, d["yield_element_deformation"].values
+    plastic = d["plastic_deformation"].values
+    limits = np.column_stack([d["yield_limit_positive"].values, -d["yield_limit_negative"].values])
+    panels = []
+    for k, name in enumerate(d["yield_element"].values):
+        rotational = str(d["yield_deformation_unit"].values[k]) == "rad"
+        peak = max(float(np.max(force[:, k])) / limits[k, 0], float(np.min(force[:, k])) / limits[k, 1])
+        panels.append({"name": str(name), "kind": str(d["yield_element_kind"].values[k]), "force": force[:, k],
+                       "deformation": deformation[:, k], "limits": limits[k], "work": _work(force[:, k], plastic[:, k]),
+                       "ratio": peak, "x": "rotation" if rotational else "length",
+                       "y": "moment" if rotational else "force",
+                       "xlabel": "end rotation" if rotational else "deformation",
+                       "ylabel": "moment M" if rotational else "force F"})
+    return panels
+
+
+def _friction_panels(d) -> list[dict]:
+    """Hysteresis panels of the friction elements: tangential motion against the friction force."""
+    if "friction_force" not in d:
+        return []
+    force, motion, slip = d["friction_force"].values, d["tangential_deformation"].values, d["slip"].values
+    return [{"name": str(name), "kind": str(d["friction_element_kind"].values[k]), "force": force[:, k],
+             "deformation": motion[:, k], "limits": (), "work": _work(force[:, k], slip[:, k]), "ratio": 0.0,
+             "x": "length", "y": "force", "xlabel": "tangential motion", "ylabel": "friction force T"}
+            for k, name in enumerate(d["friction_element"].values)]
+
+
+def _work(force, deformation) -> float:
+    """Work of ``force`` on ``deformation`` (trapezoidal, NaN steps left out)."""
+    increments = 0.5 * (force[1:] + force[:-1]) * np.diff(deformation)
+    return float(np.nansum(increments))
+
+
+def _hysteresis_scales(d, panels) -> dict:
+    """Display unit and factor of each axis quantity (``length``, ``rotation``, ``force``, ``moment``)
+    over the panels: one unit per quantity in the figure."""
+    def peak(axis, quantity):
+        key = "deformation" if axis == "x" else "force"
+        return max((float(np.nanmax(np.abs(p[key]), initial=0.0)) for p in panels if p[axis] == quantity), default=0.0)
+
+    length, force = _unit(d, "length"), _unit(d, "force")
+    funit, ff = force_scale(force, peak("y", "force"))
+    munit, mf = force_scale(force, peak("y", "moment"))
+    return {"length": length_scale(length, peak("x", "length")), "rotation": rotation_scale(peak("x", "rotation")),
+            "force": (funit, ff), "moment": (f"{munit} {length}".strip(), mf)}
+
+
+@_styled
 def ground_motion_figure(ds):
     """The input ground acceleration(s)."""
     d = _case(ds, main_case(ds))
@@ -361,19 +472,22 @@ def energy_figure(ds):
         return None
     t = d["time"].values
     unit = str(d["energy_input_work"].attrs.get("units", ""))
-    fig, (top, low) = _figure((PAGE_WIDTH, 4.2), margins=(0.8, 0.2, 0.5, 0.35), gaps=(0.0, 0.15), nrows=2,
+    fig, (top, low) = _figure((PAGE_WIDTH, 4.2), margins=(0.8, 1.9, 0.5, 0.35), gaps=(0.0, 0.15), nrows=2,
                               sharex=True, height_ratios=(2.2, 1))
     for key, label in (("input_work", "input work"), ("kinetic", "kinetic"),
-                       ("elastic_structure", "elastic (structure, change)"),
-                       ("elastic_unilateral", "elastic (unilateral, change)"),
-                       ("damping_dissipated", "damping dissipated"), ("contact_dissipated", "contact dissipated")):
+                       ("elastic_structure", "elastic Δ (structure)"),
+                       ("elastic_unilateral", "elastic Δ (unilateral)"),
+                       ("damping_dissipated", "damping dissipated"), ("contact_dissipated", "contact dissipated"),
+                       ("plastic_work", "plastic work"), ("friction_work", "friction work")):
+        if f"energy_{key}" not in d:
+            continue
         y = d[f"energy_{key}"].values
         if key.startswith("elastic"):
             y = y - y[0]
         if np.any(y):
             top.plot(*envelope(t, y), label=label)
     top.set(ylabel=_axis("energy", unit), title="Energy balance")
-    top.legend(loc="best", ncols=2)
+    top.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     top.margins(x=0)
     low.semilogy(*envelope(t, np.maximum(d["energy_relative_error"].values, 1e-17)), color="0.3")
     low.yaxis.set_major_formatter(FuncFormatter(_power_of_ten))

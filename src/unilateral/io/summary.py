@@ -7,9 +7,12 @@ import numpy as np
 from ..result import Solution
 from .atomic import to_jsonable
 
+#: Kinds of the unknowns that are multipliers (plastic deformations, slips), not contacts.
+RATE_KINDS = ("yield", "friction")
+
 
 def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = None,
-            key_dofs: list | None = None) -> dict:
+            key_dofs: list | None = None, kinds=None) -> dict:
     """Key figures of a solution, in plain JSON types.
 
     Parameters
@@ -23,6 +26,11 @@ def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = No
     key_dofs : list of str, optional
         The DOFs :func:`format_summary` prints (``"static_shown"``); default: at most
         :data:`SHOWN_DOFS` DOFs with the largest static displacements (``static`` keeps all).
+    kinds : sequence of str, optional
+        The kind of each constraint unknown (``"soil"``, ``"gap"``, ``"contact"``, ...,
+        ``"yield"``, ``"friction"``); plastic multipliers and slips (``"yield"``,
+        ``"friction"``) are left out of ``constraints``: they are no uplift and their ``psi`` is no
+        contact force. Default: every unknown is a contact.
 
     Returns
     -------
@@ -32,10 +40,12 @@ def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = No
         ``units``, ``static`` (DOF name to the displacement at t = 0; empty without
         displacements), ``constraints`` (name to ``max_v``, ``t_max_v``: the peak uplift or gap
         opening and its time; ``min_psi``, ``t_min_psi``: the peak compressive reaction and its
-        time) and ``extra``. Statistics the run did not record are None.
+        time; contacts only, see ``kinds``) and ``extra``. Statistics the run did not record are
+        None.
     """
     stats = sol.stats
     t = np.asarray(sol.t)
+    kinds = ["contact"] * len(sol.constraint_names) if kinds is None else kinds
     return to_jsonable({
         "success": sol.success,
         "message": sol.message,
@@ -50,8 +60,9 @@ def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = No
         "contact_changes": stats.get("contact_changes"),
         "units": dict(units or {}),
         "static": {} if sol.u is None else dict(zip(sol.dof_names, np.asarray(sol.u)[0])),
-        "constraints": {name: _peaks(t, v, psi) for name, v, psi
-                        in zip(sol.constraint_names, np.asarray(sol.v).T, np.asarray(sol.psi).T)},
+        "constraints": {name: _peaks(t, v, psi) for name, v, psi, kind
+                        in zip(sol.constraint_names, np.asarray(sol.v).T, np.asarray(sol.psi).T, kinds)
+                        if kind not in RATE_KINDS},
         "static_shown": _shown(sol, key_dofs),
         "extra": dict(extra or {}),
     })
@@ -94,11 +105,12 @@ def format_summary(summary_dict: dict) -> str:
         lines += ["", *_table(["DOF", "u(t=0)"], [[name, _number(s["static"][name])] for name in shown])]
         if hidden > 0:
             lines.append(f"({hidden} more DOFs in summary.json and displacements.csv)")
-    lines += ["", *_table(
-        ["constraint", _label("max v", length), _label("at t", time), _label("min psi", force),
-         _label("at t", time)],
-        [[name, _number(p["max_v"]), _number(p["t_max_v"]), _number(p["min_psi"]), _number(p["t_min_psi"])]
-         for name, p in s["constraints"].items()])]
+    if s["constraints"]:
+        lines += ["", *_table(
+            ["constraint", _label("max v", length), _label("at t", time), _label("min psi", force),
+             _label("at t", time)],
+            [[name, _number(p["max_v"]), _number(p["t_max_v"]), _number(p["min_psi"]), _number(p["t_min_psi"])]
+             for name, p in s["constraints"].items()])]
     if s["extra"]:
         lines += ["", *(f"{key}: {value}" for key, value in s["extra"].items())]
     return "\n".join(lines)

@@ -72,6 +72,11 @@ class Unknown:
         Friction coefficient, >= 0.
     node : node id or None
         Where the unknown acts, for reports (None: the element's nodes).
+    k : float or None
+        Elastic stiffness in series with the multiplier [force/length, or force length/rad for a
+        rotation]: a yield link's or a hinge spring's ``k``, a slider's or a friction contact's
+        stick stiffness. The yield deformation of a face is ``r / k``. None: rigid-plastic (a
+        hinge without ``k``), or a contact.
     """
 
     name: str
@@ -82,6 +87,7 @@ class Unknown:
     normal: str | None = None
     mu: float = 0.0
     node: Hashable | None = None
+    k: float | None = None
 
 
 @dataclass(frozen=True)
@@ -228,18 +234,19 @@ def frictional(name, kind, i, j, terms, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, 
     """
     dofs, a = _relative(i, j, (terms, tangent_terms(f"{kind} {name!r}", terms)))
     E_v = np.diag([c, ct]) if c > 0 or ct > 0 else None
-    unknowns = (Unknown(name, 0, 1.0, capacity), *pair(name, 1, "friction", normal=name, mu=mu))
+    unknowns = (Unknown(name, 0, 1.0, capacity), *pair(name, 1, "friction", normal=name, mu=mu, k=kt))
     return Element(name, kind, dofs, a, np.diag([k, kt]), np.array([theta, 0.0]), E_v=E_v, unknowns=unknowns)
 
 
-def pair(name, row, kind, *, r=(0.0, 0.0), normal=None, mu=0.0, node=None) -> tuple[Unknown, Unknown]:
+def pair(name, row, kind, *, r=(0.0, 0.0), normal=None, mu=0.0, node=None, k=None) -> tuple[Unknown, Unknown]:
     """The two unknowns (``b = +1``, ``b = -1``) of a two-sided yield surface or a slip on strain ``row``.
 
     Named ``name.plastic+``/``name.plastic-`` (``kind="yield"``) or ``name.slip+``/``name.slip-``
-    (``kind="friction"``); ``r`` = (positive, negative) resistance, e.g. ``(F_t, F_c)``.
+    (``kind="friction"``); ``r`` = (positive, negative) resistance, e.g. ``(F_t, F_c)``; ``k`` the
+    elastic stiffness in series (see :class:`Unknown`).
     """
     suffix = "plastic" if kind == "yield" else "slip"
-    return tuple(Unknown(f"{name}.{suffix}{sign}", row, b, resistance, kind, normal, mu, node)
+    return tuple(Unknown(f"{name}.{suffix}{sign}", row, b, resistance, kind, normal, mu, node, k)
                  for sign, b, resistance in (("+", 1.0, r[0]), ("-", -1.0, r[1])))
 
 
@@ -268,7 +275,7 @@ def hinge(beam_element, name, end, *, My, k=None, modulus=0.0) -> Element:
         E = np.linalg.inv(flexibility)
         E = 0.5 * (E + E.T)
     node = beam_element.dofs[0 if end == "i" else 3][0]
-    unknowns = pair(name, row, "yield", r=(My, My), node=node)
+    unknowns = pair(name, row, "yield", r=(My, My), node=node, k=k)
     n = len(beam_element.unknowns)
     A = np.zeros((n + 2, n + 2))
     A[:n, :n] = beam_element.interaction

@@ -280,7 +280,7 @@ class Frame2D:
         k = _real(where, "k", k, ">0")
         r = _yield_forces(where, Fy, Fy_t, Fy_c)
         A = el.kinematic_hardening(_hardening(where, hardening) * k)
-        self._add(el.directional(name, "yield", *ends, terms, k, unknowns=el.pair(name, 0, "yield", r=r), A=A))
+        self._add(el.directional(name, "yield", *ends, terms, k, unknowns=el.pair(name, 0, "yield", r=r, k=k), A=A))
 
     def slider(self, name, node, *, mu, N, k, direction="ux") -> None:
         """Flat sliding bearing under ``node``: a stick spring ``k`` in series with Coulomb
@@ -302,10 +302,10 @@ class Frame2D:
         where, ends, terms = self._ends("slider", name, node, None, direction, ("node", None))
         if "rz" in dict(terms):
             raise ValueError(f"{where}: direction='rz' is not a sliding direction; use 'ux', 'uy' or a vector")
-        k = _real(where, "k", k, ">0")
-        force = _real(where, "mu", mu, ">=0") * _real(where, "N", N, ">0")
+        k, mu = _real(where, "k", k, ">0"), _real(where, "mu", mu, ">=0")
+        force = mu * _real(where, "N", N, ">0")
         self._add(el.directional(name, "slider", *ends, terms, k,
-                                 unknowns=el.pair(name, 0, "friction", r=(force, force))))
+                                 unknowns=el.pair(name, 0, "friction", r=(force, force), mu=mu, k=k)))
 
     def hinge(self, name, beam, end, *, My, k=None, hardening=0.0) -> None:
         """Plastic hinge at the end ``"i"`` or ``"j"`` of the beam ``beam`` (define the beam first).
