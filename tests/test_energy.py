@@ -14,6 +14,7 @@ import unilateral as ul
 from unilateral.analysis.energy import energy_balance
 from unilateral.structure import Frame2D
 from unilateral.structure import forces as F
+from yield_portal import frame as portal
 
 
 def frame(*, damped=True, soil=True):
@@ -145,32 +146,10 @@ def test_energy_balance_of_load_factors_equals_that_of_the_samples():
     assert by_samples["max_relative_error"] > 1e-6                  # bdf2: a real error, not round-off
 
 
-def yielding_frame():
-    """A portal with rigid-plastic and elastic-plastic hinges, a frictional soil contact that lifts and
-    slides, a slider and a yielding brace, with Rayleigh damping (as in tests/test_yield_elements.py)."""
-    fr = Frame2D()
-    for node, x, y in ((1, 0.0, 0.0), (2, 0.0, 3.0), (3, 4.0, 3.0), (4, 4.0, 0.0)):
-        fr.node(node, x, y)
-    fr.support(4, ux=False, uy=True, rz=True)
-    fr.support(1, ux=False, uy=False, rz=True)
-    for name, i, j in (("c1", 1, 2), ("c2", 4, 3), ("g", 2, 3)):
-        fr.beam(name, i, j, E=30e6, A=0.09, I=6.75e-4)
-    fr.hinge("h1", "c1", "j", My=40.0)
-    fr.hinge("h2", "g", "i", My=40.0, k=2e4, hardening=0.05)
-    fr.hinge("h3", "c2", "i", My=60.0, hardening=0.02)
-    fr.soil("s1", 1, 2e5, c=200.0, mu=0.4, kt=5e4, ct=50.0)
-    fr.slider("b4", 4, mu=0.3, N=150.0, k=5e4)
-    fr.yield_link("br", 1, 3, k=2e4, Fy_t=30.0, Fy_c=45.0, hardening=0.1, direction=(4.0, 3.0))
-    fr.mass(2, 20.0)
-    fr.mass(3, 20.0)
-    fr.rayleigh(a0=0.5, a1=1e-3)
-    return fr.build()
-
-
 def test_trapezoidal_rule_closes_the_balance_with_plastic_and_friction_work():
     """Plastic work and friction work are their own terms; with the contact term they are the work
     of B^T sigma on v' of their families, and the trapezoidal balance still closes to round-off."""
-    st = yielding_frame()
+    st = portal()
     dt, t_end = 1e-3, 1.2
     N = int(round(t_end / dt))
     t = dt * np.arange(N + 1)

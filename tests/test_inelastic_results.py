@@ -18,27 +18,9 @@ from unilateral.analysis.run import case_labels
 from unilateral.cli import main
 from unilateral.constraints import Yield
 from unilateral.io import load_netcdf
+from yield_portal import PORTAL_TOML
 
-MODEL = """
-units = { length = "m", force = "kN", time = "s" }
-nodes = [{ id = 1, x = 0.0, y = 0.0 }, { id = 2, x = 0.0, y = 3.0 }, { id = 3, x = 4.0, y = 3.0 },
-         { id = 4, x = 4.0, y = 0.0 }]
-supports = [{ node = 4, ux = false, uy = true, rz = true }, { node = 1, ux = false, uy = false, rz = true }]
-elements = [
-  { type = "beam", name = "c1", node_i = 1, node_j = 2, E = 30e6, A = 0.09, I = 6.75e-4 },
-  { type = "beam", name = "c2", node_i = 4, node_j = 3, E = 30e6, A = 0.09, I = 6.75e-4 },
-  { type = "beam", name = "g", node_i = 2, node_j = 3, E = 30e6, A = 0.09, I = 6.75e-4 },
-]
-unilateral = [
-  { type = "hinge", name = "h1", beam = "c1", end = "j", My = 40.0 },
-  { type = "hinge", name = "h2", beam = "g", end = "i", My = 40.0, k = 2e4, hardening = 0.05 },
-  { type = "hinge", name = "h3", beam = "c2", end = "i", My = 60.0, hardening = 0.02 },
-  { type = "soil", name = "s1", node = 1, k = 2e5, c = 200.0, mu = 0.4, kt = 5e4, ct = 50.0 },
-  { type = "slider", name = "b4", node = 4, mu = 0.3, N = 150.0, k = 5e4 },
-  { type="yield", name="br", node=1, node_j=3, k=2e4, Fy_t=30.0, Fy_c=45.0, hardening=0.1, direction=[4.0, 3.0] },
-]
-masses = [{ node = 2, m = 20.0 }, { node = 3, m = 20.0 }]
-damping = { rayleigh = { a0 = 0.5, a1 = 1e-3 } }
+MODEL = PORTAL_TOML + """
 [loads.gravity]
 g = 10.0
 [[loads.nodal]]
