@@ -85,15 +85,6 @@ class StepLaw:
         P = np.eye(self.m) if self.P is None else np.ascontiguousarray(self.P)
         return self.code, self.rate.astype(float), P, self.partner
 
-    def active_changes(self, v) -> np.ndarray:
-        """Per step and unknown (N+1, m), whether it is active: open contact, yielding, slipping."""
-        v = np.asarray(v)
-        active = v > 0
-        if self.rate.any() and v.shape[0]:
-            inc = np.diff(v, axis=0, prepend=v[:1])
-            active[:, self.rate] = inc[:, self.rate] > 0
-        return active
-
 
 def contact_law(m: int) -> StepLaw:
     """The law of ``m`` contact unknowns (the paper's LCP)."""
