@@ -186,6 +186,19 @@ timeout = 0.05
     assert before - after                                      # a worker that ran one was restarted
 
 
+SAFETY_NET = 1800.0
+"""Seconds after which a wait of the Ctrl-C test gives up (a hang, not a slow machine)."""
+
+
+def _wait_until(condition, what: str, detail=lambda: "") -> None:
+    """Poll ``condition()`` until true; fail naming ``what`` after ``SAFETY_NET`` seconds."""
+    deadline = time.monotonic() + SAFETY_NET
+    while not condition():
+        if time.monotonic() > deadline:
+            pytest.fail(f"waited {SAFETY_NET:g} s for {what}; it did not happen. {detail()}")
+        time.sleep(0.1)
+
+
 def _group(pgid) -> list[str]:
     """Command lines of the live processes of process group ``pgid``."""
     out = subprocess.run(["ps", "-o", "pid=,pgid=,stat=,args=", "-A"], capture_output=True, text=True).stdout
@@ -216,26 +229,28 @@ t_end = 5.0
     command = [sys.executable, "-m", "unilateral.batch", str(path), "--out", str(out), "--workers", "2",
                "--no-figures"]
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
-    process = subprocess.Popen(command, env=env, start_new_session=True, stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 120
-    while len(list((out / "results").glob("*.json"))) < 2 and time.monotonic() < deadline:
-        time.sleep(0.1)
-    os.killpg(process.pid, signal.SIGINT)                   # Ctrl-C on a terminal: the whole process group
-    _, stderr = process.communicate(timeout=90)
+    with open(tmp_path / "stderr.txt", "w") as err:            # a file: a full pipe would stall the study
+        process = subprocess.Popen(command, env=env, start_new_session=True, stdout=subprocess.DEVNULL,
+                                   stderr=err, text=True)
+    try:
+        _wait_until(lambda: len(list((out / "results").glob("*.json"))) >= 2 or process.poll() is not None,
+                    "the first run to write 2 results")
+        assert process.poll() is None, "the study ended before it was interrupted"
+        os.killpg(process.pid, signal.SIGINT)               # Ctrl-C on a terminal: the whole process group
+        _wait_until(lambda: process.poll() is not None, "the interrupted run to exit")
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+    stderr = (tmp_path / "stderr.txt").read_text()
     assert process.returncode == 130, stderr
     assert "interrupted" in stderr and "run the same command again" in stderr
     assert "Traceback" not in stderr                         # the workers leave Ctrl-C to the study
-    left = _group(process.pid)
-    deadline = time.monotonic() + 15
-    while left and time.monotonic() < deadline:
-        time.sleep(0.2)
-        left = _group(process.pid)
-    assert not left, f"processes left behind: {left}"       # the workers are gone with the cluster
+    _wait_until(lambda: not _group(process.pid), "the workers to exit with the cluster",
+                lambda: f"processes left behind: {_group(process.pid)}")
     first = {p.name: p.read_text() for p in (out / "results").glob("*.json")}
     assert 2 <= len(first) < 9
     assert not list((out / "results").glob(".*tmp*"))
-    second = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
+    second = subprocess.run(command, env=env, capture_output=True, text=True, timeout=SAFETY_NET)
     assert second.returncode == 0, second.stderr
     after = {p.name: p.read_text() for p in (out / "results").glob("*.json")}
     assert len(after) == 9                                    # every analysis exactly once

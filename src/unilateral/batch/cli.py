@@ -33,15 +33,19 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
     Each analysis writes its result to OUT/results/ as soon as it is done; running the same
     command again skips what is done, so an interrupted study (Ctrl-C, a crash) continues where
     it stopped. The table of peak quantities goes to OUT/study.nc and OUT/study.csv, the IDA and
-    fragility curves to OUT/ida.png and OUT/fragility.png.
+    fragility curves to OUT/ida.png and OUT/fragility.png. Exits with status 1 if an analysis
+    failed, 130 if interrupted.
     """
     from ..modelfile import ModelFileError
-    from .runner import StudyInterrupted, run_study
+    from .runner import ClusterError, StudyInterrupted, check_workers, run_study
     from .study import load_study
 
     out = out if out is not None else Path(study.stem)
     try:
+        check_workers(workers)
         spec = load_study(study)
+    except ClusterError as exc:
+        raise click.BadParameter(str(exc), param_hint="--workers") from None
     except ModelFileError as exc:
         raise click.ClickException(str(exc)) from None
     if not quiet:
@@ -53,6 +57,8 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
         result = run_study(spec, out, scheduler=scheduler, workers=workers, synchronous=synchronous,
                            progress=not quiet, retry_failed=retry_failed, figures=not no_figures,
                            fsync=fsync)
+    except ClusterError as exc:
+        raise click.BadParameter(str(exc), param_hint="--scheduler") from None
     except StudyInterrupted as exc:
         done = len(spec.analyses) - exc.result.counts.get("pending", 0)
         click.echo(f"interrupted: {done} of {len(spec.analyses)} analyses done and kept in {out}/results/; "
@@ -63,5 +69,6 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
         click.echo(f"figure: {path}", err=True)
     failures = sum(result.counts.get(s, 0) for s in ("failed", "error", "timeout"))
     if failures:
-        click.echo(f"{failures} analyses failed: see the status and message columns of {out / 'study.csv'}",
-                   err=True)
+        click.echo(f"{failures} of {len(spec.analyses)} analyses failed: see the status and message columns "
+                   f"of {out / 'study.csv'}", err=True)
+        sys.exit(1)

@@ -29,6 +29,29 @@ from .worker import result_path, run_analysis, write_result
 
 ALLOWED_FAILURES = 3
 """Times a task may be on a worker that dies before it is given up (``KilledWorker``)."""
+WORKERS_PER_CORE = 4
+"""Most worker processes of a local cluster per core of the machine."""
+CONNECT_TIMEOUT = "10s"
+"""How long to try to reach a scheduler given by its address."""
+
+
+class ClusterError(ValueError):
+    """A scheduler that cannot be reached, or a number of workers that cannot be started."""
+
+
+def check_workers(workers) -> None:
+    """Refuse more local workers than ``WORKERS_PER_CORE`` times the machine's cores.
+
+    Raises
+    ------
+    ClusterError
+        Naming the value and the limit.
+    """
+    cores = os.cpu_count() or 1
+    if workers is not None and workers > WORKERS_PER_CORE * cores:
+        raise ClusterError(f"workers={workers}: more than {WORKERS_PER_CORE} per core of this machine "
+                           f"({cores} cores: at most {WORKERS_PER_CORE * cores}); a worker runs one analysis "
+                           "at a time, so more workers than cores do not run faster")
 
 
 class StudyInterrupted(KeyboardInterrupt):
@@ -101,8 +124,11 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
     ------
     StudyInterrupted
         On Ctrl-C, after the tasks are cancelled, the cluster closed and the table written.
+    ClusterError
+        Too many ``workers``, or a ``scheduler`` that cannot be reached.
     """
     start = time.perf_counter()
+    check_workers(workers)
     if not isinstance(study, Study):
         study = load_study(study)
     out = Path(out)
@@ -185,7 +211,8 @@ def start_cluster(workers=None, scheduler=None):
     from distributed import Client, LocalCluster
 
     if scheduler:
-        return Client(scheduler), None
+        return connect(scheduler), None
+    check_workers(workers)
     n = int(workers or os.cpu_count() or 1)
     # Ctrl-C on a terminal reaches the whole process group: the workers leave it to this process
     # (which cancels the tasks and closes them) instead of dying with a traceback each. They are
@@ -210,6 +237,28 @@ def start_cluster(workers=None, scheduler=None):
     register = getattr(client, "register_plugin", None) or client.register_worker_plugin
     register(IgnoreInterrupts(), name=IgnoreInterrupts.name)
     return client, cluster
+
+
+def connect(scheduler: str):
+    """A client of the running scheduler at the address ``scheduler``.
+
+    Raises
+    ------
+    ClusterError
+        An address that is not valid, or a scheduler not reached within ``CONNECT_TIMEOUT``.
+    """
+    from distributed import Client
+    from distributed.comm import registry
+
+    scheme = scheduler.split("://", 1)[0] if "://" in scheduler else "tcp"
+    if scheme not in registry.backends:
+        raise ClusterError(f"scheduler={scheduler!r}: unknown address scheme {scheme!r} (valid: "
+                           f"{', '.join(sorted(registry.backends))}, e.g. tcp://host:8786)")
+    try:
+        return Client(scheduler, timeout=CONNECT_TIMEOUT)
+    except (OSError, ValueError, TimeoutError) as exc:
+        raise ClusterError(f"scheduler={scheduler!r}: cannot connect to a Dask scheduler there ({exc}); "
+                           "start one (dask scheduler) or leave the scheduler out for a local cluster") from None
 
 
 def _ignore_interrupts():

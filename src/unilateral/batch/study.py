@@ -28,6 +28,12 @@ from .keypath import KeyPathError, parse_key_path, set_key_path
 from .schema import StudyFile
 
 RECORD_SUFFIXES = (".at2", ".txt", ".dat", ".csv")
+MAX_RECORD_SAMPLES = 10_000_000
+"""Most samples (duration / dt) of a synthetic record."""
+MAX_ACCELERATION_G = 100.0
+"""Largest target intensity (PGA or Sa) of ``[scaling]``, in g: beyond it a study is a typo."""
+MAX_SCALE_FACTOR = 1e4
+"""Largest scale factor of ``[scaling] measure = "factor"``."""
 """Files of a records folder that are read as records (any case); .AT2 files carry their units."""
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3}
@@ -170,6 +176,9 @@ def _expand(doc: StudyFile, source: Path) -> Study:
         raise Problems(problems)
     records = _records(doc, folder)
     variants = _variants(doc, folder)
+    problems = _lcp_option_problems(doc, variants)
+    if problems:
+        raise Problems(problems)
     _check_quantities(doc, variants)
     scaling = doc.scaling
     need_motion = doc.records is not None and (
@@ -236,6 +245,8 @@ def _static_problems(doc: StudyFile, folder: Path) -> list[str]:
         if rec.influence is not None and not (folder / rec.influence).is_file():
             problems.append(value_problem(("records", "influence"), rec.influence,
                                           f"file not found (looked for {folder / rec.influence})"))
+    if rec is not None and rec.synthetic is not None:
+        problems += _synthetic_problems(rec.synthetic)
     if doc.scaling is not None:
         if rec is None:
             problems.append("scaling: needs [records] (the levels scale the records)")
@@ -243,6 +254,8 @@ def _static_problems(doc: StudyFile, folder: Path) -> list[str]:
             acceleration_factor(doc.scaling.units)
         except ValueError as exc:
             problems.append(value_problem(("scaling", "units"), doc.scaling.units, str(exc)))
+        else:
+            problems += _intensity_problems(doc.scaling)
     if doc.analysis.t_end == "record" and rec is None:
         problems.append(value_problem(("analysis", "t_end"), "record", 'needs [records] (or give a number)'))
     groups = {}
@@ -284,6 +297,49 @@ def _static_problems(doc: StudyFile, folder: Path) -> list[str]:
                 if upper == lower:
                     problems.append(value_problem(("quantities", k, "pairs", j), [upper, lower],
                                                   "the two nodes of a storey must differ"))
+    return problems
+
+
+def _synthetic_problems(syn) -> list[str]:
+    """A synthetic record of more than ``MAX_RECORD_SAMPLES`` samples, refused before it is generated."""
+    samples = syn.duration / syn.dt
+    if samples <= MAX_RECORD_SAMPLES:
+        return []
+    gib = 8 * samples / 1024 ** 3
+    return [value_problem(("records", "synthetic", "duration"), syn.duration,
+                          f"with dt = {toml_value(syn.dt)} a record of {samples:.3g} samples (at least "
+                          f"{gib:.3g} GiB per array of it): more than the {MAX_RECORD_SAMPLES:,} samples "
+                          "allowed; shorten the duration or increase dt")]
+
+
+def _intensity_problems(scaling) -> list[str]:
+    """Intensity levels beyond ``MAX_ACCELERATION_G`` (targets) or ``MAX_SCALE_FACTOR`` (factors)."""
+    from ..loads import STANDARD_GRAVITY, acceleration_factor
+
+    if scaling.measure == "factor":
+        limit, what = MAX_SCALE_FACTOR, f"a scale factor above {MAX_SCALE_FACTOR:g}"
+    else:
+        limit = MAX_ACCELERATION_G * STANDARD_GRAVITY / acceleration_factor(scaling.units)
+        what = f"an acceleration above {MAX_ACCELERATION_G:g} g ({limit:g} {scaling.units})"
+    return [value_problem(("scaling", "values", k), value, f"{what} is not a ground motion of this world; "
+                          "check the value and scaling.units")
+            for k, value in enumerate(scaling.values) if value > limit]
+
+
+def _lcp_option_problems(doc: StudyFile, variants) -> list[str]:
+    """``[analysis] lcp_options`` that the LCP solver of a model variant does not take."""
+    from ..lcp import get_lcp_solver
+
+    options = dict(doc.analysis.lcp_options)
+    if not options:
+        return []
+    problems = []
+    for lcp in dict.fromkeys(variant.settings["lcp"] for variant in variants):
+        try:
+            get_lcp_solver(lcp, **options)
+        except (ValueError, TypeError) as exc:
+            problems.append(value_problem(("analysis", "lcp_options"), options,
+                                          f"not options of the LCP solver {toml_value(lcp)} ({exc})"))
     return problems
 
 

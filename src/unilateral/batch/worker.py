@@ -388,7 +388,10 @@ def run_analysis(payload: dict, results: str, run_id: str = "") -> dict:
             got, notes = collect(quantity, sol, spec, ys, frame)
             values.update(got)
             result["notes"] += notes
-        if not sol.success:                            # peaks of a run that stopped half-way mislead
+        overflow = _non_finite(sol, values) if sol.success else ""
+        if overflow:
+            result.update(status="failed", message=overflow)
+        if result["status"] == "failed":               # peaks of a run that stopped half-way mislead
             values = {name: math.nan for name in values}
         result["values"] = values
         result["quantities_time"] = time.perf_counter() - t0
@@ -404,6 +407,19 @@ def run_analysis(payload: dict, results: str, run_id: str = "") -> dict:
     if restart:
         result["restart_worker"] = True
     return result
+
+
+def _non_finite(sol, values: dict) -> str:
+    """Why a run that succeeded has no finite result (an overflow), or ``""``."""
+    for name in ("u", "v"):
+        history = getattr(sol, name, None)
+        if history is not None and not np.all(np.isfinite(history)):
+            return (f"the solution {name} is not finite (an overflow: is the load, e.g. the record's "
+                    "scale, far too large?)")
+    infinite = [name for name, value in values.items() if math.isinf(value)]
+    if infinite:
+        return f"the peak quantities {', '.join(infinite)} are infinite (an overflow)"
+    return ""
 
 
 def _solve(model, load, settings: dict):

@@ -9,12 +9,14 @@ path of the entry that caused them.
 from __future__ import annotations
 
 import re
+import sys
 import tomllib
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import scipy.sparse as sp
 from pydantic import ValidationError
 
 from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Rectangular, Tabulated,
@@ -145,6 +147,44 @@ def read_toml(source: Path) -> dict:
     except RecursionError:
         raise Problems(["invalid TOML: arrays or tables nested too deeply to be read (hundreds of levels; "
                         "a model or study file needs a few)"]) from None
+    except ValueError:                                  # an integer of more digits than Python converts
+        raise Problems([_long_integer_problem(text)]) from None
+
+
+_LONG_INTEGER = re.compile(r"[+-]?\d[\d_]{%d,}" % (sys.get_int_max_str_digits() - 1))
+
+
+def _long_integer_problem(text: str) -> str:
+    """Where ``text`` has an integer too long for Python to read: its key path, or its line."""
+    match = _LONG_INTEGER.search(text)
+    if match is None:
+        return "invalid TOML: a number that cannot be read"
+    digits = sum(c.isdigit() for c in match[0])
+    what = (f"{match[0][:20]}... ({digits} digits): an integer too large to be read (at most "
+            f"{sys.get_int_max_str_digits()} digits; a model value is at most about 1.8e308)")
+    sentinel = next(n for n in range(10 ** 17, 10 ** 18) if str(n) not in text)
+    try:
+        data = tomllib.loads(_LONG_INTEGER.sub(str(sentinel), text))
+    except ValueError:
+        data = {}
+    parts = _path_of(data, sentinel)
+    if parts is None:
+        line = text.count("\n", 0, match.start()) + 1
+        column = match.start() - text.rfind("\n", 0, match.start())
+        return f"line {line}, column {column}: {what}"
+    return f"{key_path(parts)} = {what}"
+
+
+def _path_of(node, value, parts=()) -> tuple | None:
+    """The key path of the first integer ``value`` in nested dicts and lists, or None."""
+    if isinstance(node, int) and not isinstance(node, bool) and node == value:
+        return parts
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, item in items:
+        found = _path_of(item, value, (*parts, key))
+        if found is not None:
+            return found
+    return None
 
 
 def _read_document(source: Path) -> ModelFile:
@@ -353,6 +393,7 @@ def _foundation_problems(document: ModelFile) -> list[str]:
         if value is not None and value != 0.0:
             problems.append(value_problem((*where, key), value, f'only for model = "winkler-kelvin" (model = '
                                           f"{toml_value(soil.model)} takes G or Vs, nu, rho)"))
+    problems += _soil_scale_problems(document, where)
     if soil.model == "cones" and soil.damping:
         problems.append(value_problem((*where, "damping"), soil.damping, 'the cones have no material damping; '
                                       'use damping = 0 or model = "halfspace"'))
@@ -360,6 +401,31 @@ def _foundation_problems(document: ModelFile) -> list[str]:
         problems.append(value_problem((*at, "horizontal"), f.horizontal, 'needs the soil\'s G or Vs, nu, rho '
                                       '(model = "halfspace" or "cones")'))
     return problems
+
+
+def _soil_scale_problems(document: ModelFile, where: tuple) -> list[str]:
+    """Moduli derived from the soil's ``G`` or ``Vs``, ``rho`` and the footing's area that overflow or vanish.
+
+    ``G = rho Vs^2``, ``Vs = sqrt(G / rho)`` and the footing's stiffness ``G sqrt(A)`` and dashpot
+    ``rho Vs A`` (``A = width length``) must be finite numbers > 0.
+    """
+    f, soil = document.foundation, document.foundation.soil
+    if soil.rho is None or (soil.G is None) == (soil.Vs is None):
+        return []
+    key = "G" if soil.G is not None else "Vs"
+    rho = soil.rho * _mass_factor(document.units)
+    G = soil.G if soil.G is not None else rho * soil.Vs * soil.Vs
+    vs = soil.Vs if soil.Vs is not None else float(np.sqrt(G / rho))
+    area = (f.width or 1.0) * f.length
+    derived = {"the shear modulus G = rho Vs^2": G, "the shear-wave speed Vs = sqrt(G/rho)": vs,
+               "the footing's stiffness G sqrt(A)": G * float(np.sqrt(area)),
+               "the footing's dashpot rho Vs A": rho * vs * area}
+    for name, value in derived.items():
+        if not 0.0 < value < np.inf:
+            return [value_problem((*where, key), getattr(soil, key), f"with rho = {toml_value(soil.rho)} and the "
+                                  f"footing's area A = {area:g} gives {name} = {value:g}; give values for which "
+                                  "it is a finite number > 0")]
+    return []
 
 
 # ---------------------------------------------------------------------- the frame
@@ -447,16 +513,7 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
     if gravity is not None:
         g = STANDARD_GRAVITY * to_model if gravity.g == "standard" else gravity.g
         constant += structure.gravity(g, gravity.direction)
-    terms = []
-    for k, load in enumerate(document.loads.nodal):
-        parts = ("loads", "nodal", k)
-        if structure is not None:
-            with _at(key_path(parts)):
-                vector = structure.nodal_load(load.node, ux=load.ux or 0.0, uy=load.uy or 0.0, rz=load.rz or 0.0)
-        else:
-            vector = np.zeros(model.n)
-            vector[dof_index(model, (*parts, "dof"), load.dof)] = load.value
-        terms.append((vector, _time_function(load.time_function, (*parts, "time_function"), folder)))
+    terms = _nodal_terms(document.loads.nodal, folder, model, structure)
     for k, motion in enumerate(document.loads.ground_motion):
         parts = ("loads", "ground_motion", k)
         if structure is not None:
@@ -470,6 +527,45 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
         a_g = Tabulated(record.time / seconds, record.acceleration * (motion.scale * to_model))
         terms.append((-np.asarray(model.M @ r).ravel(), a_g))
     return LoadHistory(constant, tuple(terms))
+
+
+def _nodal_terms(loads, folder: Path, model: Model, structure: Structure | None) -> list:
+    """The ``(vector, f)`` terms of ``[[loads.nodal]]``: one per distinct time function, assembled at once."""
+    groups: dict = {}
+    for k, load in enumerate(loads):
+        groups.setdefault(load.time_function, []).append(k)
+    terms = []
+    for spec, indices in groups.items():
+        if structure is not None:
+            vector = _frame_nodal_vector(structure, loads, indices)
+        else:
+            rows = [dof_index(model, ("loads", "nodal", k, "dof"), loads[k].dof) for k in indices]
+            vector = np.bincount(rows, weights=[loads[k].value for k in indices], minlength=model.n)
+        terms.append((vector, _time_function(spec, ("loads", "nodal", indices[0], "time_function"), folder)))
+    return terms
+
+
+def _frame_nodal_vector(structure: Structure, loads, indices) -> np.ndarray:
+    """The sum (n,) of the frame's nodal loads ``loads[k]``, ``k`` in ``indices``.
+
+    A component on a DOF that cannot move is reported by ``Structure.nodal_load`` with its key path.
+    """
+    dofs = structure.dofs
+    movable = np.diff(sp.csr_matrix(dofs.T).indptr) > 0
+    rows, values, owners = [], [], []
+    for k in indices:
+        for dof in ("ux", "uy", "rz"):
+            value = getattr(loads[k], dof)
+            if value:
+                rows.append(dofs.full_index(loads[k].node, dof))
+                values.append(value)
+                owners.append(k)
+    stuck = [k for k, row in zip(owners, rows) if not movable[row]]
+    if stuck:
+        load = loads[stuck[0]]
+        with _at(key_path(("loads", "nodal", stuck[0]))):
+            structure.nodal_load(load.node, ux=load.ux or 0.0, uy=load.uy or 0.0, rz=load.rz or 0.0)
+    return dofs.gather(np.bincount(np.asarray(rows, dtype=int), weights=values, minlength=dofs.T.shape[0]))
 
 
 def _time_function(spec, parts, folder: Path):

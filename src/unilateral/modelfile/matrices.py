@@ -64,12 +64,39 @@ def dof_index(model: Model, parts, ref) -> int:
                     + did_you_mean(ref, model.dof_names)])
 
 
+MAX_DENSE_BYTES = 2 * 1024 ** 3
+"""Largest dense (``array``) Matrix Market matrix read, in bytes of float64 entries."""
+MAX_DIMENSION = 10_000_000
+"""Most rows or columns of a sparse (``coordinate``) Matrix Market matrix."""
+
+
 def _read(parts, name: str, folder: Path):
     try:
+        _check_header(parts, name, scipy.io.mminfo(folder / name))
         array = scipy.io.mmread(folder / name)
     except (ValueError, OSError, IndexError) as exc:
         raise Problems([value_problem(parts, name, f"not a readable Matrix Market file ({exc})")]) from None
     return sp.csr_matrix(array, dtype=float) if sp.issparse(array) else np.asarray(array, dtype=float)
+
+
+def _check_header(parts, name: str, info: tuple) -> None:
+    """Refuse, from the header alone, a matrix that is not real or too large to read.
+
+    ``info`` is ``(rows, cols, entries, format, field, symmetry)`` as from :func:`scipy.io.mminfo`.
+    """
+    rows, cols, _, layout, kind, _ = info
+    if kind not in ("real", "integer"):
+        raise Problems([value_problem(parts, name, f'a {layout} {kind} matrix: the matrices of a model are real '
+                                      '(write the file with field "real" or "integer"'
+                                      + (", with every value" if kind == "pattern" else "") + ")")])
+    size = f"{rows} x {cols}"
+    if layout == "array" and 8 * rows * cols > MAX_DENSE_BYTES:
+        raise Problems([value_problem(parts, name, f"a dense {size} matrix ({8 * rows * cols / 1024 ** 3:.3g} GiB): "
+                                      f"more than the {MAX_DENSE_BYTES / 1024 ** 3:g} GiB read (write a large "
+                                      "matrix in coordinate format, with its nonzeros only)")])
+    if max(rows, cols) > MAX_DIMENSION:
+        raise Problems([value_problem(parts, name, f"a {size} matrix: more than the {MAX_DIMENSION:,} rows or "
+                                      "columns read")])
 
 
 def _read_names(name: str, folder: Path, n: int) -> list[str]:

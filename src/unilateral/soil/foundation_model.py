@@ -169,11 +169,16 @@ class SoilFlexibility:
         The exact pole-residue form of a rational soil (enables ``method="modal"``).
     kelvin : tuple of (m,) arrays, optional
         ``(k, c)`` when ``Phi = diag(1/(k + s c))``.
+    diagonal : callable, optional
+        ``diagonal(s) -> (L, m)``: the diagonal of ``func(s)`` when it is diagonal (uncoupled
+        contacts); the weights are then computed per contact, not for the ``m x m`` matrix.
     description : str
 
     Attributes
     ----------
     m : int
+    is_diagonal : bool
+        The contacts are uncoupled (``Phi(s)`` diagonal, given by ``diagonal``).
     is_rational : bool
         The exact pole-residue form is known (``method="modal"`` applies).
     poles : SoilPoles or None
@@ -181,7 +186,7 @@ class SoilFlexibility:
     description : str
     """
 
-    def __init__(self, func, m, *, static=None, poles=None, kelvin=None, description="Phi(s)"):
+    def __init__(self, func, m, *, static=None, poles=None, kelvin=None, diagonal=None, description="Phi(s)"):
         if not callable(func):
             raise TypeError(f"func must be callable Phi(s) -> (L, m, m), got {V.describe(func)}")
         m = int(m)
@@ -189,6 +194,7 @@ class SoilFlexibility:
             raise ValueError(f"m (the number of contacts) must be >= 1, got {m}")
         self._func, self.m, self._static = func, m, static
         self.poles, self.kelvin, self.description = poles, kelvin, description
+        self._diagonal = diagonal
         #: Time (s) after which the soil's impulse response is negligible, or None (unknown): the
         #: truncation hint of :meth:`cq_weights`.
         self.memory = None
@@ -265,8 +271,9 @@ class SoilFlexibility:
         def real(W):
             return np.real_if_close(W) if np.iscomplexobj(W) else W
 
+        kernel = self.evaluate if self._diagonal is None else self._evaluate_diagonal
         if cq_options:
-            return real(cq_weights(self.evaluate, N, dt, rule, **cq_options))
+            return self._expand(real(cq_weights(kernel, N, dt, rule, **cq_options)), N)
         cache = self.__dict__.setdefault("_weights_cache", {})
         key = (dt, rule.name)
         known = cache.get(key)
@@ -276,7 +283,7 @@ class SoilFlexibility:
             memory = getattr(self, "memory", None)
             J = N if memory is None else min(N, int(np.ceil(float(memory) / dt)) + 64)
             while True:
-                W = real(cq_weights(self.evaluate, J, dt, rule))
+                W = real(cq_weights(kernel, J, dt, rule))
                 if J == N:
                     cache[key] = (W, False)
                     break
@@ -286,10 +293,31 @@ class SoilFlexibility:
                     cache[key] = (W, True)              # complete: W_j = 0 beyond J
                     break
                 J = min(N, 4 * J)
+        return self._expand(W, N)
+
+    def _evaluate_diagonal(self, s) -> np.ndarray:
+        """The diagonal of ``Phi(s)`` of an uncoupled soil as (L, m, 1) complex (``evaluate``'s checks)."""
+        out = np.asarray(self._diagonal(np.atleast_1d(np.asarray(s, dtype=complex))))[:, :, None]
+        if not np.all(np.isfinite(out)):
+            k = int(np.argmax(~np.all(np.isfinite(out), axis=(1, 2))))
+            raise ValueError(f"the soil flexibility ({self.description}) is not finite at s = {s[k]!r}")
+        return out
+
+    def _expand(self, W, N: int) -> np.ndarray:
+        """``W_0 .. W_N`` (N+1, m, m) from computed weights: (J+1, m, m), or (J+1, m, 1) diagonals."""
         out = np.zeros((N + 1, self.m, self.m))
         k = min(N + 1, W.shape[0])
-        out[:k] = W[:k]
+        if W.shape[2] == self.m:
+            out[:k] = W[:k]
+        else:
+            index = np.arange(self.m)
+            out[:k, index, index] = W[:k, :, 0]
         return out
+
+    @property
+    def is_diagonal(self) -> bool:
+        """True if the contacts are uncoupled (``Phi(s)`` diagonal): weights per contact."""
+        return self._diagonal is not None
 
     @property
     def is_rational(self) -> bool:
@@ -379,10 +407,12 @@ class SoilFlexibility:
         funcs = [_impedance_callable(E, f"impedances[{i}]") for i, E in enumerate(items)]
         m = len(items)
 
+        def diagonal(s):
+            return np.stack([np.broadcast_to(1.0 / f(s), s.shape) for f in funcs], axis=1)
+
         def func(s):
             out = np.zeros((s.size, m, m), dtype=complex)
-            for i, f in enumerate(funcs):
-                out[:, i, i] = 1.0 / f(s)
+            out[:, np.arange(m), np.arange(m)] = diagonal(s)
             return out
 
         polys = [_impedance_polynomials(E) for E in items]
@@ -396,7 +426,7 @@ class SoilFlexibility:
                for E in items):
             kc = [(float(E[0]), float(E[1])) if isinstance(E, tuple) else (float(E), 0.0) for E in items]
             kelvin = (np.array([x[0] for x in kc]), np.array([x[1] for x in kc]))
-        return cls(func, m, poles=poles, kelvin=kelvin, description=f"{m} impedances")
+        return cls(func, m, poles=poles, kelvin=kelvin, diagonal=diagonal, description=f"{m} impedances")
 
     @classmethod
     def kelvin(cls, k, c=0.0) -> SoilFlexibility:
@@ -673,14 +703,31 @@ class FoundationModel:
         N, m, n = int(N), self.m, self.n
         free = self.stepping_model()
         zeros_n, zeros_m = np.zeros((N + 2, n)), np.zeros((N + 2, m))
-        W = np.empty((N + 1, m, m))
-        for j in range(m):
+        basis = self.impulse_basis()
+        W = np.empty((N + 1, m, basis.shape[1]))
+        for j in range(basis.shape[1]):
             stepper = StructureStepper(free, rule, dt, zeros_n, zeros_m, None, condensed=False)
             impulse = np.zeros((N + 2, m))
-            impulse[1, j] = 1.0
+            impulse[1] = basis[:, j]
             _, _, _, opening, _ = sweep_direct(stepper, N + 1, np.zeros(m), np.zeros(m), impulse)
             W[:, :, j] = opening[1:]
+        if basis.shape[1] < m:
+            W = W @ basis.T
         return W + self.soil.cq_weights(N, dt, rule, **cq_options)
+
+    def impulse_basis(self) -> np.ndarray:
+        """(m, r) orthonormal impulses whose responses give the structure's weights of every contact.
+
+        The structure's part ``T^T D(s)^-1 T`` vanishes on the null space of ``T``: with ``V`` the
+        right singular vectors of ``T`` of its ``r`` nonzero singular values, the response to
+        ``e_j`` is that to ``V V^T e_j``. A rigid footing (``r = 2``: ``uy``, ``rz``) on hundreds
+        of patches then takes two sweeps instead of one per patch. The identity (one sweep per
+        contact) when ``r`` is not below ``m / 4``, where the saving would not pay.
+        """
+        T = dense(self.T)
+        _, sv, vt = np.linalg.svd(T, full_matrices=False)
+        r = int(np.sum(sv > sv.max(initial=0.0) * max(T.shape) * np.finfo(float).eps))
+        return vt[:r].T if 4 * r < self.m else np.eye(self.m)
 
     # ------------------------------------------------------------------ equivalent matrix models
     def static_model(self) -> Model:

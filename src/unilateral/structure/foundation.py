@@ -104,7 +104,12 @@ class SoilSpec:
         rho = _positive(where, "rho", self.rho)
         if self.G is not None:
             return _positive(where, "G", self.G)
-        return rho * _positive(where, "Vs", self.Vs) ** 2
+        vs = _positive(where, "Vs", self.Vs)
+        G = rho * vs * vs
+        if not 0.0 < G < np.inf:
+            raise ValueError(f"{where}: Vs={self.Vs!r} with rho={self.rho!r} gives the shear modulus "
+                             f"G = rho Vs^2 = {G:g}; give a Vs for which it is a finite number > 0")
+        return G
 
     def poisson(self, where="soil") -> float:
         if isinstance(self.nu, bool) or not isinstance(self.nu, numbers.Real) or not 0.0 <= self.nu < 0.5:
