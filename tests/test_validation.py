@@ -90,11 +90,12 @@ def test_load_history_errors_name_the_step():
 
 
 @pytest.mark.parametrize("kw, what", [
-    (dict(dt=1e-12, t_end=1.0), "the histories of u, udot"),
+    (dict(dt=1e-9, t_end=1.0), "the histories of u, udot"),      # 1e9 steps: the most allowed (MAX_STEPS)
     (dict(dt=1e-6, t_end=100.0, method="cq"), "the FFT of the weights"),
 ])
 def test_a_run_that_cannot_fit_in_memory_is_refused_before_it_allocates(kw, what):
-    model = ul.Model(M=[[1.0]], K=[[1.0]], F=[[1.0]], H=[[1.0]])
+    eye = np.eye(100)                                               # 1e9 steps of n = m = 100: terabytes
+    model = ul.Model(M=eye, K=eye, F=eye, H=eye)
     with pytest.raises(MemoryError, match=rf"steps with method='\w+' would need about .* GiB \(.*{what}.*"
                                           r"more than 50% of this machine's .*increase dt, shorten t_end"):
-        ul.solve(model, lambda t: np.zeros(1), **kw)
+        ul.solve(model, lambda t: np.zeros(100), **kw)

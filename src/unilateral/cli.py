@@ -85,7 +85,8 @@ def _analysis_options(function):
                           "modal: the same with a recursive history; direct: full-model time stepping. "
                           "Default: cq for examples, the model file's [analysis] method for run."),
         click.option("--rule", type=click.Choice(RULE_NAMES), default=None,
-                     help="Time discretisation (default bdf2; newmark and hht need --method direct)."),
+                     help="Time discretisation (default bdf2; newmark is Newmark(1/2, 1/4), the trapezoidal rule, "
+                          "and runs as trapezoidal with a note; hht needs --method direct)."),
         click.option("--dt", type=PositiveFinite("0.001"), default=None, help="Time step [time unit of the model]."),
         click.option("--t-end", "t_end", type=PositiveFinite("1.0"), default=None, help="End time."),
         click.option("--lcp", type=click.Choice(LCP_NAMES), default=None, help="LCP solver (default bpp)."),
@@ -139,23 +140,50 @@ def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral):
 @click.option("--figures", "formats", default=None, callback=_figure_formats, metavar="FORMATS",
               help="Figure formats: png (default), pdf, svg, comma-separated, or none.")
 def plot(results, out, formats):
-    """Draw the figures of a results.nc written by `run` or `example` (the same files they drew)."""
-    from .analysis.outputs import figure_view
-    from .figures.results import draw_figures
-    from .io.atomic import WriteError
-    from .io.results import ResultsFileError, open_results, without_dask_arrays
+    """Draw the figures of a results.nc written by `run` or `example` (the same files they drew).
 
-    with without_dask_arrays():
-        try:
-            ds = open_results(results)
-        except ResultsFileError as exc:
-            raise _UsageFailure(str(exc)) from None
-        try:
-            paths = draw_figures(figure_view(ds), out or results.parent, formats)
-        except (WriteError, OSError) as exc:
-            raise click.ClickException(f"cannot write the figures to {out or results.parent}: {exc}") from None
+    The figures are drawn into a hidden folder in OUT and moved in only when all are drawn, so a
+    failure (a full disk) leaves OUT as it was; in a run's folder they join the files its
+    manifest.json lists. A figure the file cannot give (a variable missing, an attribute that
+    names nothing) is skipped with the reason and the others are drawn; the exit code is then 1.
+    """
+    from .figures import FigureDataError
+    from .io.atomic import WriteError
+    from .io.results import ResultsFileError
+
+    target = out or results.parent
+    try:
+        paths, skipped, note = _plot(results, target, formats)
+    except ResultsFileError as exc:
+        raise _UsageFailure(str(exc)) from None
+    except FigureDataError as exc:
+        raise click.ClickException(f"cannot draw the figures of {results}: {exc}") from None
+    except (WriteError, OSError) as exc:
+        raise click.ClickException(f"cannot write the figures to {target}: {exc}; {target} is unchanged") from None
     for path in paths:
         click.echo(path)
+    for line in ([note] if note else []) + [f"skipped {text}" for text in skipped]:
+        click.echo(line, err=True)
+    if skipped:
+        sys.exit(1)
+
+
+def _plot(results, target, formats):
+    """Read ``results`` and draw its figures into ``target``: the files, the figures skipped and a note
+    (None, or where the drawing stops because ``u`` or ``v`` are not finite after it)."""
+    from .analysis.outputs import figure_view
+    from .figures.replot import replot
+    from .io.results import open_results, without_dask_arrays
+
+    with without_dask_arrays():
+        ds = open_results(results)
+        view = figure_view(ds)
+        paths, skipped = replot(view, target, formats)
+    note = None
+    if view.sizes["time"] < ds.sizes["time"]:
+        note = (f"drawn up to t = {float(view['time'].values[-1]):g}: after it u or v are not finite "
+                "(a case that stopped early, or inf in the file)")
+    return paths, skipped, note
 
 
 @main.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True,

@@ -229,6 +229,23 @@ RULES = {
 CQ_RULES = ("bdf1", "bdf2", "trapezoidal")
 
 
+def alias_note(requested, rule: Rule) -> str | None:
+    """What the terminal and ``summary.json`` say when a rule was asked for by another name.
+
+    ``"newmark"`` without parameters is Newmark(1/2, 1/4), the trapezoidal rule: every method
+    runs it as ``"trapezoidal"`` (``method="cq"`` too) and records that name.
+
+    Returns
+    -------
+    str or None
+        None when ``requested`` is a Rule or the rule's own name.
+    """
+    if not isinstance(requested, str) or requested.lower() == rule.name:
+        return None
+    return (f"rule {requested.lower()!r} without parameters is Newmark(gamma={rule.gamma:g}, beta={rule.beta:g}), "
+            f"the {rule.name} rule: it ran as rule {rule.name!r}")
+
+
 def get_rule(rule, *, cq: bool = False) -> Rule:
     """Return a rule from a name or a ``Rule`` instance.
 

@@ -6,6 +6,7 @@ import os
 
 from . import _validate as V
 from .discretization import Discretization
+from .rules import alias_note
 from .kernels import KernelModel, TimeKernelModel
 from .methods import METHODS, choose_method, fallback, get_method
 from .methods.stiff import StiffCoordinates
@@ -48,8 +49,10 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         ``"direct"``: the full model stepped with the same rule and one LCP per step (also
         Newmark and HHT).
     rule : str or Rule
-        ``"bdf1"``, ``"bdf2"`` (default), ``"trapezoidal"``; with ``method="direct"`` also
-        ``"newmark"`` and ``"hht"``, or a :class:`~unilateral.rules.Newmark` instance.
+        ``"bdf1"``, ``"bdf2"`` (default), ``"trapezoidal"``; ``"newmark"`` is Newmark(1/2, 1/4),
+        the trapezoidal rule, with every method (recorded as ``"trapezoidal"``, with the
+        statistic ``rule_note`` saying so); with ``method="direct"`` also ``"hht"`` or a
+        :class:`~unilateral.rules.Newmark` instance.
     initial : "static", "rest" or dict
         ``"static"``: start at rest from the static unilateral equilibrium under ``q(0)``.
         ``"rest"`` (kernel models): ``v(0) = 0``. A dict with ``u0``, ``udot0``, ``v0``
@@ -107,6 +110,9 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
                      dt=disc.dt, m=model.m)
     if auto:
         run.stats["method_reason"] = reason
+    note = alias_note(rule, disc.rule)
+    if note:
+        run.stats["rule_note"] = note
     run.timer.lap("setup")
     try:
         sol = chosen.solve(model, load, initial, disc, run)

@@ -182,17 +182,30 @@ def figure_view(ds: xr.Dataset) -> xr.Dataset:
     """The part of a ``results.nc`` Dataset the figures show: every case where all have values.
 
     A case that stopped early is NaN after its last step (:func:`write_outputs`); the figures
-    then show all cases up to that time. A Dataset without NaN is returned as it is.
+    then show all cases up to that time (``u`` and ``v`` finite). A Dataset without NaN or
+    infinite values is returned as it is.
+
+    Raises
+    ------
+    unilateral.figures.FigureDataError
+        No time step, or ``u`` or ``v`` not finite at t = 0: nothing to draw.
     """
-    finite = None
+    from ..figures import FigureDataError
+
+    if ds.sizes.get("time", 0) == 0:
+        raise FigureDataError("the dimension time has length 0: there is no time step to draw")
+    finite = np.ones(ds.sizes["time"], dtype=bool)
     for name in ("v", "u"):
         if name in ds.data_vars and "time" in ds[name].dims:
             values = ds[name].transpose("time", ...).values
             ok = np.isfinite(values.reshape(values.shape[0], -1)).all(axis=1)
-            finite = ok if finite is None else finite & ok
-    if finite is None or finite.all():
+            if not ok[0]:
+                raise FigureDataError(f"the variable {name} is not finite (inf or NaN) at t = 0: there is "
+                                      "nothing to draw")
+            finite &= ok
+    if finite.all():
         return ds
-    return ds.isel(time=slice(0, max(int(np.argmin(finite)), 1)))
+    return ds.isel(time=slice(0, int(np.argmin(finite))))
 
 
 def _on_common_axis(cases: dict) -> dict:

@@ -154,13 +154,14 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
     draws the figures while this process writes the other outputs (:func:`write_outputs`).
     """
     from .._validate import positive_float
+    from ..discretization import step_count
     from ..io.folder import OutputFolder
     from ..solve import solve
     from .outputs import write_outputs
 
     dt = positive_float("dt", settings["dt"])
     t_end = positive_float("t_end", settings["t_end"])
-    N = max(int(round(t_end / dt)), 1)
+    N = max(step_count(t_end, dt), 1)
     total = N * (len(cases) + 1)
     kw = {key: settings[key] for key in SETTINGS}
     folder = OutputFolder(out)

@@ -11,7 +11,12 @@ from importlib import import_module
 
 _EXPORTS = {"PAGE_WIDTH": "plots", "save_figure": "plots", "draw_figures": "results"}
 
-__all__ = sorted(_EXPORTS)
+__all__ = sorted([*_EXPORTS, "FigureDataError"])
+
+
+class FigureDataError(ValueError):
+    """What a ``results.nc`` holds that a figure cannot show: the variable or attribute, its value
+    and what would be valid (``unilateral plot`` says it and skips that figure)."""
 
 
 def __getattr__(name):

@@ -35,12 +35,18 @@ from pathlib import Path
 import numpy as np
 
 from ..io.summary import RATE_KINDS
+from . import FigureDataError
 from .plots import PAGE_WIDTH, _figure, _styled, envelope, save_figure
 
 MAX_PANELS = 6
 #: Most panels of the hysteresis figure.
 MAX_HYSTERESIS = 12
 FORMATS = ("png", "pdf")
+#: Longest title, axis label or legend label drawn: a longer one is cut (laying out a megabyte of
+#: text took minutes).
+MAX_TEXT = 200
+#: Longest ``case_labels`` attribute read (a JSON object of a few labels).
+MAX_LABELS_JSON = 100_000
 
 
 def main_case(ds) -> str | None:
@@ -89,10 +95,10 @@ def _unit(ds, key):
     """
     unit = ds.attrs.get(f"units_{key}")
     if unit:
-        return str(unit)
+        return _text(unit, 40)
     for name in _UNIT_SOURCES.get(key, ()):
         if name in ds.variables and ds[name].attrs.get("units"):
-            return str(ds[name].attrs["units"])
+            return _text(ds[name].attrs["units"], 40)
     return ""
 
 
@@ -124,10 +130,21 @@ def _map_rows(n: int, max_rows: int = 1000):
     return np.append(np.linspace(0, n, max_rows, endpoint=False).astype(int), n)
 
 
-def draw_figures(ds, out_dir, formats=("png",)) -> list[Path]:
+def draw_figures(ds, out_dir, formats=("png",), *, skipped=None) -> list[Path]:
     """Draw every figure the Dataset supports into ``out_dir``; return the files written.
 
-    ``formats``: matplotlib formats, e.g. ``("png",)`` (default) or ``("png", "pdf")``; empty: none.
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A ``results.nc`` Dataset (:func:`unilateral.analysis.outputs.figure_view` of it).
+    out_dir : str or path-like
+        Created if missing.
+    formats : sequence of str
+        matplotlib formats, e.g. ``("png",)`` (default) or ``("png", "pdf")``; empty: none.
+    skipped : list, optional
+        Receives ``"<figure>: <why>"`` for each figure the Dataset cannot give (a variable missing,
+        an attribute that names nothing), and the others are drawn. Without it the first such
+        figure raises :class:`~unilateral.figures.FigureDataError`.
     """
     formats = tuple(formats)
     if not formats:
@@ -135,24 +152,81 @@ def draw_figures(ds, out_dir, formats=("png",)) -> list[Path]:
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     written = []
-    for name, draw in (("fig2", history_figure), ("constraints", constraints_figure),
-                       ("force_deformation", force_deformation_figure), ("gaps", gaps_figure),
-                       ("hysteresis", hysteresis_figure), ("ground_motion", ground_motion_figure),
-                       ("base_forces", base_forces_figure), ("energy", energy_figure)):
-        fig = draw(ds)
+    for name, draw in FIGURES:
+        try:
+            fig = _draw(draw, ds)
+        except FigureDataError as exc:
+            if skipped is None:
+                raise
+            skipped.append(f"{name}: {exc}")
+            continue
         if fig is not None:
             written += save_figure(fig, out / name, formats)
     return written
 
 
+def _draw(draw, ds):
+    """``draw(ds)``; a variable or coordinate the file lacks is a :class:`FigureDataError`."""
+    try:
+        return draw(ds)
+    except KeyError as exc:                     # xarray: "No variable named 'x'. Did you mean ..."
+        raise FigureDataError(f"the figure needs what the file lacks: {exc.args[0] if exc.args else exc}") from None
+
+
+def _text(value, limit: int = MAX_TEXT) -> str:
+    """``value`` as text of at most ``limit`` characters (cut with an ellipsis)."""
+    text = str(value)
+    return text if len(text) <= limit else text[:limit - 1] + "\u2026"
+
+
+def _listing(names, limit: int = 10) -> str:
+    names = [repr(str(n)) for n in names]
+    return ", ".join(names[:limit]) + (f" and {len(names) - limit} more" if len(names) > limit else "")
+
+
+def case_labels(ds) -> dict:
+    """The legend label of each case: the attribute ``case_labels``, a JSON object (empty without it).
+
+    Raises
+    ------
+    FigureDataError
+        The attribute is not a JSON object of case names to labels (or is longer than
+        :data:`MAX_LABELS_JSON` characters).
+    """
+    raw = ds.attrs.get("case_labels")
+    if raw is None:
+        return {}
+    text = str(raw)
+    try:
+        labels = json.loads(text) if len(text) <= MAX_LABELS_JSON else None
+    except (ValueError, RecursionError):        # RecursionError: nested thousands deep
+        labels = None
+    if not isinstance(labels, dict) or not all(isinstance(v, str) for v in labels.values()):
+        raise FigureDataError(f"the attribute case_labels = {_text(text, 60)!r} ({len(text)} characters) is not a "
+                              'JSON object of case names to labels, e.g. {"unilateral": "with uplift"}')
+    return {str(key): _text(value) for key, value in labels.items()}
+
+
+def _figure_location(ds):
+    """The node and DOF of the main history: the attributes ``figure_node`` and ``figure_dof``, checked."""
+    node, dof = str(ds.attrs["figure_node"]), str(ds.attrs.get("figure_dof"))
+    nd = ds["node_displacement"]
+    for attribute, value, dim in (("figure_node", node, "node"), ("figure_dof", dof, "component")):
+        valid = [str(x) for x in nd[dim].values] if dim in nd.coords else []
+        if value not in valid:
+            raise FigureDataError(f"the attribute {attribute} = {_text(value, 60)!r} names no {dim} of "
+                                  f"node_displacement; valid: {_listing(valid) or 'none'}")
+    return node, dof
+
+
 @_styled
 def history_figure(ds):
     """The main history of every case (the paper's Fig. 2 for the example)."""
-    node, dof = ds.attrs.get("figure_node"), ds.attrs.get("figure_dof")
-    if node is None or "node_displacement" not in ds:
+    if ds.attrs.get("figure_node") is None or "node_displacement" not in ds:
         return None
-    nd = ds["node_displacement"].sel(node=str(node), component=str(dof))
-    labels = json.loads(ds.attrs.get("case_labels", "{}"))
+    node, dof = _figure_location(ds)
+    nd = ds["node_displacement"].sel(node=node, component=dof)
+    labels = case_labels(ds)
     t = ds["time"].values
     curves = ({labels.get(str(c), str(c)): nd.sel(case=c).values for c in ds["case"].values}
               if "case" in nd.dims else {"": nd.values})
@@ -163,9 +237,9 @@ def history_figure(ds):
         ax.plot(*envelope(t, factor * y), ("-", "--", "-.", ":")[k % 4], color=f"C{k}", label=label or None)
     ax.margins(x=0)
     ax.set(xlabel=_axis("time t", _unit(ds, "time")),
-           ylabel=_axis(ds.attrs.get("figure_text") or f"{dof} of node {node}", unit))
+           ylabel=_axis(_text(ds.attrs.get("figure_text") or f"{dof} of node {node}"), unit))
     if ds.attrs.get("title"):
-        ax.set_title(str(ds.attrs["title"]))
+        ax.set_title(_text(ds.attrs["title"]))
     if any(curves):
         ax.legend(loc="best")
     return fig
@@ -440,7 +514,7 @@ def base_forces_figure(ds):
         return None
     t = ds["time"].values
     cases = [None] if "case" not in ds.dims else [str(c) for c in ds["case"].values]
-    labels = json.loads(ds.attrs.get("case_labels", "{}"))
+    labels = case_labels(ds)
     shear = [_case(ds, c)["base_shear"].values for c in cases]
     moment = [_case(ds, c)["overturning_moment"].values for c in cases]
     funit, ff = force_scale(_unit(ds, "force"), max(float(np.max(np.abs(s))) for s in shear))
@@ -487,10 +561,18 @@ def energy_figure(ds):
         if np.any(y):
             top.plot(*envelope(t, y), label=label)
     top.set(ylabel=_axis("energy", unit), title="Energy balance")
-    top.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+    if top.lines:
+        top.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     top.margins(x=0)
     low.semilogy(*envelope(t, np.maximum(d["energy_relative_error"].values, 1e-17)), color="0.3")
     low.yaxis.set_major_formatter(FuncFormatter(_power_of_ten))
     low.yaxis.set_minor_formatter(NullFormatter())
     low.set(ylabel="relative error [1]", xlabel=_axis("time t", _unit(d, "time")))
     return fig
+
+
+#: Every figure, by file name, in the order drawn.
+FIGURES = (("fig2", history_figure), ("constraints", constraints_figure),
+           ("force_deformation", force_deformation_figure), ("gaps", gaps_figure),
+           ("hysteresis", hysteresis_figure), ("ground_motion", ground_motion_figure),
+           ("base_forces", base_forces_figure), ("energy", energy_figure))

@@ -108,11 +108,13 @@ class OutputFolder:
         ------
         OutputFolderError
             The path is a file or goes through one, the folder holds other files than outputs, is
-            the current folder, or no folder or file can be created next to it or in it.
+            the current folder, its name is too long for the names next to it (:func:`staging_name`),
+            or no folder or file can be created next to it or in it.
         """
         if self.staging is not None:
             return self.staging
         real = self._real_path()
+        _check_name_length(self.path, real)
         _make_parents(self.path, real.parent)
         cleanup_leftovers(real)
         if real.exists():
@@ -167,7 +169,7 @@ class OutputFolder:
         return real
 
     def _make_staging(self, real: Path) -> Path:
-        staging = real.with_name(f".{real.name}.staging-{os.getpid()}-{secrets.token_hex(4)}")
+        staging = real.with_name(staging_name(real.name, os.getpid()))
         try:
             staging.mkdir()
             self._lock_fd = _lock(staging)
@@ -183,6 +185,30 @@ class OutputFolder:
             raise OutputFolderError(self.path, f"cannot create a folder or a file next to it in {real.parent} "
                                                f"({exc.strerror or exc})") from None
         return staging
+
+
+def staging_name(name: str, pid: int) -> str:
+    """The name of a staging folder of the output folder ``name``, written by process ``pid``."""
+    return f".{name}.staging-{pid}-{secrets.token_hex(4)}"
+
+
+#: The longest process id the staging names must hold (Linux allows up to 2**22).
+_PID_DIGITS = 7
+
+
+def _check_name_length(given: Path, real: Path) -> None:
+    """Refuse a folder name that leaves no room for its staging folder's (the file system's limit)."""
+    try:
+        limit = os.pathconf(real.parent if real.parent.exists() else "/", "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):       # not POSIX
+        limit = -1
+    limit = limit if limit > 0 else 255                 # -1: no limit known
+    name = len(os.fsencode(real.name))
+    extra = len(os.fsencode(staging_name(real.name, 10**_PID_DIGITS - 1))) - name
+    if name + extra > limit:
+        raise OutputFolderError(given, f"its name has {name} bytes and the staging folder next to it adds {extra}, "
+                                       f"more than the {limit} a file name may have here: give a name of at "
+                                       f"most {limit - extra} bytes")
 
 
 def cleanup_leftovers(target: str | os.PathLike) -> list[Path]:
@@ -241,14 +267,41 @@ def foreign_entries(folder: str | os.PathLike) -> list[str]:
 # ---------------------------------------------------------------------- helpers
 def _manifest_files(path: Path) -> set | None:
     """The files listed by a manifest written by :meth:`OutputFolder.commit`, else None."""
+    data = _read_manifest(path)
+    return None if data is None else set(data["files"])
+
+
+def _read_manifest(path: Path) -> dict | None:
+    """A manifest written by :meth:`OutputFolder.commit` (its ``files`` the names only), else None."""
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+    except (OSError, ValueError, RecursionError):
         return None
     if not isinstance(data, dict) or "unilateral" not in data or "run" not in data:
         return None                             # another program's manifest.json
     files = data.get("files")
-    return {name for name in files if isinstance(name, str)} if isinstance(files, list) else None
+    if not isinstance(files, list):
+        return None
+    return {**data, "files": [name for name in files if isinstance(name, str)]}
+
+
+def add_to_manifest(folder: str | os.PathLike, names) -> bool:
+    """List ``names`` among the files of the manifest of ``folder`` (rewritten atomically).
+
+    Returns
+    -------
+    bool
+        False, and nothing written, when ``folder`` has no manifest written by unilateral.
+    """
+    path = Path(folder) / MANIFEST
+    data = _read_manifest(path)
+    if data is None:
+        return False
+    from .atomic import write_json_atomic
+
+    data["files"] = sorted({*data["files"], *names})
+    write_json_atomic(path, data)
+    return True
 
 
 def _make_parents(given: Path, parent: Path) -> None:

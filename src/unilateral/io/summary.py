@@ -35,7 +35,8 @@ def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = No
     Returns
     -------
     dict
-        ``success``, ``message``, ``method``, ``rule``, ``lcp_solver``, ``steps`` (steps computed),
+        ``success``, ``message``, ``method``, ``rule`` (and ``rule_note`` when the rule was asked
+        for by another name, see :func:`unilateral.rules.alias_note`), ``lcp_solver``, ``steps`` (steps computed),
         ``dt``, ``t_end``, ``run_time`` (seconds), ``max_lcp_error``, ``contact_changes``,
         ``units``, ``static`` (DOF name to the displacement at t = 0; empty without
         displacements), ``constraints`` (name to ``max_v``, ``t_max_v``: the peak uplift or gap
@@ -46,11 +47,13 @@ def summary(sol: Solution, *, units: dict | None = None, extra: dict | None = No
     stats = sol.stats
     t = np.asarray(sol.t)
     kinds = ["contact"] * len(sol.constraint_names) if kinds is None else kinds
+    note = {"rule_note": stats["rule_note"]} if stats.get("rule_note") else {}
     return to_jsonable({
         "success": sol.success,
         "message": sol.message,
         "method": stats.get("method"),
         "rule": stats.get("rule"),
+        **note,
         "lcp_solver": stats.get("lcp_solver"),
         "steps": len(t) - 1,
         "dt": stats.get("dt"),
@@ -96,6 +99,7 @@ def format_summary(summary_dict: dict) -> str:
         f"{status}: {s['message']}",
         f"method {s['method']}, rule {s['rule']}, LCP solver {s['lcp_solver']}; {s['steps']} steps of "
         f"dt = {_number(s['dt'])}{in_time} to t = {_number(s['t_end'])}{in_time}",
+        *([f"note: {s['rule_note']}"] if s.get("rule_note") else []),
         f"run time {_number(s['run_time'])} s, max LCP error {_number(s['max_lcp_error'])}, "
         f"contact changes {_number(s['contact_changes'])}",
     ]

@@ -69,9 +69,23 @@ CRITICAL_RTOL = 1e-9
 NOISE_ULPS = 256
 #: Largest number of critical constraints whose contact states are enumerated (2^k candidates).
 MAX_ENUMERATED = 12
+#: Default limit on the contact changes: this many per output step and unknown, so the limit
+#: grows with the duration ``t_end / dt`` (:func:`default_max_events`).
+EVENTS_PER_STEP = 100
 
 
-def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=100_000):
+class EventMarchStop(RuntimeError):
+    """The march cannot go on: too many contact changes, no admissible contact set, or a motion
+    that grows without bound. :func:`march_event` returns the grid up to where it stopped."""
+
+
+def default_max_events(steps: int, m: int) -> int:
+    """The default ``max_events`` of a march of ``steps`` output steps and ``m`` unknowns:
+    :data:`EVENTS_PER_STEP` per step and unknown, ``EVENTS_PER_STEP * (steps + 1) * max(m, 1)``."""
+    return EVENTS_PER_STEP * (int(steps) + 1) * max(int(m), 1)
+
+
+def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=None):
     """Follow a matrix model exactly from event to event; output on ``t_grid``.
 
     Parameters
@@ -92,18 +106,25 @@ def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=100
         those on their yield surface).
     tol : float
         Accuracy (s) of the event times.
-    max_events : int
-        Stop with RuntimeError after this many events (chattering guard).
+    max_events : int, optional
+        The most contact changes over the march, allowed in proportion to the time reached: by
+        ``t``, ``max_events (t - t_0 + dt) / (t_N - t_0 + dt)`` (``dt`` the mean grid step), so
+        that chattering or changes accumulating at one time stop early. Default
+        :func:`default_max_events`: :data:`EVENTS_PER_STEP` (100) per output step and unknown,
+        proportional to the duration ``t_N - t_0`` on a given grid.
 
     Returns
     -------
-    u, udot : (N+1, n);  v, psi : (N+1, m)
-        Left limits at the grid times.
+    u, udot : (K+1, n);  v, psi : (K+1, m)
+        Left limits at the grid times, ``K = N`` unless the march stopped (``info["failure"]``).
     info : dict
         ``event_times`` (k,), ``event_constraints`` (k,) int, ``event_kinds`` (k,) "open"/"close"
         (contacts), "yield"/"unload" (plastic multipliers), "slip"/"stick" (slips),
         ``events`` (number of contact changes), ``decisions``, ``configurations``,
-        ``undecided`` (decisions where no candidate was strictly admissible), ``substeps``.
+        ``undecided`` (decisions where no candidate was strictly admissible), ``substeps``, and
+        ``failure``: None, or why the march stopped after grid time ``K`` (more than
+        ``max_events`` contact changes, no admissible contact set, a motion growing without
+        bound; :class:`EventMarchStop`).
 
     Raises
     ------
@@ -121,6 +142,8 @@ def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=100
     mats = _matrices(model)
     _check_law(model.law, mats)
     u0, udot0, v0 = (np.asarray(a, dtype=float).reshape(size) for a, size in ((u0, n), (udot0, n), (v0, m)))
+    if max_events is None:
+        max_events = default_max_events(t_grid.size - 1, m)
     march = _March(model.law, mats, gen, t_grid, (u0, udot0, v0), tol=tol, max_events=max_events)
     return march.run()
 
@@ -194,6 +217,8 @@ class _March:
         self.substeps = 0
         self.same_time = 0
         self.last_decision = -np.inf
+        self.done = 0                           # the last grid index written
+        self.skipped = None                     # (t, why) of the last singular candidate
 
     def _reference_rate(self, t_grid):
         """A frequency (1/s) that turns ``vref`` into the size of a rate ``lambda'``: the fastest of
@@ -233,17 +258,37 @@ class _March:
 
     # ------------------------------------------------------------------ main loop
     def run(self):
-        grid, gen = self.grid, self.gen
-        N = grid.size - 1
-        n, m = self.n, self.m
-        u = np.empty((N + 1, n))
-        ud = np.empty((N + 1, n))
-        v = np.empty((N + 1, m))
-        psi = np.empty((N + 1, m))
+        N = self.grid.size - 1
+        u, ud = np.empty((N + 1, self.n)), np.empty((N + 1, self.n))
+        v, psi = np.empty((N + 1, self.m)), np.empty((N + 1, self.m))
         u[0], ud[0], v[0], psi[0] = self.u0, self.udot0, self.v0, self.psi0
+        failure = None
+        try:
+            with np.errstate(over="ignore", invalid="ignore"):     # a diverging motion: stopped below
+                K = self._follow(self._stops(), (u, ud, v, psi))
+        except EventMarchStop as exc:
+            K, failure = self.done, str(exc)
+        info = {
+            "event_times": np.array(self.event_times),
+            "event_constraints": np.array(self.event_constraints, dtype=int),
+            "event_kinds": np.array(self.event_kinds, dtype=object),
+            "events": len(self.event_times),
+            "decisions": self.decisions,
+            "configurations": sum(isinstance(c, Config) for c in self.configs.values()),
+            "undecided": self.undecided,
+            "substeps": self.substeps,
+            "tol": self.tol,
+            "failure": failure,
+        }
+        return u[:K + 1], ud[:K + 1], v[:K + 1], psi[:K + 1], info
+
+    def _stops(self):
+        """``(time, grid index or None, is a load breakpoint)`` of the grid times and of the load
+        breakpoints inside ``(t_0, t_N]`` (snapped to grid times they round to), in time order."""
+        grid = self.grid
+        N = grid.size - 1
         t0, t_end = grid[0], grid[-1]
-        # breakpoints of the load inside (t0, t_end], snapped to grid times they round to
-        bps = gen.breakpoints[(gen.breakpoints > t0) & (gen.breakpoints <= t_end)]
+        bps = self.gen.breakpoints[(self.gen.breakpoints > t0) & (self.gen.breakpoints <= t_end)]
         snap = 1e-12 * max(abs(t_end), abs(t0), self.dt)
         k_near = np.clip(np.searchsorted(grid, bps), 0, N)
         on_grid = {}
@@ -256,37 +301,45 @@ class _March:
                 on_grid[float(b)] = False
         stops = [(float(grid[k]), k, k in on_grid) for k in range(1, N + 1)]
         stops += [(b, None, True) for b, flag in on_grid.items() if flag is False]
-        stops.sort(key=lambda s: s[0])
+        return sorted(stops, key=lambda s: s[0])
 
+    def _follow(self, stops, out):
+        """March through ``stops`` (time, grid index or None, is a load breakpoint), writing the grid
+        outputs into ``out = (u, ud, v, psi)``; return the last grid index written."""
+        grid, gen = self.grid, self.gen
         cfg = self.config((self.v0 > 0) & ~self.law.rate)
-        Y = cfg.state_from(self.u0, self.udot0, self.v0, gen.state(t0, "right"))
-        cfg, Y = self.decide(cfg, Y, t0, ())
-        t = t0
-        prev_grid = 0
+        Y = cfg.state_from(self.u0, self.udot0, self.v0, gen.state(grid[0], "right"))
+        cfg, Y = self.decide(cfg, Y, grid[0], ())
+        t = grid[0]
         for t_stop, k, is_bp in stops:
-            full = k is not None and prev_grid == k - 1 and t == grid[k - 1] and self.uniform
+            full = k is not None and self.done == k - 1 and t == grid[k - 1] and self.uniform
             cfg, Y, pending = self.advance(cfg, Y, t, t_stop, self.dt if full else None)
             t = t_stop
             if k is not None:
-                u[k], ud[k], v[k], psi[k] = cfg.U @ Y, cfg.UD @ Y, cfg.V @ Y, cfg.PSI @ Y
-                prev_grid = k
+                self._output(cfg, Y, k, out)
             if is_bp:
                 Y = Y.copy()
                 Y[cfg.ny: cfg.ny + gen.size] = gen.state(t, "right")
             if is_bp or pending:
                 cfg, Y = self.decide(cfg, Y, t, pending or ())
-        info = {
-            "event_times": np.array(self.event_times),
-            "event_constraints": np.array(self.event_constraints, dtype=int),
-            "event_kinds": np.array(self.event_kinds, dtype=object),
-            "events": len(self.event_times),
-            "decisions": self.decisions,
-            "configurations": sum(isinstance(c, Config) for c in self.configs.values()),
-            "undecided": self.undecided,
-            "substeps": self.substeps,
-            "tol": self.tol,
-        }
-        return u, ud, v, psi, info
+        return self.done
+
+    def _output(self, cfg, Y, k, out):
+        """Write the outputs at grid time ``k``; stop if they are not finite (the motion diverged)."""
+        values = (cfg.U @ Y, cfg.UD @ Y, cfg.V @ Y, cfg.PSI @ Y)
+        if not all(np.isfinite(x).all() for x in values):
+            raise EventMarchStop(f"the motion grows without bound: u, v are not finite at t = {self.grid[k]:.6g} "
+                                 f"({self._instability(cfg)})")
+        for array, x in zip(out, values):
+            array[k] = x
+        self.done = k
+
+    def _instability(self, cfg):
+        """Why the configuration ``cfg`` diverges, for the message."""
+        growth = float(np.max(np.linalg.eigvals(cfg.A).real, initial=-np.inf))
+        where = f"with unknowns {np.flatnonzero(cfg.open).tolist()} open (active)" if cfg.open.any() else "all closed"
+        return (f"the configuration {where} has a growing mode, rate {growth:.3g} 1/time: the stiffness of "
+                "the structure with those constraints open is not positive semidefinite; check K, F and H")
 
     # ------------------------------------------------------------------ exact advance
     def advance(self, cfg, Y, ta, tb, length=None):
@@ -375,6 +428,7 @@ class _March:
                     new = self.config(mask)
                 except ValueError as exc:
                     failure = failure or exc
+                    self.skipped = (t, str(exc))
                     continue
                 Yn = new.state_from(*state)
                 violation, jumped = self._violation(new, Yn, crit, delta)
@@ -391,7 +445,7 @@ class _March:
         if best is None:
             if failure is not None:
                 raise failure
-            raise RuntimeError(f"no admissible contact set at t = {t!r}")
+            raise EventMarchStop(f"no admissible contact set at t = {t!r}")
         return best + (best_violation,)
 
     def _guard(self, t):
@@ -399,11 +453,17 @@ class _March:
         if abs(t - self.last_decision) <= 10 * self.tol:
             self.same_time += 1
             if self.same_time > 4 * self.m + 10:
-                raise RuntimeError(f"the decisions keep coming back to t = {t!r} (no admissible "
-                                   "contact set found)")
+                raise EventMarchStop(f"the decisions keep coming back to t = {t!r} (no admissible "
+                                     "contact set found)" + self._skipped_at(t))
         else:
             self.same_time = 0
         self.last_decision = t
+
+    def _skipped_at(self, t):
+        """Why candidates were skipped near ``t`` (singular configurations), for a message."""
+        if self.skipped is None or abs(self.skipped[0] - t) > 10 * self.tol:
+            return ""
+        return f"; candidates skipped there: {self.skipped[1]}"
 
     def _record(self, cfg, new, t):
         """Log the changes from ``cfg`` to ``new`` at ``t``."""
@@ -412,9 +472,20 @@ class _March:
             self.event_times.append(float(t))
             self.event_constraints.append(int(i))
             self.event_kinds.append(CHANGE_NAMES[self.law.kinds[i]][int(new.open[i])])
-        if len(self.event_times) > self.max_events:
-            raise RuntimeError(f"more than {self.max_events} contact changes by t = {t!r} "
-                               "(chattering?); raise max_events if this is expected")
+        limit = self._event_limit(t)
+        if len(self.event_times) > limit:
+            raise EventMarchStop(f"more than {limit} contact changes by t = {t:.6g} (max_events = {self.max_events} "
+                                 "over the run, allowed in proportion to the time reached): chattering, or "
+                                 "changes accumulating at one time; raise max_events if this is expected, or "
+                                 "use method='cq' or 'direct'")
+
+    def _event_limit(self, t):
+        """The contact changes allowed by ``t``: ``max_events`` in proportion to the time reached,
+        ``(t - t_0 + dt) / (t_N - t_0 + dt)`` of it."""
+        t0, span = self.grid[0], self.grid[-1] - self.grid[0] + self.dt
+        if span <= 0:
+            return self.max_events
+        return math.ceil(self.max_events * min(1.0, (t - t0 + self.dt) / span))
 
     def _violation(self, cfg, Y, crit, delta):
         """How much the critical constraints leave their admissible side just after now (<= 0:

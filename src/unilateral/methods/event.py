@@ -31,10 +31,18 @@ class Event(Method):
     ``stats`` has ``event_times``, ``event_constraints``, ``event_kinds`` ("open"/"close",
     "yield"/"unload", "slip"/"stick") and ``contact_changes``.
 
+    The march stops, and the Solution has ``success=False``, a message saying why and the grid up
+    to there, when it makes more than ``max_events`` contact changes, finds no admissible contact
+    set, or the motion grows without bound (a configuration whose stiffness is not positive
+    semidefinite).
+
     Options
     -------
     tol : float, the accuracy of the event times, s
-    max_events : int, a guard against chattering (default 100000)
+    max_events : int, the most contact changes (chattering, changes accumulating at one time),
+        allowed in proportion to the time reached; default 100 per output step and unknown,
+        ``100 (N + 1) m``, proportional to the duration ``t_end``
+        (:func:`unilateral.march.event.default_max_events`)
     """
 
     name = "event"
@@ -56,13 +64,16 @@ class Event(Method):
         run.timer.lap("initial")
         u, udot, v, psi, info = march_event(model, load, disc.t, init.u, init.udot, init.v,
                                             tol=self.config.get("tol", 1e-13),
-                                            max_events=self.config.get("max_events", 100_000))
+                                            max_events=self.config.get("max_events"))
         run.timer.lap("steps")
+        failure = info.pop("failure")
+        K = u.shape[0] - 1
         run.stats.update({key: (value.tolist() if isinstance(value, np.ndarray) else value)
                           for key, value in info.items()})
-        run.stats.update(contact_changes=int(info["events"]), steps_done=disc.N, time=run.timer.laps())
-        return Solution(t=disc.t, v=v, psi=psi, psiL=None, u=u, udot=udot, success=True,
-                        message=f"{disc.N} steps, {info['events']} contact changes (exact, events "
-                                f"to {self.config.get('tol', 1e-13):g} s)",
-                        stats=run.stats, dof_names=list(model.dof_names),
+        run.stats.update(contact_changes=int(info["events"]), steps_done=K, time=run.timer.laps())
+        message = (f"stopped after {K} of {disc.N} steps: {failure}" if failure else
+                   f"{disc.N} steps, {info['events']} contact changes (exact, events to "
+                   f"{self.config.get('tol', 1e-13):g} s)")
+        return Solution(t=disc.t[:K + 1], v=v, psi=psi, psiL=None, u=u, udot=udot, success=failure is None,
+                        message=message, stats=run.stats, dof_names=list(model.dof_names),
                         constraint_names=list(model.constraint_names))
