@@ -218,3 +218,18 @@ def test_lemke_solves_the_friction_steps_as_pivoting_does():
     sol = ul.solve(model, load, lcp="lemke", **kw)
     assert ref.success and sol.success
     np.testing.assert_allclose(sol.u, ref.u, rtol=0, atol=1e-9 * np.abs(ref.u).max())
+
+
+def test_a_run_that_blows_up_is_not_a_success():
+    """F too large for K and H (every unknown open: an indefinite stiffness): direct stepping diverges
+    to inf; the solution says so instead of reporting success."""
+    H = [[49.1175, -11.5071, -20.0633], [-11.5071, 21.6064, -3.9226], [-20.0633, -3.9226, 12.1345]]
+    model = ul.Model(M=[[1.0]], K=[[147.8449]], F=[[40.6907, -35.1318, -54.5204]], H=H, g=[0.6292, 0.9018, 0.1077])
+    load = ul.LoadHistory([0.0], [([-29.4706], ul.loads.Rectangular(1.0, t_end=0.4272))])
+    rest = {"u0": [0.0], "udot0": [0.0], "v0": [0.0] * 3}
+    messages = []
+    for method in (Direct(engine="python"), Direct(engine="compiled"), "cq", "modal"):
+        sol = ul.solve(model, load, dt=1e-3, t_end=5.0, method=method, initial=rest)
+        assert not sol.success, method                 # it diverges: never a success
+        messages.append(sol.message)
+    assert any("not finite from step" in text for text in messages), messages

@@ -175,6 +175,12 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     else:
         success = True
         message = f"{N} steps, {stats['contact_changes']} contact changes"
+    blown = _first_non_finite(t, u, v, psi)
+    if blown is not None:
+        success = False
+        message = (f"the solution is not finite from step {blown} (t = {t[blown]:.6g}) on: the motion grows "
+                   "without bound (an unstable model: check that K is stable with the constraints held and "
+                   "that F, H and the loads have the sizes meant) or the time step is too large; " + message)
     warnings = _step_lcp_warnings(model, stats) + _chatter_warnings(model, stats, v)
     if warnings:
         stats["warnings"] = warnings
@@ -182,6 +188,15 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     return Solution(t=t, v=v, psi=psi, psiL=psiL, u=u, udot=udot, success=success,
                     message=message, stats=stats, dof_names=list(getattr(model, "dof_names", [])),
                     constraint_names=list(model.constraint_names))
+
+
+def _first_non_finite(t, *histories):
+    """The first step at which any of the histories (K+1, .) holds inf or NaN, or None."""
+    bad = np.zeros(len(t), dtype=bool)
+    for h in histories:
+        if h is not None:
+            bad |= ~np.all(np.isfinite(h), axis=1)
+    return int(np.argmax(bad)) if bad.any() else None
 
 
 def _friction_hint(model) -> str:
