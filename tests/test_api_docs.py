@@ -31,12 +31,19 @@ def _readme_command() -> list[str]:
     return shlex.split(commands[0])
 
 
+#: Modules of subpackages documented on pages of their own: their packages' ``__all__`` lists the
+#: functions the package exports, so pdoc does not walk to them from there (the structure's results,
+#: the energy balance, the modes and the outputs of a run are looked up by users).
+DEEP_MODULES = {"unilateral.analysis.energy", "unilateral.analysis.modes", "unilateral.analysis.outputs",
+                "unilateral.analysis.results", "unilateral.structure.forces"}
+
+
 def _public_modules() -> set[str]:
-    """``unilateral`` and its public direct submodules (the rest is reached through them)."""
+    """``unilateral``, its public direct submodules (the rest is reached through them) and :data:`DEEP_MODULES`."""
     names = {f"unilateral.{info.name}" for info in pkgutil.iter_modules(unilateral.__path__)
              if not info.name.startswith("_")}
     listed = {f"unilateral.{name}" for name in unilateral.__all__}   # pdoc walks these from unilateral
-    return {"unilateral"} | (names - listed)
+    return {"unilateral"} | (names - listed) | DEEP_MODULES
 
 
 def test_readme_command_lists_every_public_module():

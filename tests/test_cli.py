@@ -1,6 +1,7 @@
 """The command line: help, the paper's example end to end, plotting, atomic outputs."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -8,6 +9,8 @@ from click.testing import CliRunner
 
 from unilateral.cli import main
 from unilateral.io import load_netcdf
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 @pytest.fixture(scope="module")
@@ -92,3 +95,29 @@ def test_a_short_cli_run_stays_in_python_and_leaves_the_library_policy_alone(tmp
     assert jit.COMPILE_MIN_STEPS == 0 and jit.compiled_pays(10)
     stats = [json.loads(text) for text in load_netcdf(tmp_path / "ex" / "results.nc")["stats"].values]
     assert [s["engine"] for s in stats] == ["python", "python"]
+
+
+def test_an_energy_balance_off_by_more_than_one_percent_is_warned_about_with_what_to_change():
+    from unilateral.analysis.outputs import ENERGY_WARNING, energy_warnings, report
+
+    peaks = {"unilateral": {"energy": {"max_relative_error": 0.046, "t_max_relative_error": 4.9}},
+             "bilateral": {"energy": {"max_relative_error": 0.5 * ENERGY_WARNING}}}
+    warnings = energy_warnings(peaks, rule="bdf2", dt=0.002)
+    assert len(warnings) == 1
+    assert "unilateral case" in warnings[0] and "4.6 %" in warnings[0]
+    assert "--rule trapezoidal" in warnings[0] and "smaller --dt (now 0.002" in warnings[0]
+    assert "--rule" not in energy_warnings(peaks, rule="trapezoidal", dt=0.002)[0]
+    result = {"success": True, "message": "ok", "method": "cq", "rule": "bdf2", "lcp_solver": "bpp", "steps": 1,
+              "dt": 0.002, "t_end": 0.002, "run_time": 0.1, "max_lcp_error": 0.0, "contact_changes": 0,
+              "units": {}, "static": {}, "constraints": {}, "extra": {}, "warnings": warnings}
+    assert f"WARNING: {warnings[0]}" in report(result)
+
+
+def test_the_pounding_example_warns_about_its_energy_balance(tmp_path):
+    """examples/pounding.toml with its settings: bdf2 at dt = 2 ms loses 4.6 % of the energy."""
+    out = tmp_path / "pounding"
+    result = CliRunner().invoke(main, ["run", str(EXAMPLES / "pounding.toml"), "--out", str(out), "--figures", "none"])
+    assert result.exit_code == 0, result.output
+    assert "WARNING: unilateral case: the energy balance is off by" in result.output
+    summary = json.loads((out / "summary.json").read_text())
+    assert any("--rule trapezoidal" in w for w in summary["warnings"])

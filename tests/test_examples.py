@@ -218,3 +218,34 @@ def test_yielding_frame_model_file(tmp_path):
     summary = json.loads((out / "summary.json").read_text())
     assert max(c["max_v"] for c in summary["constraints"].values()) > 1e-3          # an edge lifts off
     assert any(f["slid"] for f in peaks["friction_elements"].values())
+
+
+def test_winkler_beam_says_there_is_no_base_shear_and_writes_units_and_both_cases(tmp_path):
+    """Vertical loads only: the terminal says there is no base shear and gives the vertical ground force
+    (the soil springs' reactions: the weight at rest), the figure draws that force, not an empty panel;
+    every CSV header states its unit and the result tables are written for both cases."""
+    from click.testing import CliRunner
+
+    from unilateral.cli import main
+    from unilateral.figures.results import base_forces_figure
+    from unilateral.io import load_netcdf
+
+    out = tmp_path / "winkler"
+    result = CliRunner().invoke(main, ["run", str(EXAMPLES / "winkler_beam.toml"), "--out", str(out),
+                                       "--t-end", "0.03"])
+    assert result.exit_code == 0, result.output
+    assert "peak base shear 0" not in result.output
+    assert "no base shear (no horizontal force on the ground); peak vertical ground force" in result.output
+    ds = load_netcdf(out / "results.nc")
+    weight = 12.5 * 9.80665                                          # 1.25 t/m over 10 m
+    assert float(ds["base_vertical"].sel(case="unilateral")[0]) == pytest.approx(weight, rel=1e-6)
+    fig = base_forces_figure(ds)
+    top = fig.axes[0]
+    assert top.get_ylabel() == "vertical ground force [kN]" and "no base shear" in top.get_title(loc="left")
+    headers = {p.name: p.read_text().splitlines()[0].split(",") for p in out.glob("*.csv")}
+    assert {"base.csv", "bilateral_base.csv", "element_forces.csv", "bilateral_element_forces.csv"} <= set(headers)
+    for name, header in headers.items():
+        assert header[0] == "time [s]" and all(h.endswith("]") for h in header), (name, header)
+    assert "21.uy [m]" in headers["displacements.csv"] and "21.rz [rad]" in headers["bilateral_displacements.csv"]
+    assert "psi:soil21 [kN]" in headers["constraints.csv"] and "beam1:M_i [kN m]" in headers["element_forces.csv"]
+    assert "energy_relative_error [1]" in headers["base.csv"]

@@ -288,3 +288,11 @@ def test_the_halfspace_example_runs_and_draws_its_comparison(tmp_path):
         pulse = comparison[f"{soil}/pulse"]
         assert pulse["unilateral"]["max_uplift"] > 1e-3                  # the left edge lifts off
         assert pulse["bilateral"]["max_uplift"] == 0.0
+
+
+def test_the_halfspace_figure_is_in_the_manifest(tmp_path):
+    import json
+
+    ul.analysis.run_example("halfspace", tmp_path / "hs", figures=("png",), dt=1e-2, t_end=0.3)
+    files = json.loads((tmp_path / "hs" / "manifest.json").read_text())["files"]
+    assert "halfspace.png" in files and "results.nc" in files

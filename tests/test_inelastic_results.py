@@ -108,7 +108,7 @@ def test_energy_terms_by_family_and_per_element_work(run):
     friction = sum(e["friction_work"] for e in peaks["friction_elements"].values())
     assert friction == pytest.approx(energy["friction_work"])
     base = (out / "base.csv").read_text().splitlines()[0].split(",")
-    assert "energy_plastic_work" in base and "energy_friction_work" in base
+    assert "energy_plastic_work [kN m]" in base and "energy_friction_work [kN m]" in base
 
 
 def test_summary_reports_ductility_excursions_residuals_and_slip(run):
@@ -159,8 +159,13 @@ def test_terminal_lines_csv_and_labels(run):
     labels = json.loads(ds.attrs["case_labels"])
     assert labels == {"unilateral": "with yield, slip and uplift", "bilateral": "linear (constraints held)"}
     header = (out / "yield_and_slip.csv").read_text().splitlines()[0].split(",")
-    assert header[0] == "time" and "plastic_deformation:h1" in header and "yield_force:br" in header
-    assert "slip:s1" in header and "friction_force:b4" in header and "normal_force:s1" in header
+    assert header[0] == "time [s]" and "plastic_deformation:h1 [rad]" in header and "yield_force:br [kN]" in header
+    assert "yield_force:h1 [kN m]" in header and "plastic_deformation:br [m]" in header
+    assert "slip:s1 [m]" in header and "friction_force:b4 [kN]" in header and "normal_force:s1 [kN]" in header
+    constraints = (out / "constraints.csv").read_text().splitlines()[0].split(",")
+    assert "v:h1.plastic+ [rad]" in constraints and "psi:h1.plastic+ [kN m]" in constraints
+    assert "v:s1 [m]" in constraints and "psi:s1 [kN]" in constraints
+    assert (out / "bilateral_yield_and_slip.csv").exists() and (out / "bilateral_base.csv").exists()
 
 
 def test_hysteresis_figure_is_drawn_by_run_and_plot_alike(run, tmp_path):

@@ -48,3 +48,11 @@ def test_save_figure_is_atomic(tmp_path, monkeypatch):
     with pytest.raises(OSError, match="out of space"):
         plots.save_figure(fig, tmp_path / "fig", formats=("png",))
     assert good.read_bytes() == old and os.listdir(tmp_path) == ["fig.png"]
+
+
+def test_units_are_drawn_with_superscripts_and_ground_motions_are_named():
+    from unilateral.figures.results import _excitation_label, pretty_unit
+
+    assert pretty_unit("m/s^2") == "m/s\u00b2" and pretty_unit("s^-1") == "s\u207b\u00b9" and pretty_unit("kN m") == "kN m"
+    assert _excitation_label("0:ux") == "horizontal ground acceleration"
+    assert _excitation_label("1:uy") == "vertical ground acceleration"

@@ -18,7 +18,7 @@ import click
 from . import __version__
 
 EXAMPLES = ("liolios1990", "halfspace")                          # unilateral.analysis.run.EXAMPLES
-METHOD_NAMES = ("auto", "cq", "modal", "direct")                 # in unilateral.methods.MATRIX_METHOD_NAMES
+METHOD_NAMES = ("auto", "cq", "modal", "direct", "event")        # unilateral.methods.MATRIX_METHOD_NAMES
 RULE_NAMES = ("bdf1", "bdf2", "hht", "newmark", "trapezoidal")   # unilateral.rules.RULES
 LCP_NAMES = ("bpp", "enumerate", "lemke", "newton", "pgs")       # unilateral.lcp.LCP_SOLVERS
 FIGURE_FORMATS = ("png", "pdf", "svg")
@@ -80,9 +80,10 @@ class PositiveFinite(click.ParamType):
 
 def _analysis_options(function):
     options = [
-        click.option("--method", default=None, callback=_method, metavar="[" + "|".join(METHOD_NAMES) + "|...]",
+        click.option("--method", default=None, callback=_method, metavar="[" + "|".join(METHOD_NAMES) + "]",
                      help="auto: the fastest correct method; cq: the paper's convolutional LCP; "
-                          "modal: the same with a recursive history; direct: full-model time stepping. "
+                          "modal: the same with a recursive history; direct: full-model time stepping; "
+                          "event: exact integration between contact changes (small models, exact loads). "
                           "Default: cq for examples, the model file's [analysis] method for run."),
         click.option("--rule", type=click.Choice(RULE_NAMES), default=None,
                      help="Time discretisation (default bdf2; newmark is Newmark(1/2, 1/4), the trapezoidal rule, "
@@ -112,7 +113,9 @@ def example(name, method, rule, dt, t_end, lcp, out, formats):
 
     halfspace: the same tower on a rigid footing on the paper's soil, on cones and on the elastic
     half-space, under the pulse and a synthetic earthquake; adds halfspace.png (uplift, rocking and
-    contact pressure side by side) to OUT (default ./halfspace).
+    contact pressure side by side) to OUT (default ./halfspace). Its results.nc holds the
+    half-space under the earthquake only: `unilateral plot` redraws that run's figures, not
+    halfspace.png (run the example again for it).
     """
     overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
     _run(lambda progress, figure_process: _analysis().run_example(

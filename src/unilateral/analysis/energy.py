@@ -35,7 +35,7 @@ the run (input work, kinetic energy, change of elastic energy or energy dissipat
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -68,7 +68,8 @@ def energy_balance(structure, h, q) -> dict:
     return EnergyBalance(structure)(StateRows.of(h.u, h.udot, h.v, h.vdot), q)
 
 
-class LoadFactors(NamedTuple):
+@dataclass(frozen=True)
+class LoadFactors:
     """Load samples ``q = constant + factors @ vectors`` (N+1, n), not formed (a LoadHistory's
     :meth:`~unilateral.loads.LoadHistory.grid_factors`): the work of the loads is
     ``constant^T du + sum_j f_j vectors_j^T du``, one product with the increments."""

@@ -7,6 +7,11 @@ earthquake: 12 runs. It writes the outputs of the half-space under the earthquak
 CSV tables, ``summary.json``, figures; :func:`unilateral.analysis.write_outputs`) and the
 comparison figure ``halfspace.png``: uplift of the footing's left edge, rocking and the contact
 pressure under the left strip, side by side for the two loads.
+
+``results.nc`` (and so ``unilateral plot``, which redraws the figures of ``results.nc``) holds the
+half-space under the earthquake only; ``halfspace.png`` is listed in ``manifest.json`` but drawn
+from all 12 runs, so ``unilateral plot`` does not redraw it: run the example again. The peaks of
+every run are in ``summary.json`` under ``comparison``.
 """
 
 from __future__ import annotations
@@ -107,9 +112,8 @@ def run_halfspace_example(out, *, figures=("png",), progress=None, dt=None, t_en
                            meta={"example": "halfspace", "model": "docs/theory.md section 12; "
                                  "unilateral.structure.examples.halfspace_tower"},
                            labels={"unilateral": "with uplift", "bilateral": "without uplift"}, model=model,
-                           load=load, rule=rule or "bdf2", formats=figures)
-    if figures:
-        result["figures"] += [str(p) for p in draw_comparison(runs, out / "halfspace", figures)]
+                           load=load, rule=rule or "bdf2", formats=figures,
+                           extra_figures=lambda folder, formats: draw_comparison(runs, folder / "halfspace", formats))
     result["comparison"] = {
         f"{soil}/{load_name}": {case: {"max_uplift": float(np.max(sol.v)), "success": bool(sol.success),
                                        "max_contact_force": float(np.max(-sol.psi)),

@@ -14,10 +14,14 @@ tables end there, and in ``results.nc`` its values after that are NaN.
                            accelerations, energies, modes), each with ``long_name`` and ``units``
 ``displacements.csv``      the unilateral case, one column per DOF (``bilateral_...`` likewise)
 ``constraints.csv``        ``v`` (uplift, plastic multiplier, slip) and ``psi`` per constraint unknown
-``element_forces.csv``     end forces ``name:N_i`` ... ``name:M_j`` per element (frames)
+                           (every CSV header states its unit: ``time [s]``, ``3.ux [m]``,
+                           ``psi:soil2 [kN]``; ``[1]``: dimensionless)
+``element_forces.csv``     end forces ``name:N_i [kN]`` ... ``name:M_j [kN m]`` per element (frames)
 ``base.csv``               base shear, base vertical force, overturning moment, drifts, energies
 ``yield_and_slip.csv``     plastic deformation and force of each yield element, slip, tangential
-                           and normal force of each friction element (frames that have them)
+                           and normal force of each friction element (frames that have them);
+                           these three, like the displacements, for every case
+                           (``bilateral_element_forces.csv``, ...)
 ``summary.json``           the key figures (static state, peaks with their times, periods,
                            energy balance, LCP error, run time)
 figures                    :mod:`unilateral.figures.results`, drawn from the Dataset written
@@ -65,7 +69,7 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", in
 
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
                   meta=None, labels=None, model=None, load=None, rule=None, formats=("png",),
-                  point=None, storeys=None, figure_process=None) -> dict:
+                  point=None, storeys=None, figure_process=None, extra_figures=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     The files replace those of the previous run in ``out_dir`` as a set (see the module's doc).
@@ -86,11 +90,15 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     load : LoadHistory, array or callable, optional: the applied load (energy input, ground motions)
     rule : the time rule of the runs (default: the ``rule`` statistic of the main case)
     formats : figure formats, e.g. ``("png",)`` (default), ``("png", "pdf")`` or ``()`` (none)
-    point : (x0, y0) of the overturning moment (default: the lowest, leftmost node)
+    point : (x0, y0) of the overturning moment (default: the centre of the base, :func:`unilateral.structure.forces.base_point`)
     storeys : ``[(lower_node, upper_node)]`` storeys for drifts (default: levels by elevation)
     figure_process : :class:`unilateral.figures.background.BackgroundFigures`, optional
         A forked process that draws the figures while this one writes the other files (the same
         files as in process); closed here if the writing fails.
+    extra_figures : callable, optional
+        ``extra_figures(folder, formats)`` draws figures of its own (not redrawn by ``unilateral
+        plot``) into the staging folder and returns their paths: they join the set of files (and
+        ``manifest.json``). Called only with ``formats``.
     """
     folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir)
     try:
@@ -99,6 +107,8 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
             result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
                                 meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
                                 point=point, storeys=storeys, figure_process=figure_process)
+            if formats and extra_figures is not None:
+                result["figures"] += [str(p) for p in extra_figures(staging, formats)]
         except BaseException:
             if figure_process is not None:      # it draws into the staging folder, removed below
                 figure_process.close()
@@ -145,9 +155,10 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         figure_process.submit(figure_view(ds), out, formats)
     save_netcdf(ds, out / "results.nc")
     for name, sol in computed.items():
-        save_csv(sol, out, prefix="" if name == main_name else f"{name}_")
+        save_csv(sol, out, prefix="" if name == main_name else f"{name}_", column_units=csv_units(sol, units, ds))
     if extra_results is not None:
-        _save_result_tables(ds, out, main_name=main_name)
+        _save_result_tables(ds, out, main_name=main_name, rows={name: len(sol.t) for name, sol in computed.items()},
+                            units=units)
 
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
     if figure is not None and structure is not None:
@@ -165,8 +176,14 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                           for name, sol in computed.items()}
     kinds = ds["constraint_kind"].values.tolist() if "constraint_kind" in ds.coords else None
     result = summary(computed[main_name], units=units, extra=extra, kinds=kinds)
+    if any(labels.get(name, name) != name for name in computed):
+        result["case_labels"] = {name: labels.get(name, name) for name in computed}
     if extra_results is not None:
         result["results"] = to_jsonable(extra_results["peaks"])
+        warnings = energy_warnings({labels.get(name, name): p for name, p in result["results"].items()}, rule=rule or main.stats.get("rule", "bdf2"),
+                                   dt=main.stats.get("dt"))
+        if warnings:
+            result["warnings"] = warnings
     write_json_atomic(out / "summary.json", result)
     result["figures"] = []
     if formats and figure_process is not None:
@@ -327,37 +344,87 @@ INELASTIC_COLUMNS = {"yield_element": ("plastic_deformation", "yield_force"),
                      "friction_element": ("slip", "friction_force", "normal_force")}
 
 
-def _save_result_tables(ds, out, *, main_name):
-    """``element_forces.csv``, ``base.csv`` and ``yield_and_slip.csv`` of the main case."""
-    d = ds.sel(case=main_name) if "case" in ds.dims else ds
+def _save_result_tables(ds, out, *, main_name, rows=None, units=None):
+    """``element_forces.csv``, ``base.csv`` and ``yield_and_slip.csv`` of every case: the main case's
+    without prefix, the others' as ``<case>_<file>`` (``bilateral_base.csv``), as the displacements.
+    ``rows``: case -> the number of time steps it computed (a case that stopped early ends there)."""
+    names = [str(c) for c in ds["case"].values] if "case" in ds.dims else [main_name]
+    for name in names:
+        d = ds.sel(case=name) if "case" in ds.dims else ds
+        if rows and name in rows:
+            d = d.isel(time=slice(0, rows[name]))
+        _save_case_tables(d, out, prefix="" if name == main_name else f"{name}_", units=units or {})
+
+
+def _save_case_tables(d, out, *, prefix, units):
+    force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
+    moment = f"{force} {length}".strip()
     t = d["time"].values
     if "end_force" in d:
         end = d["end_force"].values
-        columns = {"time": t}
+        columns = {_head("time", time): t}
         for k, name in enumerate(d["element"].values):
             for c, comp in enumerate(d["end_component"].values):
-                columns[f"{name}:{comp}"] = end[:, k, c]
-        write_text_atomic(out / "element_forces.csv", _csv(columns))
-    columns = {"time": t}
-    for name in ("base_shear", "base_vertical", "overturning_moment"):
+                columns[_head(f"{name}:{comp}", moment if str(comp).startswith("M") else force)] = end[:, k, c]
+        write_text_atomic(out / f"{prefix}element_forces.csv", _csv(columns))
+    columns = {_head("time", time): t}
+    for name, unit in (("base_shear", force), ("base_vertical", force), ("overturning_moment", moment)):
         if name in d:
-            columns[name] = d[name].values
+            columns[_head(name, unit)] = d[name].values
     if "support_reaction" in d:
         for k, label in enumerate(d["support"].values):
-            columns[f"reaction:{label}"] = d["support_reaction"].values[:, k]
+            unit = moment if str(label).endswith("rz") else force
+            columns[_head(f"reaction:{label}", unit)] = d["support_reaction"].values[:, k]
     if "drift_ratio" in d:
         for k, label in enumerate(d["storey"].values):
-            columns[f"drift_ratio:{label}"] = d["drift_ratio"].values[:, k]
+            columns[_head(f"drift_ratio:{label}", "1")] = d["drift_ratio"].values[:, k]
     for name in d.data_vars:
         if str(name).startswith("energy_"):
-            columns[str(name)] = d[name].values
-    write_text_atomic(out / "base.csv", _csv(columns))
-    columns = {"time": t}
+            columns[_head(str(name), "1" if str(name) == "energy_relative_error" else moment)] = d[name].values
+    write_text_atomic(out / f"{prefix}base.csv", _csv(columns))
+    columns = {_head("time", time): t}
     for dim, names in INELASTIC_COLUMNS.items():
         for name in (name for name in names if name in d):
-            columns |= {f"{name}:{label}": d[name].values[:, k] for k, label in enumerate(d[dim].values)}
+            for k, label in enumerate(d[dim].values):
+                columns[_head(f"{name}:{label}", _inelastic_unit(d, name, k, units))] = d[name].values[:, k]
     if len(columns) > 1:
-        write_text_atomic(out / "yield_and_slip.csv", _csv(columns))
+        write_text_atomic(out / f"{prefix}yield_and_slip.csv", _csv(columns))
+
+
+def _head(name: str, unit: str) -> str:
+    """A CSV column header with its unit: ``base_shear [kN]`` (``[1]``: dimensionless)."""
+    return f"{name} [{unit}]" if unit else name
+
+
+def _inelastic_unit(d, name, k, units) -> str:
+    """The unit of column ``k`` of ``name`` in ``yield_and_slip.csv``: rotations of hinges in rad."""
+    force, length = units.get("force", ""), units.get("length", "")
+    rotational = name in ("plastic_deformation", "yield_force") and "yield_deformation_unit" in d and \
+        str(d["yield_deformation_unit"].values[k]) == "rad"
+    if name in ("plastic_deformation", "slip"):
+        return "rad" if rotational else length
+    return f"{force} {length}".strip() if rotational else force
+
+
+def csv_units(sol, units, ds=None) -> dict:
+    """Units of the columns of ``displacements.csv`` and ``constraints.csv`` (:func:`unilateral.io.save_csv`):
+    ``time``, DOFs (``.rz``: rad), ``v``, ``psi``, ``psiL`` (a hinge's plastic rotation in rad, its
+    moment in force x length)."""
+    units = units or {}
+    force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
+    out = {"time": time}
+    for name in sol.dof_names or ():
+        out[name] = "rad" if str(name).endswith("rz") else length
+    rotational = set()
+    if ds is not None and "yield_deformation_unit" in ds:
+        rotational = {str(e) for e, unit in zip(ds["yield_element"].values, ds["yield_deformation_unit"].values)
+                      if str(unit) == "rad"}
+    for c in sol.constraint_names or ():
+        hinge = str(c).rpartition(".")[0] in rotational
+        out[f"v:{c}"] = "rad" if hinge else length
+        for key in ("psi", "psiL"):
+            out[f"{key}:{c}"] = f"{force} {length}".strip() if hinge else force
+    return out
 
 
 def _csv(columns) -> str:
@@ -378,6 +445,7 @@ def report(result: dict) -> str:
     text = format_summary({**result, "extra": {k: v for k, v in extra.items()
                                                if k not in ("figure", "cases", "figure_node", "figure_dof")}})
     units = result.get("units") or {}
+    labels = result.get("case_labels") or {}       # the legend labels of the figures, if not the case names
     fig = extra.get("figure")
     if fig:
         unit = units.get("length", "") if fig["dof"] != "rz" else "rad"
@@ -388,33 +456,75 @@ def report(result: dict) -> str:
         text += "\n\n" + "\n".join(lines)
     results = result.get("results") or {}
     if results:
-        text += "\n\n" + "\n".join(_result_lines(results, units))
+        text += "\n\n" + "\n".join(_result_lines(results, units, labels))
     for name, case in extra.get("cases", {}).items():
         if not case["success"]:
-            text += (f"\n{name} case FAILED at t = {case.get('t_reached', float('nan')):.4g} "
+            text += (f"\n{labels.get(name, name)} case FAILED at t = {case.get('t_reached', float('nan')):.4g} "
                      f"(step {case.get('steps_computed', '?')}): {case['message']}\n{FAILURE_HINT}")
+    for warning in result.get("warnings", ()):
+        text += f"\nWARNING: {warning}"
     return text
 
 
-def _result_lines(results: dict, units: dict) -> list[str]:
+#: A relative error of the energy balance above this is warned about (terminal and summary.json).
+ENERGY_WARNING = 0.02
+
+
+def energy_warnings(results: dict, *, rule=None, dt=None) -> list[str]:
+    """Warnings for the cases whose energy balance is off by more than :data:`ENERGY_WARNING`."""
+    out = []
+    for case, p in results.items():
+        error = (p.get("energy") or {}).get("max_relative_error")
+        if error is None or not error > ENERGY_WARNING:
+            continue
+        step = f" (now {dt:g}, e.g. half of it)" if isinstance(dt, (int, float)) else ""
+        if rule in ("bdf1", "bdf2"):
+            what = (f"the {rule} rule damps numerically at this time step: use --rule trapezoidal (it conserves "
+                    f"energy) or a smaller --dt{step}")
+        else:
+            what = f"the time step is too coarse for the contacts: use a smaller --dt{step}"
+        out.append(f"{case} case: the energy balance is off by {100 * error:.2g} % (more than "
+                   f"{100 * ENERGY_WARNING:g} %) at t = {p['energy'].get('t_max_relative_error', float('nan')):.4g}; "
+                   f"{what}")
+    return out
+
+
+def _shear_is_zero(p: dict) -> bool:
+    """No horizontal force reaches the ground (vertical loads only): the base shear is zero at every step."""
+    shear, vertical = p["base_shear"], p.get("base_vertical") or {}
+    scale = max(abs(vertical.get("max", 0.0)), abs(vertical.get("min", 0.0)), 1e-300)
+    return max(abs(shear["max"]), abs(shear["min"])) <= 1e-9 * scale
+
+
+def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
     force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
     lines = []
     for case, p in results.items():
         if not lines and p.get("periods"):
             periods = ", ".join(f"{T:.4g}" for T in p["periods"][:3])
             lines.append(f"periods of the bilateral structure [{time}]: {periods}")
-        head = f"{case}:"
+        head = f"{(labels or {}).get(case, case)}:"
         shear = p["base_shear"]
         peak = shear["max"] if abs(shear["max"]) >= abs(shear["min"]) else shear["min"]
         t_peak = shear["t_max"] if peak == shear["max"] else shear["t_min"]
         mom = p["overturning_moment"]
         mpeak = mom["max"] if abs(mom["max"]) >= abs(mom["min"]) else mom["min"]
         t_m = mom["t_max"] if mpeak == mom["max"] else mom["t_min"]
-        lines.append(f"{head} peak base shear {peak:.4g} {force} at t = {t_peak:.4g} {time}; "
-                     f"overturning moment {mpeak:.4g} {force} {length} at t = {t_m:.4g} {time}")
+        if _shear_is_zero(p) and p.get("base_vertical"):
+            vert = p["base_vertical"]
+            vpeak = vert["max"] if abs(vert["max"]) >= abs(vert["min"]) else vert["min"]
+            t_v = vert["t_max"] if vpeak == vert["max"] else vert["t_min"]
+            lines.append(f"{head} no base shear (no horizontal force on the ground); peak vertical ground force "
+                         f"{vpeak:.4g} {force} at t = {t_v:.4g} {time}; overturning moment {mpeak:.4g} {force} "
+                         f"{length} at t = {t_m:.4g} {time}")
+        else:
+            lines.append(f"{head} peak base shear {peak:.4g} {force} at t = {t_peak:.4g} {time}; "
+                         f"overturning moment {mpeak:.4g} {force} {length} at t = {t_m:.4g} {time}")
         if p.get("drift_ratio"):
             label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
             lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}) at t = {d['t']:.4g} {time}")
+        if p.get("linear_members_note"):
+            lines.append(f"{' ' * len(head)} note: {p['linear_members_note']}")
         lines += [f"{' ' * len(head)} {line}" for line in _family_lines(p, units)]
         if p.get("energy"):
             e = p["energy"]

@@ -69,7 +69,9 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     load_samples : (N+1, n) applied load at the steps, optional (energy input and initial
         acceleration; without it no energy balance is computed)
     ground_motions : ``[(direction, a_g)]``, see :func:`ground_motions_of`
-    point : (x0, y0) of the overturning moment; default: the lowest, leftmost node
+    point : (x0, y0) of the overturning moment; default: the centre of the base
+        (:func:`unilateral.structure.forces.base_point`: the mean x of the ground-connected nodes
+        at the lowest level)
     storey_pairs : ``[(lower, upper)]`` nodes of the storeys; default: levels by elevation
     units : dict of the base units (for the attributes)
 
@@ -83,10 +85,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     L, Fu, T = (units.get(k, "") for k in ("length", "force", "time"))
     acc_unit = f"{L}/{T}^2" if L and T else ""
     moment_unit = f"{Fu} {L}".strip()
-    if point is None:
-        xy = np.array([structure.coords[node] for node in structure.dofs.nodes])
-        low = xy[np.lexsort((xy[:, 0], xy[:, 1]))[0]]
-        point = (float(low[0]), float(low[1]))
+    point = F.base_point(structure) if point is None else (float(point[0]), float(point[1]))
     variables: dict = {}
     peaks: dict = {}
     coords: dict = {}
@@ -153,6 +152,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         put("overturning_moment", ("time",), case, base["overturning_moment"],
             f"overturning moment of the ground forces about ({point[0]:g}, {point[1]:g}), counter-clockwise",
             moment_unit)
+        variables["overturning_moment"][2]["overturning_point"] = list(point)
         drifts = F.storey_drifts(structure, h, storey_pairs)
         if drifts:
             coords["storey"] = list(drifts)
@@ -181,6 +181,10 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                     "1" if key == "relative_error" else moment_unit)
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
+        peaks[case]["overturning_point"] = list(point)
+        note = _linear_drift_note(structure, peaks[case])
+        if note:
+            peaks[case]["linear_members_note"] = note
         if energy is not None:
             peaks[case]["energy"] |= {key: float(energy[key][-1]) for key in FAMILY_ENERGY if key in energy_keys}
         if inelastic:
@@ -231,6 +235,24 @@ def _extreme(t, y) -> dict:
 def _abs_peak(t, y) -> dict:
     i = int(np.argmax(np.abs(y)))
     return {"value": float(y[i]), "t": float(t[i])}
+
+
+#: Storey drift ratio above which a model whose members cannot yield gets a note.
+LINEAR_DRIFT_LIMIT = 0.02
+
+
+def _linear_drift_note(structure, peaks: dict) -> str | None:
+    """A note when the members are linear (no yield unknown: no hinge, no yield link) and a storey's
+    peak drift ratio exceeds :data:`LINEAR_DRIFT_LIMIT`, else None."""
+    drifts = peaks.get("drift_ratio") or {}
+    if not drifts or any(u.kind == "yield" for _, u in structure.constraints):
+        return None
+    label, d = max(drifts.items(), key=lambda item: abs(item[1]["value"]))
+    if abs(d["value"]) <= LINEAR_DRIFT_LIMIT:
+        return None
+    return (f"the members do not yield in this model: drifts above {100 * LINEAR_DRIFT_LIMIT:g} % (here "
+            f"{100 * abs(d['value']):.3g} %, storey {label}) are those of elastic members, beyond what real members "
+            "carry elastically; add plastic hinges or yield links for an inelastic response")
 
 
 def _peaks(t, base, ends, reaction, drifts, energy, *, h, ground_motions, structure) -> dict:

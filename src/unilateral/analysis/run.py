@@ -55,6 +55,8 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
     spec = load_model_file(path)
     a = spec.analysis
     settings = settings_of(a, **overrides)
+    if point is None and spec.document.output.overturning_about is not None:
+        point = tuple(spec.document.output.overturning_about)
     return analyse(spec.model, spec.load, settings, Path(out) if out is not None else Path(path.stem),
                    structure=spec.structure, units=spec.units, figure=spec.figure,
                    title=a.get("title") or path.stem, meta={"model_file": str(path)},

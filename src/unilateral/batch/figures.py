@@ -120,8 +120,8 @@ def ida_figure(ds, quantity: str, path, *, formats=("png",), dpi=150, title: str
             ax.plot(stats[:, 0], levels, "--", color="black", lw=1.4, label="16% / 84%")
             ax.plot(stats[:, 2], levels, "--", color="black", lw=1.4)
         unit = ds[quantity].attrs.get("units", "")
-        ax.set_xlabel(f"peak {quantity} ({unit})" if unit else f"peak {quantity}")
-        ax.set_ylabel(im_label)
+        ax.set_xlabel(f"peak {quantity} [{pretty_unit(unit)}]" if unit else f"peak {quantity}")
+        ax.set_ylabel(pretty_unit(im_label))
         ax.set_title(label, fontsize=9)
         ax.set_xlim(left=0)
         ax.set_ylim(bottom=0)
@@ -182,13 +182,13 @@ def fragility_figure(ds, limit_states, path, *, formats=("png",), dpi=150, title
                 ax.annotate(f"{nj}", (xj, fj), textcoords="offset points", xytext=(0, 6), ha="center",
                             fontsize=6, color=color)
             if math.isfinite(f["theta"]):
-                text = f"{f['label']}: theta = {f['theta']:.3g}, beta = {f['beta']:.2f}"
+                text = f"{f['label']}: θ = {f['theta']:.3g}{_im_unit(im_label)}, β = {f['beta']:.2f}"
                 ax.plot(x, fit(x), "-", color=color, lw=1.6, label=text)
             else:
                 ax.plot([], [], "-", color=color, label=f"{f['label']}: {f['note']}")
         ax.set_ylim(-0.03, 1.08)
         ax.set_xlim(0, top * 1.1)
-        ax.set_xlabel(im_label)
+        ax.set_xlabel(pretty_unit(im_label))
         ax.set_ylabel("P(exceedance)")
         ax.set_title(f"{limit.name} ({limit.quantity} > {limit.threshold:g})", fontsize=9)
         ax.grid(alpha=0.3)
@@ -198,3 +198,18 @@ def fragility_figure(ds, limit_states, path, *, formats=("png",), dpi=150, title
     written = _save(fig, Path(path), formats, dpi)
     plt.close(fig)
     return written, fits
+
+
+def _im_unit(label: str) -> str:
+    """`` g`` of an intensity label ``"PGA [g]"`` (the unit of the fragility's median θ), or ``""``."""
+    label = str(label)
+    if label.endswith("]") and "[" in label:
+        return " " + pretty_unit(label[label.rindex("[") + 1:-1])
+    return ""
+
+
+def pretty_unit(unit: str) -> str:
+    """A unit as drawn (``m/s^2`` -> ``m/s²``): :func:`unilateral.figures.results.pretty_unit`."""
+    from ..figures.results import pretty_unit as pretty
+
+    return pretty(unit)

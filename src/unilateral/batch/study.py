@@ -203,9 +203,9 @@ def _intensity_label(doc: StudyFile) -> str:
     if scaling is None or scaling.measure == "factor":
         return "scale factor"
     if scaling.measure == "pga":
-        return f"PGA ({scaling.units})"
+        return f"PGA [{scaling.units}]"
     period = "T1" if scaling.period == "T1" else f"{scaling.period:g} s"
-    return f"Sa({period}, {100 * scaling.damping:g}%) ({scaling.units})"
+    return f"Sa({period}, {100 * scaling.damping:g}%) [{scaling.units}]"
 
 
 # ---------------------------------------------------------------------- checks without the models

@@ -28,7 +28,8 @@ def parser() -> argparse.ArgumentParser:
                    help=f"problems (default: {' '.join(PROBLEMS)}; also winkler<m>)")
     p.add_argument("--methods", nargs="+", default=list(METHODS), choices=list(METHODS), metavar="M",
                    help="methods (default: all: " + ", ".join(f"'{m}'" for m in METHODS) + ")")
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, help=f"JSON results (default {DEFAULT_OUT})")
+    p.add_argument("--out", type=Path, default=DEFAULT_OUT, help=f"JSON results (default ./{DEFAULT_OUT}, in the current directory); "
+                        "the scaling figure goes next to it")
     p.add_argument("--no-figure", action="store_true", help="skip the scaling runs and their figure")
     p.add_argument("--max-memory-gib", type=float, default=None,
                    help="skip runs estimated to need more memory (default 4)")

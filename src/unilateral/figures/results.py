@@ -18,7 +18,8 @@ file                     content
 ``hysteresis``           force against deformation of the yield and friction elements, the
                          largest dissipated energy first (at most :data:`MAX_HYSTERESIS`)
 ``ground_motion``        the input record(s)
-``base_forces``          base shear and overturning moment
+``base_forces``          base shear (or, with no horizontal force on the ground, the vertical
+                         ground force) and overturning moment
 ``energy``               the energy balance and its relative error
 =======================  ======================================================================
 
@@ -103,7 +104,14 @@ def _unit(ds, key):
 
 
 def _axis(text, unit):
-    return f"{text} [{unit}]" if unit else text
+    return f"{text} [{pretty_unit(unit)}]" if unit else text
+
+
+def pretty_unit(unit: str) -> str:
+    """A unit as drawn: powers as superscripts (``m/s^2`` -> ``m/s²``, ``s^-1`` -> ``s⁻¹``)."""
+    import re
+
+    return re.sub(r"\^\(?(-?\d+)\)?", lambda m: m.group(1).translate(_SUPERSCRIPT), str(unit))
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076\u2077\u2078\u2079")
@@ -344,8 +352,9 @@ def force_deformation_figure(ds):
     funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, shown], initial=0.0)))
     ncols = min(3, len(shown))
     nrows = -(-len(shown) // ncols)
-    title = 0.4 if len(shown) < len(names) else 0.25
-    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), 0.5 + title + 2.0 * nrows), nrows=nrows, ncols=ncols,
+    title = 0.6 if len(shown) < len(names) else 0.35
+    height = 0.5 + title + 2.0 * nrows
+    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), height), nrows=nrows, ncols=ncols,
                         margins=(0.7, 0.4, 0.5, title), gaps=(0.75, 0.75), squeeze=False)
     for ax in axes.flat[len(shown):]:
         ax.remove()
@@ -357,7 +366,8 @@ def force_deformation_figure(ds):
         ax.set_title(names[i], loc="left")
         ax.set(xlabel=_axis("deformation", lunit), ylabel=_axis("compression", funit))
     if len(shown) < len(names):
-        fig.suptitle(f"{len(shown)} of {len(names)} unilateral elements, the largest openings")
+        fig.suptitle(f"{len(shown)} of {len(names)} unilateral elements, the largest openings",
+                     y=1.0 - 0.12 / height, va="top")
     return fig
 
 
@@ -381,13 +391,13 @@ def gaps_figure(ds):
                         nrows=2 * len(gaps), sharex=True, squeeze=False, height_ratios=[2, 1.2] * len(gaps))
     for k, i in enumerate(gaps):
         ax, low = axes[2 * k, 0], axes[2 * k + 1, 0]
-        ax.plot(*envelope(t, lf * e[:, i]), color="C0", label="relative displacement (opening +)")
+        ax.plot(*envelope(t, lf * e[:, i]), color="C0", label="relative displacement (apart +)")
         ax.axhline(-lf * gap[i], color="C3", linestyle="--", linewidth=0.9,
-                   label=f"contact: gap {lf * gap[i]:g} {lunit} closed")
+                   label=f"closed: the gap of {lf * gap[i]:g} {lunit}")
         ax.margins(x=0)
         ax.set_title(names[i], loc="left")
-        ax.set_ylabel(_axis("opening", lunit))
-        ax.legend(loc="best")
+        ax.set_ylabel(_axis("relative\ndisplacement", lunit))
+        ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False, borderaxespad=0.1)
         low.plot(*envelope(t, -ff * psi[:, i]), color="C3")
         low.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
         low.margins(x=0)
@@ -498,13 +508,25 @@ def ground_motion_figure(ds):
     a = d["ground_acceleration"].values
     unit = str(d["ground_acceleration"].attrs.get("units", ""))
     fig, ax = _figure((PAGE_WIDTH, 2.4))
-    for k, label in enumerate(d["excitation"].values):
-        ax.plot(*envelope(t, a[:, k]), color=f"C{k}", linewidth=0.8, label=f"{label}")
+    labels = [_excitation_label(str(label)) for label in d["excitation"].values]
+    if len(set(labels)) < len(labels):          # two records in one direction: number them
+        labels = [f"{label}, record {k + 1}" for k, label in enumerate(labels)]
+    for k, label in enumerate(labels):
+        ax.plot(*envelope(t, a[:, k]), color=f"C{k}", linewidth=0.8, label=label)
     ax.margins(x=0)
-    ax.set(xlabel=_axis("time t", _unit(d, "time")), ylabel=_axis("a_g", unit),
-           title="Input record: ground acceleration a_g")
-    ax.legend(loc="upper right")
+    what = labels[0] if len(labels) == 1 else "ground acceleration"
+    ax.set(xlabel=_axis("time t", _unit(d, "time")), ylabel=_axis("$a_g$", unit),
+           title=f"Input record: {what} $a_g$")
+    if len(labels) > 1:
+        ax.legend(loc="upper right")
     return fig
+
+
+def _excitation_label(name: str) -> str:
+    """``"0:ux"`` (index and direction of a ground motion) -> ``"horizontal ground acceleration"``."""
+    direction = name.rpartition(":")[2]
+    word = {"ux": "horizontal", "uy": "vertical"}.get(direction)
+    return f"{word} ground acceleration" if word else _text(name, 40)
 
 
 @_styled
@@ -517,17 +539,27 @@ def base_forces_figure(ds):
     labels = case_labels(ds)
     shear = [_case(ds, c)["base_shear"].values for c in cases]
     moment = [_case(ds, c)["overturning_moment"].values for c in cases]
-    funit, ff = force_scale(_unit(ds, "force"), max(float(np.max(np.abs(s))) for s in shear))
+    top_label = "base shear"
+    peak = max(float(np.nanmax(np.abs(s), initial=0.0)) for s in shear)
+    if "base_vertical" in ds:                   # vertical loads only: no base shear, show the vertical force
+        vertical = [_case(ds, c)["base_vertical"].values for c in cases]
+        peak_vertical = max(float(np.nanmax(np.abs(s), initial=0.0)) for s in vertical)
+        if peak <= 1e-9 * peak_vertical:
+            shear, peak, top_label = vertical, peak_vertical, "vertical ground force"
+    funit, ff = force_scale(_unit(ds, "force"), peak)
     munit = f"{funit} {_unit(ds, 'length')}".strip()
-    fig, (top, low) = _figure((PAGE_WIDTH, 4.4), margins=(0.8, 0.2, 0.5, 0.15), gaps=(0.0, 0.3), nrows=2,
-                              sharex=True)
+    fig, (top, low) = _figure((PAGE_WIDTH, 4.4), margins=(0.8, 0.2, 0.5, 0.15 if top_label == "base shear" else 0.35),
+                              gaps=(0.0, 0.3), nrows=2, sharex=True)
     for k, c in enumerate(cases):
         label = labels.get(c, c) if c else None
         top.plot(*envelope(t, ff * shear[k]), ("-", "--")[k % 2], color=f"C{k}", label=label)
         low.plot(*envelope(t, ff * moment[k]), ("-", "--")[k % 2], color=f"C{k}", label=label)
     point = ds.attrs.get("overturning_point")
     where = f" about ({point[0]:g}, {point[1]:g})" if point is not None and len(point) == 2 else ""
-    top.set(ylabel=_axis("base shear", funit))
+    top.set(ylabel=_axis(top_label, funit))
+    if top_label != "base shear":
+        top.set_title("no base shear (no horizontal force on the ground): vertical ground force",
+                      loc="left")
     low.set(ylabel=_axis("moment", munit), xlabel=_axis("time t", _unit(ds, "time")))
     low.set_title(f"overturning moment{where}", loc="left")
     top.margins(x=0)

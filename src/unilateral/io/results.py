@@ -300,7 +300,8 @@ def _not_hdf5(path: Path, head: bytes) -> str:
     return f"it is not a netCDF-4 (HDF5) file (it starts with {head!r})"
 
 
-def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "") -> list[Path]:
+def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "",
+             column_units: dict | None = None) -> list[Path]:
     """Write the histories as CSV tables with a header row, atomically and at full precision.
 
     Files, in ``directory`` (created if missing):
@@ -310,7 +311,9 @@ def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "") -
     - ``<prefix>constraints.csv``: ``time``, ``v:<name>`` and ``psi:<name>`` per constraint, and
       ``psiL:<name>`` if present.
 
-    Numbers are written as the shortest decimal that reads back to the same float.
+    Numbers are written as the shortest decimal that reads back to the same float. With
+    ``column_units`` (column name -> unit), a header states its column's unit: ``time [s]``,
+    ``3.ux [m]``, ``psi:soil2 [kN]``.
 
     Returns
     -------
@@ -328,6 +331,9 @@ def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "") -
         if values is not None:
             columns |= {f"{name}:{c}": col for c, col in zip(sol.constraint_names, np.asarray(values).T)}
     tables["constraints.csv"] = columns
+    if column_units:
+        tables = {filename: {(f"{name} [{column_units[name]}]" if column_units.get(name) else name): values
+                             for name, values in table.items()} for filename, table in tables.items()}
     return [write_text_atomic(directory / f"{prefix}{filename}", _csv_text(table))
             for filename, table in tables.items()]
 

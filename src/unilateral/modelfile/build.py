@@ -235,6 +235,10 @@ def _mode_problems(document: ModelFile) -> list[str]:
     if loads.gravity is not None:
         problems.append("loads.gravity: needs a frame (give the weight of a matrix-level model as a "
                         "constant [[loads.nodal]] load)")
+    if loads.distributed:
+        problems.append("loads.distributed: needs a frame (a matrix-level model has no beams)")
+    if document.output.overturning_about is not None:
+        problems.append("output.overturning_about: needs a frame (a matrix-level model has no base)")
     if document.output.figure is not None:
         problems.append("output.figure: needs a frame (a matrix-level model has no nodes)")
     problems += [value_problem(("loads", "nodal", k, "node"), load.node,
@@ -440,11 +444,11 @@ def _build_structure(document: ModelFile) -> Structure:
     for k, link in enumerate(document.rigid_links):
         with _at(key_path(("rigid_links", k))):
             fr.rigid_link(link.master, link.slave)
+    to_mass = _mass_factor(document.units)
     for section in ("elements", "unilateral"):
         for k, element in enumerate(getattr(document, section)):
             with _at(key_path((section, k))):
-                _add_element(fr, element)
-    to_mass = _mass_factor(document.units)
+                _add_element(fr, element, to_mass)
     for k, mass in enumerate(document.masses):
         with _at(key_path(("masses", k))):
             fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass)
@@ -463,8 +467,25 @@ def _build_structure(document: ModelFile) -> Structure:
                 fr.rayleigh_from_ratios(rayleigh.zeta, rayleigh.f1, rayleigh.f2)
             else:
                 fr.rayleigh(rayleigh.a0 or 0.0, rayleigh.a1 or 0.0)
+    modal = document.damping.modal if document.damping is not None else None
+    if modal is not None:
+        with _at("damping.modal"):
+            fr.modal_damping(modal.zeta, modal.modes)
+    if document.analysis.p_delta:
+        gravity = document.loads.gravity
+        if gravity is None:
+            raise Problems(["analysis.p_delta = true: needs [loads.gravity] (the axial forces of P-Delta "
+                            "are those of the gravity load)"])
+        with _at("analysis.p_delta"):
+            fr.p_delta(g=_gravity_value(document), direction=gravity.direction)
     with _at("structure"):
         return fr.build()
+
+
+def _gravity_value(document: ModelFile) -> float:
+    """``g`` of ``[loads.gravity]`` in the model's units."""
+    units, g = document.units, document.loads.gravity.g
+    return STANDARD_GRAVITY * TIME_UNITS[units.time] ** 2 / length_factor(units.length) if g == "standard" else g
 
 
 def _mass_factor(units) -> float:
@@ -475,10 +496,11 @@ def _mass_factor(units) -> float:
     return mass_factor(units.mass) / consistent_kg
 
 
-def _add_element(fr: Frame2D, e) -> None:
+def _add_element(fr: Frame2D, e, to_mass=1.0) -> None:
     match e:
         case Beam():
-            fr.beam(e.name, e.node_i, e.node_j, e.E, e.A, e.I, axial_strain=e.axial_strain, curvature=e.curvature)
+            fr.beam(e.name, e.node_i, e.node_j, e.E, e.A, e.I, axial_strain=e.axial_strain, curvature=e.curvature,
+                    rho=None if e.rho is None else e.rho * to_mass)
         case Bar():
             fr.bar(e.name, e.node_i, e.node_j, e.E, e.A, axial_strain=e.axial_strain)
         case Spring():
@@ -511,9 +533,13 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
     constant = np.zeros(model.n)
     gravity = document.loads.gravity
     if gravity is not None:
-        g = STANDARD_GRAVITY * to_model if gravity.g == "standard" else gravity.g
-        constant += structure.gravity(g, gravity.direction)
+        constant += structure.gravity(_gravity_value(document), gravity.direction)
     terms = _nodal_terms(document.loads.nodal, folder, model, structure)
+    for k, load in enumerate(document.loads.distributed):
+        parts = ("loads", "distributed", k)
+        with _at(key_path((*parts, "beam"))):
+            vector = structure.distributed_load(load.beam, wx=load.wx, wy=load.wy)
+        terms.append((vector, _time_function(load.time_function, (*parts, "time_function"), folder)))
     for k, motion in enumerate(document.loads.ground_motion):
         parts = ("loads", "ground_motion", k)
         if structure is not None:

@@ -170,6 +170,9 @@ class Beam(Table):
     I: Positive = Field(description="Second moment of area [length^4].")  # noqa: E741
     axial_strain: float = Field(0.0, description="Imposed (e.g. thermal) axial strain.")
     curvature: float = Field(0.0, description="Imposed curvature [1/length].")
+    rho: NonNegative | None = Field(None, description=(
+        "Mass density [units.mass/length^3, or force time^2/length^4]: the beam's mass rho A L, half "
+        "at each end node (with [loads.gravity], its self-weight)."))
 
 
 class Bar(Table):
@@ -317,10 +320,20 @@ class Rayleigh(Table):
         return self
 
 
+class ModalDamping(Table):
+    """Modal damping C = M Phi diag(2 zeta_i w_i) Phi^T M in the modes of the structure with its
+    constraints held (massless DOFs condensed): one ratio for every mode, or one per mode."""
+
+    zeta: NonNegative | list[NonNegative] = Field(description="Damping ratio(s), lowest mode first.")
+    modes: Annotated[int, Field(ge=1)] | None = Field(None, description=(
+        "Number of lowest modes damped (default: all, or as many as ratios)."))
+
+
 class Damping(Table):
     """[damping]: structural damping (Kelvin dashpots of soil and gaps are given with them)."""
 
     rayleigh: Rayleigh | None = None
+    modal: ModalDamping | None = None
 
 
 # ---------------------------------------------------------------------- loads
@@ -409,6 +422,16 @@ class NodalLoad(Table):
         return self
 
 
+class DistributedLoad(Table):
+    """[[loads.distributed]]: a uniform load on a beam, force per length along global x and y, as its
+    fixed-end nodal forces and moments (w L/2, w L^2/12), times a time function."""
+
+    beam: Annotated[str, Field(min_length=1, description="Name of the beam in [[elements]].")]
+    wx: float = Field(0.0, description="Load along x [force/length].")
+    wy: float = Field(0.0, description="Load along y [force/length].")
+    time_function: TimeFunction = ConstantLoad(type="constant")
+
+
 class GroundMotion(Table):
     """[[loads.ground_motion]]: an acceleration record acting as the load -M r a_g(t)."""
 
@@ -428,6 +451,7 @@ class Loads(Table):
 
     gravity: Gravity | None = None
     nodal: list[NodalLoad] = []
+    distributed: list[DistributedLoad] = []
     ground_motion: list[GroundMotion] = []
 
 
@@ -443,6 +467,8 @@ class Analysis(Table):
     lcp: Literal[tuple(sorted(LCP_SOLVERS))] = Field("bpp", title="LCP solver")
     initial: Literal["static", "rest"] = Field("static", title="initial state")
     bilateral_reference: bool = Field(True, description="Also run with every constraint bilateral.")
+    p_delta: bool = Field(False, description=(
+        "Frames: add the geometric stiffness of the axial forces of [loads.gravity] (P-Delta)."))
     title: str = ""
 
 
@@ -458,6 +484,9 @@ class Output(Table):
     """[output]: what to draw."""
 
     figure: Figure | None = None
+    overturning_about: Annotated[list[float], Field(min_length=2, max_length=2)] | None = Field(None, description=(
+        "Frames: the point [x, y] the overturning moment is taken about (default: the centre of the base, "
+        "the mean x of the ground-connected nodes at the lowest level)."))
 
 
 class Matrices(Table):

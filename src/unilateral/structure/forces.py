@@ -421,6 +421,27 @@ def reactions(structure, h: Histories) -> dict:
     return {"support": support, "ground_elements": ground, "at": at}
 
 
+def base_point(structure) -> tuple[float, float]:
+    """The default point of the overturning moment: the centre of the base.
+
+    The base is the set of nodes the ground acts on (a supported DOF, an element to the ground, a
+    footing's contact nodes); of those at the lowest elevation (within ``1e-9`` of the model's
+    size), ``(mean x, y)``. Without any such node: the mean x of the lowest nodes.
+    """
+    coords = structure.coords
+    ground = {node for node, _ in structure.dofs._restrained}
+    ground |= {e.dofs[0][0] for e in _ground_elements(structure)}
+    fnd = getattr(structure, "foundation", None)
+    if fnd is not None:
+        ground |= set(fnd.contact_nodes())
+    nodes = [node for node in structure.dofs.nodes if node in ground] or list(structure.dofs.nodes)
+    xy = np.array([coords[node] for node in nodes], dtype=float)
+    size = float(np.ptp(np.array(list(coords.values()), dtype=float), axis=0).max()) or 1.0
+    low = xy[:, 1].min()
+    level = xy[np.abs(xy[:, 1] - low) <= 1e-9 * size]
+    return float(level[:, 0].mean()), float(low)
+
+
 def base_forces(structure, reaction: dict, point=(0.0, 0.0)) -> dict:
     """Base shear, base vertical force and overturning moment about ``point`` (N+1,) each.
 

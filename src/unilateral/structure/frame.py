@@ -20,7 +20,7 @@ Strain and sign conventions of the elements are in :mod:`unilateral.structure.el
 from __future__ import annotations
 
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -46,6 +46,11 @@ class Frame2D:
     :meth:`hinge` adds two plastic multipliers ``"name.plastic+"``, ``"name.plastic-"`` (yield
     family), a :meth:`slider` two slips ``"name.slip+"``, ``"name.slip-"`` (friction family);
     for these ``psi`` is the yield function, ``<= 0``.
+
+    Masses: :meth:`mass`, and a beam's own mass from its density (``rho`` of :meth:`beam`). Damping:
+    :meth:`rayleigh` and/or :meth:`modal_damping`. Second-order effects of gravity: :meth:`p_delta`.
+    Loads are vectors of the built :class:`Structure`: :meth:`Structure.gravity`,
+    :meth:`Structure.nodal_load`, :meth:`Structure.distributed_load` (a uniform load on a beam).
     """
 
     def __init__(self):
@@ -59,6 +64,8 @@ class Frame2D:
         self._hinges: dict = {}
         self._mass: dict = {}
         self._rayleigh: tuple[float, float] | None = None
+        self._modal: tuple | None = None
+        self._p_delta: tuple | None = None
         self._foundation = None
 
     # ------------------------------------------------------------------ nodes and supports
@@ -154,13 +161,76 @@ class Frame2D:
         w2 = 2 * np.pi * _real(where, "f2", f2, ">0")
         self.rayleigh(2 * zeta * w1 * w2 / (w1 + w2), 2 * zeta / (w1 + w2))
 
+    def modal_damping(self, zeta, modes=None) -> None:
+        """Modal damping: the ratio ``zeta`` in each mode of the structure with its constraints held.
+
+        ``C += M Phi diag(2 zeta_i w_i) Phi^T M`` with ``w_i``, ``Phi`` (mass-normalised, ``Phi^T M
+        Phi = I``) the modes of ``K = G E G^T`` (every element bilateral: contacts closed and bonded,
+        no slip, no yield) and ``M``. DOFs without mass are condensed statically
+        (``K* = K_mm - K_m0 K_00^-1 K_0m``): the modes are those of ``(K*, M_mm)`` and the damping
+        acts on the DOFs with mass only, so the condensed system has exactly the ratio ``zeta_i`` in
+        mode ``i``. Modes beyond those damped get none.
+
+        Parameters
+        ----------
+        zeta : float (one ratio for the damped modes) or sequence (one per mode, lowest first), >= 0
+        modes : int or None
+            The number of lowest modes damped; None: all modes (a sequence ``zeta``: ``len(zeta)``).
+
+        Adds to :meth:`rayleigh` damping and the dashpots if both are given.
+        """
+        where = "modal_damping"
+        if self._modal is not None:
+            raise ValueError(f"{where}: modal damping is already set (zeta={self._modal[0]!r})")
+        if np.ndim(zeta) == 0:
+            zeta = _real(where, "zeta", zeta, ">=0")
+        else:
+            zeta = tuple(_real(where, f"zeta[{k}]", z, ">=0") for k, z in enumerate(zeta))
+            if not zeta:
+                raise ValueError(f"{where}: zeta is an empty sequence")
+        if modes is not None:
+            if isinstance(modes, bool) or not isinstance(modes, numbers.Integral) or modes < 1:
+                raise ValueError(f"{where}: modes={modes!r} must be an integer >= 1 (the number of modes) or None")
+            modes = int(modes)
+            if not isinstance(zeta, float) and len(zeta) != modes:
+                raise ValueError(f"{where}: {len(zeta)} ratios for modes={modes}; give one per mode")
+        self._modal = (zeta, modes)
+
+    def p_delta(self, enabled=True, *, g=STANDARD_GRAVITY, direction=(0.0, -1.0)) -> None:
+        """P-Delta: the geometric stiffness of the gravity's axial forces, constant in time, in ``K``.
+
+        :meth:`build` solves the linear static problem of the gravity ``g`` along ``direction`` on
+        the lumped masses (:meth:`Structure.gravity`) with every element bilateral (contacts
+        closed, no yield), takes the axial force ``N`` (tension positive) of each beam and bar, and
+        adds their consistent geometric stiffness (:meth:`Structure.geometric_stiffness`; a
+        compression ``N < 0`` lowers ``K``) to the ``K`` of :meth:`Structure.to_model`. The element
+        forces reported stay those of ``G E G^T`` (the geometric part shows in the equilibrium of
+        the nodes, not in ``sigma``), and the energy terms do not count it. A gravity at or above
+        the buckling load makes ``K`` indefinite: ``to_model`` then refuses the model.
+        ``enabled=False`` switches it off.
+        """
+        if not enabled:
+            self._p_delta = None
+            return
+        g = _real("p_delta", "g", g, ">0")
+        d = dict(el.direction_terms("p_delta", direction))
+        if "rz" in d:
+            raise ValueError("p_delta: direction='rz' is not a direction of gravity; use a vector (dx, dy)")
+        self._p_delta = (g, (d.get("ux", 0.0), d.get("uy", 0.0)))
+
     # ------------------------------------------------------------------ bilateral elements
-    def beam(self, name, i, j, E, A, I, *, axial_strain=0.0, curvature=0.0) -> None:
+    def beam(self, name, i, j, E, A, I, *, axial_strain=0.0, curvature=0.0, rho=None) -> None:
         """Euler-Bernoulli beam-column from node ``i`` to node ``j``.
 
         Natural strains: elongation, and the end rotations at ``i`` and ``j`` relative to the
         chord; stiffness ``[[EA/L, 0, 0], [0, 4EI/L, 2EI/L], [0, 2EI/L, 4EI/L]]``.
         ``axial_strain`` and ``curvature`` are imposed (e.g. thermal) strains, constant in time.
+
+        ``rho`` (mass per volume, force time^2/length^4, or None): the beam's own mass
+        ``rho A L``, lumped half at each end node on ``ux`` and ``uy`` (no rotational inertia), as
+        :meth:`mass` would add it; :meth:`Structure.gravity` then gives its self-weight, ``rho A L g / 2``
+        per end, which are the exact fixed-end forces of a uniform weight apart from the end
+        moments ``+- w L^2/12`` (use :meth:`Structure.distributed_load` for those).
         """
         where = self._label("beam", name)
         self._two_nodes(where, i, j)
@@ -168,6 +238,10 @@ class Frame2D:
         element = el.beam(name, i, self._coords[i], j, self._coords[j], E=E, A=A, I=I,
                           axial_strain=_real(where, "axial_strain", axial_strain),
                           curvature=_real(where, "curvature", curvature))
+        if rho is not None:
+            half = _real(where, "rho", rho, ">=0") * A * el.chord(where, i, self._coords[i], j, self._coords[j])[0] / 2
+            for node in (i, j):
+                self.mass(node, half)
         self._beams[name] = element
         self._add(element)
 
@@ -415,11 +489,15 @@ class Frame2D:
         self._names.add(name)
 
     # ------------------------------------------------------------------ build
-    def build(self) -> Structure:
+    def build(self, *, p_delta=None) -> Structure:
         """Number the DOFs and assemble the natural form, the mass and the damping matrices.
 
-        Raises ``ValueError`` if a free DOF has no stiffness (``K`` would be singular).
+        ``p_delta=True`` is :meth:`p_delta` with the standard gravity (``False``: off; None: as set
+        by :meth:`p_delta`). Raises ``ValueError`` if a free DOF has no stiffness (``K`` would be
+        singular).
         """
+        if p_delta is not None:
+            self.p_delta(bool(p_delta))
         if not self._coords:
             raise ValueError("the frame has no nodes; add nodes with Frame2D.node()")
         everything = self._elements + self._dashpots
@@ -452,9 +530,9 @@ class Frame2D:
             for terms in fnd.moved_rows(self._coords):
                 on_soil |= {(node, dof) for node, dof, _ in terms}
         _check_stiffness(K, dofs, exempt=on_soil)
-        C = self._damping(dofs, M)
+        C = self._damping(dofs, M, K)
         natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=ConstantStrain(theta), E_v=E_v)
-        return Structure(
+        structure = Structure(
             natural=natural, M=M, C=C, dofs=dofs,
             element_names=tuple(e.name for e in self._elements),
             strain_names=tuple(s for e in self._elements for s in e.strain_labels),
@@ -464,10 +542,18 @@ class Frame2D:
             coords={node: xy.copy() for node, xy in self._coords.items()}, rayleigh=self._rayleigh,
             foundation=fnd,
         )
+        if self._p_delta is None:
+            return structure
+        if fnd is not None:
+            raise ValueError("p_delta: not available with a foundation on a soil medium")
+        g, (dx, dy) = self._p_delta
+        load = structure.gravity(g, (dx, dy)) if (dx or dy) else np.zeros(structure.n)
+        axial = structure.static_axial_forces(load)
+        return replace(structure, geometric=structure.geometric_stiffness(axial), axial_forces=axial)
 
     # ------------------------------------------------------------------ helpers
-    def _damping(self, dofs, M):
-        """Attached dashpots plus Rayleigh damping, or None.
+    def _damping(self, dofs, M, K=None):
+        """Attached dashpots plus Rayleigh damping plus modal damping, or None.
 
         The stiffness-proportional part uses the bilateral elements only: a unilateral element
         must not transmit damping forces across an open contact.
@@ -484,6 +570,9 @@ class Frame2D:
                 Gb = _compatibility(bilateral, dofs)
                 R = R + a1 * (Gb @ _block_diagonal([e.E for e in bilateral]) @ Gb.T)
             C = R.tocsr() if C is None else (C + R).tocsr()
+        if self._modal is not None:
+            D = sp.csr_matrix(modal_damping_matrix(K, M, *self._modal))
+            C = D if C is None else (C + D).tocsr()
         return C
 
     def _label(self, kind, name) -> str:
@@ -566,6 +655,11 @@ class Structure:
     foundation : :class:`~unilateral.structure.foundation.Foundation` or None
         A footing on a soil medium (:meth:`Frame2D.foundation`); its contacts are not among
         ``constraint_names`` (``m`` counts the frame's own unilateral elements).
+    geometric : (n, n) csr or None
+        P-Delta (:meth:`Frame2D.p_delta`): the geometric stiffness of the gravity's axial forces,
+        added to ``K`` by :meth:`to_model`.
+    axial_forces : dict beam or bar name -> its static axial force under gravity (tension
+        positive), with P-Delta; else None
 
     Results of a solution (end forces, reactions, base shear, drifts, accelerations) are in
     :mod:`unilateral.structure.forces`; :meth:`influence` and :meth:`ground_motion` build the load
@@ -586,6 +680,8 @@ class Structure:
     coords: dict | None = None
     rayleigh: tuple | None = None
     foundation: object = None
+    geometric: sp.csr_matrix | None = None
+    axial_forces: dict | None = None
 
     @property
     def n(self) -> int:
@@ -645,12 +741,82 @@ class Structure:
 
             return to_foundation_model(self)
         nat = self.natural
-        return Model.from_natural(
+        model = Model.from_natural(
             nat.G, nat.E, nat.B, M=self.M, A=nat.A, r=nat.r,
             theta=nat.theta(0.0),                   # the builder's imposed strains are constant
             C=self.C, E_v=nat.E_v, dof_names=self.dofs.names,
             constraint_names=list(self.constraint_names), families=self.families(),
         )
+        if self.geometric is not None:
+            from ..model import _check_definite
+
+            K = (model.K + self.geometric).tocsr()
+            try:
+                _check_definite("K", K, strict=True)
+            except ValueError as exc:
+                raise ValueError(f"p_delta: K - K_G is not positive definite: the gravity load reaches the "
+                                 f"buckling load of the structure held bilateral ({exc})") from None
+            model.K = K
+        return model
+
+    def static_axial_forces(self, load) -> dict:
+        """Axial forces (tension positive) of the beams and bars under the static load ``load``
+        (n,), every element bilateral (contacts closed and bonded, no yield), imposed strains
+        included: ``{name: N}``."""
+        from scipy.sparse.linalg import spsolve
+
+        nat = self.natural
+        theta = nat.theta(0.0)
+        GE = nat.G @ nat.E
+        K = (GE @ nat.G.T).tocsc()
+        f = np.asarray(load, dtype=float) + np.asarray(GE @ theta).ravel()
+        u = np.atleast_1d(spsolve(K, f))
+        sigma = nat.E @ (np.asarray(nat.G.T @ u).ravel() - theta)
+        out, start = {}, 0
+        for e in self.elements:
+            if e.kind in ("beam", "bar"):
+                out[e.name] = float(sigma[start])
+            start += e.E.shape[0]
+        return out
+
+    def geometric_stiffness(self, axial) -> sp.csr_matrix:
+        """Geometric stiffness ``K_G`` (n, n) of the axial forces ``axial`` ``{beam or bar name: N}``
+        (tension positive; a compression lowers the stiffness).
+
+        Beams: the consistent matrix of the cubic deflection, ``N/(30 L) [[36, 3L, -36, 3L],
+        [3L, 4L^2, -3L, -L^2], [-36, -3L, 36, -3L], [3L, -L^2, -3L, 4L^2]]`` on the transverse
+        displacements and the rotations ``(v_i, rz_i, v_j, rz_j)``; bars: the string stiffness
+        ``N/L [[1, -1], [-1, 1]]`` on ``(v_i, v_j)`` (``v = -s ux + c uy``, ``(c, s)`` the chord).
+        """
+        full = self.dofs.T.shape[0]
+        rows, cols, vals = [], [], []
+        for e in self.elements:
+            if e.name not in axial or e.kind not in ("beam", "bar"):
+                continue
+            N = float(axial[e.name])
+            i, j = e.dofs[0][0], e.dofs[-1][0]
+            L, (c, s) = el.chord(e.name, i, self.coords[i], j, self.coords[j])
+            index = {d: k for k, d in enumerate(e.dofs)}
+            if e.kind == "beam":
+                T = np.zeros((4, len(e.dofs)))
+                T[0, [index[(i, "ux")], index[(i, "uy")]]] = (-s, c)
+                T[1, index[(i, "rz")]] = 1.0
+                T[2, [index[(j, "ux")], index[(j, "uy")]]] = (-s, c)
+                T[3, index[(j, "rz")]] = 1.0
+                k = N / (30 * L) * np.array([[36, 3 * L, -36, 3 * L], [3 * L, 4 * L * L, -3 * L, -L * L],
+                                             [-36, -3 * L, 36, -3 * L], [3 * L, -L * L, -3 * L, 4 * L * L]])
+            else:
+                T = np.zeros((2, len(e.dofs)))
+                T[0, [index[(i, "ux")], index[(i, "uy")]]] = (-s, c)
+                T[1, [index[(j, "ux")], index[(j, "uy")]]] = (-s, c)
+                k = N / L * np.array([[1.0, -1.0], [-1.0, 1.0]])
+            ke = T.T @ k @ T
+            at = np.array([self.dofs.full_index(node, dof) for node, dof in e.dofs])
+            rows.append(np.repeat(at, len(at)))
+            cols.append(np.tile(at, len(at)))
+            vals.append(ke.ravel())
+        KG = _coo(rows, cols, vals, (full, full))
+        return (self.dofs.T.T @ KG @ self.dofs.T).tocsr()
 
     def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, -1.0)) -> np.ndarray:
         """Load (n,) of gravity ``g`` along ``direction`` (normalised) on the lumped masses."""
@@ -680,6 +846,34 @@ class Structure:
                         "(supported, or a rotation no element resists)"
                     )
                 f[row] = value
+        return self.dofs.gather(f)
+
+    def distributed_load(self, beam, wx=0.0, wy=0.0) -> np.ndarray:
+        """Load (n,) equivalent to a uniform load ``(wx, wy)`` (force per length of the beam, along
+        global x and y) on the beam ``beam``: its fixed-end forces reversed.
+
+        Each end gets the force ``(wx, wy) L/2``; the component ``w_t = -s wx + c wy`` across the
+        beam (``(c, s)`` its unit chord ``i -> j``) adds the moments ``+w_t L^2/12`` at ``i`` and
+        ``-w_t L^2/12`` at ``j`` (counter-clockwise). For Euler-Bernoulli beams these give the
+        exact nodal displacements of the uniform load; the element forces between the nodes are
+        those of the nodal loads (without the fixed-end part). Moments on a rotation that is
+        supported or that no element resists (a bar's end) are dropped. Use it as a term of a
+        :class:`~unilateral.loads.LoadHistory` (``LoadHistory(st.distributed_load("girder", wy=-q))``).
+        """
+        where = f"distributed_load on beam {beam!r}"
+        element = next((e for e in self.elements if e.name == beam and e.kind == "beam"), None)
+        if element is None:
+            beams = [e.name for e in self.elements if e.kind == "beam"]
+            raise ValueError(f"{where}: no beam {beam!r} (beams: {', '.join(map(repr, beams[:10])) or 'none'})")
+        wx, wy = _real(where, "wx", wx), _real(where, "wy", wy)
+        i, j = element.dofs[0][0], element.dofs[3][0]
+        L, (c, s) = el.chord(where, i, self.coords[i], j, self.coords[j])
+        moment = (-s * wx + c * wy) * L * L / 12.0
+        f = np.zeros(self.dofs.T.shape[0])
+        for node, sign in ((i, 1.0), (j, -1.0)):
+            f[self.dofs.full_index(node, "ux")] += wx * L / 2
+            f[self.dofs.full_index(node, "uy")] += wy * L / 2
+            f[self.dofs.full_index(node, "rz")] += sign * moment
         return self.dofs.gather(f)
 
     def influence(self, direction="ux") -> np.ndarray:
@@ -759,6 +953,39 @@ class Structure:
 
 
 # ---------------------------------------------------------------------- assembly
+def modal_damping_matrix(K, M, zeta, modes=None) -> np.ndarray:
+    """``M_m Phi diag(2 zeta_i w_i) Phi^T M_m`` (n, n) on the DOFs with mass (massless DOFs condensed
+    statically, their rows and columns zero); see :meth:`Frame2D.modal_damping`."""
+    K = K.toarray() if sp.issparse(K) else np.asarray(K, dtype=float)
+    M = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+    n = K.shape[0]
+    mass = np.flatnonzero(np.diag(M) > 0)
+    zero = np.setdiff1d(np.arange(n), mass)
+    C = np.zeros((n, n))
+    if mass.size == 0:
+        return C
+    Kmm = K[np.ix_(mass, mass)]
+    if zero.size:
+        K0m = K[np.ix_(zero, mass)]
+        try:
+            Kmm = Kmm - K0m.T @ np.linalg.solve(K[np.ix_(zero, zero)], K0m)
+        except np.linalg.LinAlgError:
+            raise ValueError("modal_damping: the massless DOFs cannot be condensed (their stiffness is "
+                             "singular); give them mass or support them") from None
+    Mmm = M[np.ix_(mass, mass)]
+    from scipy.linalg import eigh
+
+    w2, phi = eigh(0.5 * (Kmm + Kmm.T), Mmm)               # Phi^T M Phi = I
+    count = mass.size if modes is None and isinstance(zeta, float) else (
+        len(zeta) if modes is None else modes)
+    count = min(count, mass.size)
+    z = np.full(count, zeta) if isinstance(zeta, float) else np.asarray(zeta[:count], dtype=float)
+    w = np.sqrt(np.clip(w2[:count], 0.0, None))
+    MP = Mmm @ phi[:, :count]
+    C[np.ix_(mass, mass)] = (MP * (2 * z * w)) @ MP.T
+    return 0.5 * (C + C.T)
+
+
 def _compatibility(elements, dofs: DofMap) -> sp.csr_matrix:
     """``G = T^T L^T`` (n, ne) with ``e = L u_full`` the elements' strains of the nodal DOFs."""
     rows, cols, vals = [], [], []
