@@ -93,7 +93,7 @@ def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None
                    meta={"example": name, "model": "Liolios (1990) section 5, reconstruction in docs/theory.md"},
                    cases=("unilateral", "bilateral"), formats=figures, progress=progress,
                    labels={"unilateral": "with uplift", "bilateral": "without uplift"},
-                   figure_process=figure_process)
+                   point=info["left_edge"], figure_process=figure_process)
 
 
 #: What each kind of unknown does in the label of the case that lets it act.

@@ -52,7 +52,9 @@ def liolios1990(kelvin=True):
     info : dict
         ``units``; ``static_displacement`` ``-M g / (3 k)`` of the foundation (m);
         ``figure2``: the node, DOF and label of the quantity of the paper's Fig. 2 (the
-        vertical displacement of node 3, for :meth:`Structure.node_displacement`).
+        vertical displacement of node 3, for :meth:`Structure.node_displacement`); ``left_edge``
+        ``(x, y)`` of the foundation's left edge (m), the point the README's overturning moments
+        are taken about.
     """
     fr = Frame2D()
     fr.node(1, 0.0, HEIGHT)
@@ -77,6 +79,7 @@ def liolios1990(kelvin=True):
         "units": "kN, m, s",
         "static_displacement": -MASS * GRAVITY / (3 * K_SOIL),
         "figure2": {"node": 3, "dof": "uy", "label": "vertical displacement of node 3 (m)"},
+        "left_edge": (-HALF_WIDTH, 0.0),
     }
     return structure, load, info
 
