@@ -215,6 +215,18 @@ def case_labels(ds) -> dict:
     return {str(key): _text(value) for key, value in labels.items()}
 
 
+def _panel_grid(count, *, title):
+    """A figure of ``count`` panels, three to a row, with ``title`` inches above them; the axes
+    (rows, 3) with the unused ones removed."""
+    ncols = min(3, count)
+    nrows = -(-count // ncols)
+    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), 0.5 + title + 2.0 * nrows), nrows=nrows,
+                        ncols=ncols, margins=(0.7, 0.4, 0.5, title), gaps=(0.75, 0.75), squeeze=False)
+    for ax in axes.flat[count:]:
+        ax.remove()
+    return fig, axes
+
+
 def _figure_location(ds):
     """The node and DOF of the main history: the attributes ``figure_node`` and ``figure_dof``, checked."""
     node, dof = str(ds.attrs["figure_node"]), str(ds.attrs.get("figure_dof"))
@@ -350,14 +362,7 @@ def force_deformation_figure(ds):
         shown = np.sort(np.argsort(-v.max(axis=0), kind="stable")[:MAX_PANELS])
     lunit, lf = length_scale(_unit(d, "length"), float(np.max(np.abs(e[:, shown]), initial=0.0)))
     funit, ff = force_scale(_unit(d, "force"), float(np.max(-psi[:, shown], initial=0.0)))
-    ncols = min(3, len(shown))
-    nrows = -(-len(shown) // ncols)
-    title = 0.6 if len(shown) < len(names) else 0.35
-    height = 0.5 + title + 2.0 * nrows
-    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), height), nrows=nrows, ncols=ncols,
-                        margins=(0.7, 0.4, 0.5, title), gaps=(0.75, 0.75), squeeze=False)
-    for ax in axes.flat[len(shown):]:
-        ax.remove()
+    fig, axes = _panel_grid(len(shown), title=0.6 if len(shown) < len(names) else 0.35)
     for ax, i in zip(axes.flat, shown):
         ax.plot(*envelope(lf * e[:, i], lf * e[:, i], -ff * psi[:, i])[1:], color="C0", marker="o",
                 markevery=[0], markersize=3)
@@ -367,7 +372,7 @@ def force_deformation_figure(ds):
         ax.set(xlabel=_axis("deformation", lunit), ylabel=_axis("compression", funit))
     if len(shown) < len(names):
         fig.suptitle(f"{len(shown)} of {len(names)} unilateral elements, the largest openings",
-                     y=1.0 - 0.12 / height, va="top")
+                     y=1.0 - 0.12 / fig.get_figheight(), va="top")
     return fig
 
 
@@ -423,14 +428,7 @@ def hysteresis_figure(ds):
     panels.sort(key=lambda p: (-p["work"], -p["ratio"]))
     shown = panels[:MAX_HYSTERESIS]
     scales = _hysteresis_scales(d, shown)
-    ncols = min(3, len(shown))
-    nrows = -(-len(shown) // ncols)
-    title = 0.7 if len(shown) < len(panels) else 0.35
-    height = 0.5 + title + 2.0 * nrows
-    fig, axes = _figure((min(PAGE_WIDTH, 0.3 + 2.1 * ncols), height), nrows=nrows, ncols=ncols,
-                        margins=(0.7, 0.4, 0.5, title), gaps=(0.75, 0.75), squeeze=False)
-    for ax in axes.flat[len(shown):]:
-        ax.remove()
+    fig, axes = _panel_grid(len(shown), title=0.7 if len(shown) < len(panels) else 0.35)
     for ax, p in zip(axes.flat, shown):
         (xunit, xf), (yunit, yf) = scales[p["x"]], scales[p["y"]]
         ax.plot(*envelope(xf * p["deformation"], xf * p["deformation"], yf * p["force"])[1:], color="C0",
@@ -443,7 +441,7 @@ def hysteresis_figure(ds):
         ax.set(xlabel=_axis(p["xlabel"], xunit), ylabel=_axis(p["ylabel"], yunit))
     if len(shown) < len(panels):
         fig.suptitle(f"{len(shown)} of {len(panels)} yield and friction elements, the most dissipative first",
-                     y=1.0 - 0.12 / height, va="top")
+                     y=1.0 - 0.12 / fig.get_figheight(), va="top")
     return fig
 
 
