@@ -152,15 +152,14 @@ def test_frame_foundation_refuses_bad_input_naming_the_argument():
         assert text in str(info.value), (kwargs, str(info.value))
     fr = frame()
     fr.foundation("footing", 2, width=10.0, length=10.0, soil=soil)
-    with pytest.raises(ValueError, match="already has a foundation"):
+    with pytest.raises(ValueError, match="already rest on another footing"):
         fr.foundation("other", 2, width=10.0, length=10.0, soil=soil)
-    fr = frame()
-    fr.node(3, 5.0, 0.0)
-    fr.support(3, ux=True, uy=False)
-    fr.soil("spring", 3, 1e3)
-    fr.foundation("footing", 2, width=10.0, length=10.0, soil=soil)
-    with pytest.raises(ValueError, match="unilateral elements"):
-        fr.build().to_model()
+    fr.node(5, 8.0, 0.0)
+    with pytest.raises(ValueError, match="overlaps footing 'footing' .* by 2"):
+        fr.foundation("other", 5, width=10.0, length=10.0, soil=soil)
+    fr.foundation("other", 5, width=2.0, length=10.0, soil={**soil, "G": None, "Vs": 300.0})
+    with pytest.raises(ValueError, match="share that soil"):
+        fr.build()
 
 
 def test_flexible_footing_has_one_patch_per_node():
@@ -250,7 +249,7 @@ def test_a_model_file_with_a_foundation_runs(tmp_path):
 
 @pytest.mark.parametrize("soil, expected", [
     ('{ model = "halfspce", Vs = 97.0, nu = 0.3, rho = 2.0 }',
-     'foundation.soil.model = "halfspce": unknown soil model (valid: halfspace, cones, winkler-kelvin)'),
+     'foundation.soil.model = "halfspce": unknown soil model (valid: halfspace, layered, cones, winkler-kelvin)'),
     ('{ model = "halfspace", G = 1e4, Vs = 97.0, nu = 0.3, rho = 2.0 }',
      "foundation.soil.Vs = 97.0: give either G or Vs, not both"),
     ('{ model = "halfspace", Vs = 97.0, nu = 0.6, rho = 2.0 }', "foundation.soil.nu = 0.6"),

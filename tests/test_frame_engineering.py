@@ -360,3 +360,42 @@ def test_a_note_when_linear_members_drift_above_2_percent():
     lines = _result_lines({"unilateral": large}, {"length": "m", "force": "kN", "time": "s"})
     assert any(line.strip() == f"note: {note}" for line in lines)
     assert "linear_members_note" not in _portal_peaks(3000.0, hinge=True)     # a yield family: no note
+
+
+def test_base_shear_per_frame_of_two_pounding_frames(tmp_path):
+    """Two cantilevers that pound through a gap: each frame's base shear is its own support's
+    reaction, and the two add up to the total base shear."""
+    from unilateral.analysis.run import analyse, settings_of
+    from unilateral.structure import Frame2D
+    from unilateral.structure.forces import frames
+
+    fr = Frame2D()
+    for k, x in enumerate((0.0, 1.0)):
+        fr.node(f"b{k}", x, 0.0)
+        fr.node(f"t{k}", x, 3.0)
+        fr.support(f"b{k}", ux=True, uy=True, rz=True)
+        fr.beam(f"col{k}", f"b{k}", f"t{k}", E=3e7, A=0.1, I=1e-3 * (k + 1))
+        fr.mass(f"t{k}", 5.0 * (k + 1))
+    fr.gap("joint", "t0", "t1", k=1e5, gap=0.002)
+    st = fr.build()
+    assert [sorted(g) for g in frames(st)] == [["b0", "t0"], ["b1", "t1"]]
+    x = st.influence("ux")
+    load = lambda t: -st.M @ x * (8.0 * np.sin(12.0 * t))
+    result = analyse(st.to_model(), load, settings_of({"dt": 2e-3, "t_end": 1.0, "method": "cq", "rule": "bdf2", "lcp": "bpp"}), tmp_path / "out",
+                     structure=st, units={"length": "m", "force": "kN", "time": "s"}, figure=None, title="two",
+                     meta={}, cases=("unilateral",), labels=None, formats=())
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "out" / "results.nc") as ds:
+        per_frame = ds["frame_base_shear"].sel(case="unilateral").values
+        total = ds["base_shear"].sel(case="unilateral").values
+        support = ds["support_reaction"].sel(case="unilateral")
+        assert list(ds["frame"].values) == ["frame of node b0", "frame of node b1"]
+        assert np.allclose(per_frame.sum(axis=1), total, rtol=0, atol=1e-9 * np.abs(total).max())
+        assert np.allclose(per_frame[:, 0], support.sel(support="b0.ux").values, rtol=0, atol=1e-12 * np.abs(total).max())
+    peaks = result["results"]["unilateral"]
+    assert set(peaks["frames"]) == {"frame of node b0", "frame of node b1"}
+    # each cantilever alone (the gap open): T = 2 pi sqrt(m L^3 / (3 E I))
+    for k in (0, 1):
+        expected = 2 * np.pi * np.sqrt(5.0 * (k + 1) * 3.0 ** 3 / (3 * 3e7 * 1e-3 * (k + 1)))
+        assert peaks["frame_periods"][f"frame of node b{k}"][0] == pytest.approx(expected, rel=1e-9)

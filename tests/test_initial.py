@@ -50,3 +50,32 @@ def test_rest_on_an_open_gap_starts_with_the_gap_open():
     model = fr.build().to_model()
     sol = ul.solve(model, None, dt=1e-3, t_end=0.01, method="direct", initial="rest")
     assert sol.success and sol.v[0, 0] == pytest.approx(0.005, rel=1e-12)
+
+
+def test_static_state_of_a_large_model_solves_in_blocks_without_a_dense_n_by_m(monkeypatch):
+    """``K^-1 F`` is formed a block of columns at a time (bounded memory): the static state is the same,
+    and no solve sees more than the block's columns; a diagonal ``H`` is checked per entry."""
+    import unilateral.initial as initial
+    from unilateral.linalg import Factorization
+    from unilateral.structure.examples import winkler_beam
+
+    structure, load, _ = winkler_beam(60)
+    model = structure.to_model()
+    q0 = np.asarray(load(0.0), dtype=float)
+    from unilateral.lcp import get_lcp_solver
+
+    solver = get_lcp_solver("bpp")
+    reference = initial.static_state(model, q0, solver)
+    widths = []
+    solve = Factorization.solve
+
+    def counting(self, rhs):
+        widths.append(1 if np.ndim(rhs) == 1 else np.shape(rhs)[1])
+        return solve(self, rhs)
+
+    monkeypatch.setattr(Factorization, "solve", counting)
+    monkeypatch.setattr(initial, "SOLVE_BLOCK_ENTRIES", 5 * model.n)
+    blocked = initial.static_state(model, q0, solver)
+    assert max(widths) == 5 < model.m
+    assert np.allclose(blocked.u, reference.u, rtol=0, atol=1e-12 * np.abs(reference.u).max())
+    assert np.array_equal(blocked.v > 0, reference.v > 0)

@@ -99,3 +99,26 @@ def test_a_run_that_cannot_fit_in_memory_is_refused_before_it_allocates(kw, what
     with pytest.raises(MemoryError, match=rf"steps with method='\w+' would need about .* GiB \(.*{what}.*"
                                           r"more than 50% of this machine's .*increase dt, shorten t_end"):
         ul.solve(model, lambda t: np.zeros(100), **kw)
+
+
+def test_check_psd_of_a_large_block_diagonal_matrix_checks_its_blocks():
+    """Above PSD_BLOCKS_MIN_M rows the uncoupled blocks are checked one by one: the same verdict and
+    smallest eigenvalue as the full eigendecomposition."""
+    import scipy.linalg as sla
+
+    from unilateral import _validate as V
+
+    rng = np.random.default_rng(1)
+    blocks = [np.diag(rng.uniform(1.0, 2.0, 150))]
+    for size in (2, 3, 5):
+        A = rng.standard_normal((size, size))
+        blocks.append(A @ A.T + 0.1 * np.eye(size))
+    H = sla.block_diag(*blocks)
+    perm = rng.permutation(H.shape[0])
+    H = H[np.ix_(perm, perm)]                            # blocks scattered over the rows
+    V.check_psd("H", H, strict=True)
+    i = int(np.flatnonzero(perm < 150)[0])                # an entry of the diagonal block
+    H[i, i] = -0.5
+    with pytest.raises(ValueError, match="smallest eigenvalue is -0.5 "):
+        V.check_psd("H", H)
+    assert np.linalg.eigvalsh(H)[0] == pytest.approx(-0.5)

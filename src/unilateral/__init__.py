@@ -22,6 +22,14 @@ from importlib import import_module
 
 __version__ = "0.1.0"
 
+#: The names of the registries, listed here so that the command line and the model-file schema
+#: check a name without importing the solvers (numpy, scipy): ``unilateral.methods.MATRIX_METHOD_NAMES``,
+#: ``unilateral.rules.RULES`` (in its order) and ``unilateral.lcp.LCP_SOLVERS`` (sorted).
+#: ``tests/test_prompt.py`` checks them against the registries.
+_MATRIX_METHOD_NAMES = ("auto", "cq", "modal", "direct", "event")
+_RULE_NAMES = ("bdf1", "bdf2", "trapezoidal", "newmark", "hht")
+_LCP_NAMES = ("bpp", "enumerate", "lemke", "newton", "pgs")
+
 #: Public name -> the module that defines it.
 _LAZY = {
     **dict.fromkeys(("CallableKernel", "KernelModel", "MatrixKernel", "PoleResidueKernel", "TimeKernel",

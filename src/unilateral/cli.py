@@ -15,12 +15,12 @@ from pathlib import Path
 
 import click
 
-from . import __version__
+from . import _LCP_NAMES, _MATRIX_METHOD_NAMES, _RULE_NAMES, __version__
 
-EXAMPLES = ("liolios1990", "halfspace")                          # unilateral.analysis.run.EXAMPLES
-METHOD_NAMES = ("auto", "cq", "modal", "direct", "event")        # unilateral.methods.MATRIX_METHOD_NAMES
-RULE_NAMES = ("bdf1", "bdf2", "hht", "newmark", "trapezoidal")   # unilateral.rules.RULES
-LCP_NAMES = ("bpp", "enumerate", "lemke", "newton", "pgs")       # unilateral.lcp.LCP_SOLVERS
+EXAMPLES = ("liolios1990", "halfspace", "footings")                          # unilateral.analysis.run.EXAMPLES
+METHOD_NAMES = _MATRIX_METHOD_NAMES                              # unilateral.methods.MATRIX_METHOD_NAMES
+RULE_NAMES = tuple(sorted(_RULE_NAMES))                          # unilateral.rules.RULES
+LCP_NAMES = _LCP_NAMES                                           # unilateral.lcp.LCP_SOLVERS
 FIGURE_FORMATS = ("png", "pdf", "svg")
 
 
@@ -116,11 +116,15 @@ def example(name, method, rule, dt, t_end, lcp, out, formats):
     contact pressure side by side) to OUT (default ./halfspace). Its results.nc holds the
     half-space under the earthquake only: `unilateral plot` redraws that run's figures, not
     halfspace.png (run the example again for it).
+
+    footings: a two-bay frame on two footings on one soil (a soft layer over stiffer ground), with
+    yielding beam hinges, under a synthetic earthquake; adds footings.png (uplift, footing forces
+    and roof drift with the footings interacting through the ground and without) to OUT.
     """
     overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
     _run(lambda progress, figure_process: _analysis().run_example(
         name, out or Path(name), figures=formats, progress=progress, figure_process=figure_process, **overrides),
-        out or Path(name), overrides, figures=bool(formats) and name != "halfspace")
+        out or Path(name), overrides, figures=bool(formats))
 
 
 @main.command()
@@ -131,9 +135,42 @@ def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral):
     """Analyse the structure described by MODEL_FILE (TOML; see docs/model-file.md)."""
     overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
     target = out or Path(model_file.stem)
+    try:
+        check_model_file(model_file)
+    except ValueError as exc:
+        raise click.ClickException(str(exc)) from None
     _run(lambda progress, figure_process: _analysis().run_model_file(
         model_file, target, bilateral=bilateral, figures=formats, progress=progress, figure_process=figure_process,
         **overrides), target, overrides, figures=bool(formats))
+
+
+def check_model_file(path: Path) -> None:
+    """Check the keys and values of the model file ``path`` against its schema, at once.
+
+    A wrong key or value (``unilateral[0].kk: unknown key``, ``k = -2e5: must be > 0``) raises the
+    :class:`~unilateral.modelfile.ModelFileError` that :func:`~unilateral.modelfile.load_model_file`
+    raises for it, before numpy, scipy, numba, xarray or matplotlib are imported (pydantic only).
+    A file that cannot be read or is not valid TOML, and the cross checks (references, duplicates),
+    are left to ``load_model_file``, which says the same for them after its imports.
+    """
+    import tomllib
+
+    from pydantic import ValidationError
+
+    from .io.files import TOML_LIMIT, file_problem, read_input_text
+    from .modelfile.errors import ModelFileError, translate
+    from .modelfile.schema import ModelFile
+
+    if file_problem(path) is not None:                  # as read_toml: before opening (a FIFO would block)
+        return
+    try:
+        data = tomllib.loads(read_input_text(path, limit=TOML_LIMIT))
+    except (OSError, ValueError, RecursionError):       # the reader's message is load_model_file's
+        return
+    try:
+        ModelFile.model_validate(data)
+    except ValidationError as exc:
+        raise ModelFileError(path, translate(exc, data, ModelFile)) from None
 
 
 @main.command()
@@ -238,13 +275,11 @@ def _run(call, out, overrides, *, figures):
     from .figures.background import FigureProcessError
     from .io.atomic import WriteError
     from .io.folder import OutputFolderError
-    from .io.results import without_dask_arrays
     from .march import jit
 
     compile_min_steps, jit.COMPILE_MIN_STEPS = jit.COMPILE_MIN_STEPS, CLI_COMPILE_MIN_STEPS
     try:
-        with without_dask_arrays():
-            result = call(bar, figure_process)
+        result = call(bar, figure_process)          # results.nc is written without xarray (nor pandas, dask)
     except OutputFolderError as exc:
         raise click.BadParameter(str(exc), param_hint="'--out'") from None
     except WriteError as exc:
@@ -270,7 +305,7 @@ def _figure_process():
     """A :class:`~unilateral.figures.background.BackgroundFigures`, or None where it cannot fork."""
     from .figures.background import BackgroundFigures
 
-    return BackgroundFigures(preload=("xarray",)) if BackgroundFigures.available() else None
+    return BackgroundFigures() if BackgroundFigures.available() else None
 
 
 class _UsageFailure(click.ClickException):

@@ -96,16 +96,32 @@ def static_state(model, q0, solver) -> InitialState:
             f"{exc}: the structure is a mechanism; a zero-energy mode moves the free DOFs "
             f"{', '.join(moved)} without deforming any element; add supports, bracing or rotational "
             "restraints there (or start from given initial values instead of the static state)") from None
-    Y = K.solve(dense(model.F))                     # (n, m) = K^-1 F
     uq = K.solve(q0)
-    Lambda0 = model.H - transpose_times(model.F, Y)
+    Lambda0 = model.H - _flexibility(K, model.F)
     Lambda0 = 0.5 * (Lambda0 + Lambda0.T)
     psiL0 = transpose_times(model.F, uq) - model.g(0.0)
     # yield and friction from the virgin state: one increment from zero (the law of the families)
     v, iters, message = static_lcp(model.law.matrix(Lambda0), model.law.rows(psiL0), solver)
-    u = uq + Y @ v
+    u = uq + (K.solve(np.asarray(model.F @ v).ravel()) if np.any(v) else 0.0)
     return InitialState(v=v, psi=psiL0 - Lambda0 @ v, u=u, udot=np.zeros(model.n),
                         lcp_iterations=iters, message=message)
+
+
+#: Right-hand sides of at most this many entries are solved at once (a large sparse model's
+#: ``K^-1 F`` is formed block by block, never as a dense n x m matrix).
+SOLVE_BLOCK_ENTRIES = 2_000_000
+
+
+def _flexibility(K, F) -> np.ndarray:
+    """``F^T K^-1 F`` (m, m) with the factorised ``K``, in blocks of columns of ``F``."""
+    n, m = F.shape
+    step = max(1, SOLVE_BLOCK_ENTRIES // max(n, 1))
+    if step >= m:
+        return transpose_times(F, K.solve(dense(F)))
+    out = np.empty((m, m))
+    for lo in range(0, m, step):
+        out[:, lo:lo + step] = transpose_times(F, K.solve(dense(F[:, lo:lo + step])))
+    return out
 
 
 def given_state(model, initial: dict, solver=None) -> InitialState:

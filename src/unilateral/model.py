@@ -122,11 +122,14 @@ class Model:
         (the paper's unilateral contact, the default for every unknown no family names),
         :class:`~unilateral.constraints.Yield` (plastic multipliers) and
         :class:`~unilateral.constraints.Friction` (Coulomb slips). Their step law is ``law``.
+    on_soil : bool
+        The structure rests on a soil (:meth:`unilateral.soil.FoundationModel.on`), which
+        supports it: ``K`` may then be singular (semidefinite); default False (``K`` definite).
     """
 
     def __init__(self, M, K, F, H, C=None, g=None, *, F_v=None, H_v=None, q_imposed=None, gap=None,
                  dof_names=None, constraint_names=None, natural: NaturalForm | None = None,
-                 families=None):
+                 families=None, on_soil=False):
         self.K = V.as_matrix("K", K, (None, None))
         n = self.K.shape[0]
         if self.K.shape != (n, n):
@@ -146,7 +149,7 @@ class Model:
             V.check_psd("H_v", self.H_v)
         _check_diagonal_nonnegative("M", self.M)
         _check_diagonal_nonnegative("K", self.K, strict=True)
-        _check_definite("K", self.K, strict=True)
+        _check_definite("K", self.K, strict=not on_soil)
         _check_definite("M", self.M, strict=False)
         self.g, self.g_is_constant = V.time_function("g", g, m)
         self.q_imposed, self.q_imposed_is_constant = V.time_function("q_imposed", q_imposed, n)
@@ -222,7 +225,8 @@ class Model:
     # ------------------------------------------------------------------ the natural form
     @classmethod
     def from_natural(cls, G, E, B, *, M, A=None, r=None, theta=None, C=None, E_v=None,
-                     theta_rate=None, dof_names=None, constraint_names=None, families=None) -> Model:
+                     theta_rate=None, dof_names=None, constraint_names=None, families=None,
+                     on_soil=False) -> Model:
         """Assemble the reduced problem from the unassembled structure, eqs. (13)-(16).
 
         ``K = G E G^T``, ``F = G E B``, ``H = A + B^T E B``, ``g = B^T E theta + r``, and the
@@ -244,6 +248,7 @@ class Model:
         theta_rate : callable ``theta'(t) -> (ne,)``; required when ``theta`` is a function of
             time and ``E_v`` is given
         families : sequence of ConstraintFamily, optional (see :class:`Model`)
+        on_soil : bool, optional (see :class:`Model`)
         """
         G = V.as_matrix("G", G, (None, None))
         n, ne = G.shape
@@ -295,7 +300,7 @@ class Model:
         natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=theta_f, E_v=E_v, theta_rate=rate_f)
         return cls(M=M, K=K, F=F, H=H, C=C_total, g=g, F_v=F_v, H_v=H_v, q_imposed=q_imposed,
                    dof_names=dof_names, constraint_names=constraint_names, natural=natural,
-                   families=families)
+                   families=families, on_soil=on_soil)
 
     def __repr__(self) -> str:
         kind = "sparse" if self.sparse else "dense"

@@ -11,7 +11,7 @@ pressure under the left strip, side by side for the two loads.
 ``results.nc`` (and so ``unilateral plot``, which redraws the figures of ``results.nc``) holds the
 half-space under the earthquake only; ``halfspace.png`` is listed in ``manifest.json`` but drawn
 from all 12 runs, so ``unilateral plot`` does not redraw it: run the example again. The peaks of
-every run are in ``summary.json`` under ``comparison``.
+every run are in ``summary.json`` under ``extra.comparison``.
 """
 
 from __future__ import annotations
@@ -91,8 +91,8 @@ def draw_comparison(runs: dict, path_without_suffix, formats=("png",)) -> list:
     return save_figure(fig, path_without_suffix, formats)
 
 
-def run_halfspace_example(out, *, figures=("png",), progress=None, dt=None, t_end=None, method=None, rule=None,
-                          lcp=None, initial=None) -> dict:
+def run_halfspace_example(out, *, figures=("png",), progress=None, figure_process=None, dt=None, t_end=None,
+                          method=None, rule=None, lcp=None, initial=None) -> dict:
     """Run the example and write its outputs to ``out``; return the summary dict (as ``run_example``).
 
     The outputs of the half-space under the earthquake (with and without uplift) are written by
@@ -106,20 +106,22 @@ def run_halfspace_example(out, *, figures=("png",), progress=None, dt=None, t_en
     runs = solve_all(dt=dt, t_end=t_end, method=method or "cq", rule=rule or "bdf2", lcp=lcp or "bpp",
                      progress=progress)
     structure, load, info, cases, model = runs[("halfspace", "earthquake")]
+    comparison = {
+        f"{soil}/{load_name}": {case: {"max_uplift": float(np.max(sol.v)), "success": bool(sol.success),
+                                       "max_contact_force": float(np.max(-sol.psi)),
+                                       "contact_changes": int(sol.stats.get("contact_changes", 0))}
+                                for case, sol in runs[(soil, load_name)][3].items()}
+        for soil, load_name in runs}
     out = Path(out)
     result = write_outputs(out, cases, structure=structure, units=UNITS_KN, figure=info["figure"],
                            title="Tower on a rigid footing on the elastic half-space, synthetic earthquake",
                            meta={"example": "halfspace", "model": "docs/theory.md section 12; "
                                  "unilateral.structure.examples.halfspace_tower"},
                            labels={"unilateral": "with uplift", "bilateral": "without uplift"}, model=model,
-                           load=load, rule=rule or "bdf2", formats=figures,
-                           extra_figures=lambda folder, formats: draw_comparison(runs, folder / "halfspace", formats))
-    result["comparison"] = {
-        f"{soil}/{load_name}": {case: {"max_uplift": float(np.max(sol.v)), "success": bool(sol.success),
-                                       "max_contact_force": float(np.max(-sol.psi)),
-                                       "contact_changes": int(sol.stats.get("contact_changes", 0))}
-                                for case, sol in runs[(soil, load_name)][3].items()}
-        for soil, load_name in runs}
+                           load=load, rule=rule or "bdf2", formats=figures, figure_process=figure_process,
+                           extra_figures=lambda folder, formats: draw_comparison(runs, folder / "halfspace", formats),
+                           summary_extra={"comparison": comparison})
+    result["comparison"] = comparison
     result["success_all"] = all(sol.success for run in runs.values() for sol in run[3].values())
     if progress is not None:
         progress(1, 1)

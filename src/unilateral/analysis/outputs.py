@@ -27,6 +27,10 @@ tables end there, and in ``results.nc`` its values after that are NaN.
 figures                    :mod:`unilateral.figures.results`, drawn from the Dataset written
                            to ``results.nc`` (``unilateral plot`` draws the same files)
 =========================  ================================================================
+
+The Dataset is a :class:`unilateral.io.dataset.Dataset`, written by h5netcdf without xarray, and
+the figures are drawn from it (the command line's ``run`` and ``example`` import neither xarray
+nor pandas; ``unilateral plot`` draws the same figures from the file read by xarray).
 """
 
 from __future__ import annotations
@@ -35,11 +39,12 @@ import json
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 
-from ..io import format_summary, save_csv, save_netcdf, summary, to_dataset, write_json_atomic
-from ..io.atomic import WriteError, to_jsonable, write_text_atomic
+from ..io.atomic import WriteError, to_jsonable, write_json_atomic, write_text_atomic
+from ..io.dataset import Variable, cases_dataset, save_netcdf
 from ..io.folder import OutputFolder
+from ..io.results import save_csv
+from ..io.summary import format_summary, summary
 from ..result import Solution
 from ..solve import solve
 from .results import ground_motions_of, structure_results
@@ -69,7 +74,7 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", in
 
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
                   meta=None, labels=None, model=None, load=None, rule=None, formats=("png",),
-                  point=None, storeys=None, figure_process=None, extra_figures=None) -> dict:
+                  point=None, storeys=None, figure_process=None, extra_figures=None, summary_extra=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     The files replace those of the previous run in ``out_dir`` as a set (see the module's doc).
@@ -95,6 +100,8 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     figure_process : :class:`unilateral.figures.background.BackgroundFigures`, optional
         A forked process that draws the figures while this one writes the other files (the same
         files as in process); closed here if the writing fails.
+    summary_extra : dict, optional
+        Entries added to ``summary.json`` only (e.g. the peaks of an example's other runs).
     extra_figures : callable, optional
         ``extra_figures(folder, formats)`` draws figures of its own (not redrawn by ``unilateral
         plot``) into the staging folder and returns their paths: they join the set of files (and
@@ -106,7 +113,8 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
         try:
             result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
                                 meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
-                                point=point, storeys=storeys, figure_process=figure_process)
+                                point=point, storeys=storeys, figure_process=figure_process,
+                                summary_extra=summary_extra)
             if formats and extra_figures is not None:
                 result["figures"] += [str(p) for p in extra_figures(staging, formats)]
         except BaseException:
@@ -125,7 +133,7 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
 
 
 def _write_all(out, cases: dict, *, structure, units, figure, title, meta, labels, model, load, rule, formats,
-               point, storeys, figure_process) -> dict:
+               point, storeys, figure_process, summary_extra=None) -> dict:
     """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
     labels = labels or {}
     computed = cases
@@ -138,7 +146,7 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                     figure_text=_strip_unit(figure.get("label") or f"{figure['dof']} of node {figure['node']}"))
     if title:
         meta["title"] = title
-    ds = to_dataset(cases, units=units, attrs=meta)
+    ds = cases_dataset(cases, units=units, attrs=meta)
     ds.attrs["case_labels"] = json.dumps({name: labels.get(name, name) for name in cases})
     extra_results = None
     if structure is None and model is not None:
@@ -161,6 +169,7 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                             units=units)
 
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
+    extra |= summary_extra or {}
     if figure is not None and structure is not None:
         histories = {labels.get(name, name): structure.node_displacement(sol, figure["node"], figure["dof"])
                      for name, sol in computed.items()}
@@ -195,8 +204,11 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
     return result
 
 
-def figure_view(ds: xr.Dataset) -> xr.Dataset:
+def figure_view(ds):
     """The part of a ``results.nc`` Dataset the figures show: every case where all have values.
+
+    ``ds``: an :class:`xarray.Dataset` (``unilateral plot``) or a :class:`unilateral.io.dataset.Dataset`
+    (:func:`write_outputs`); the view is of the same type.
 
     A case that stopped early is NaN after its last step (:func:`write_outputs`); the figures
     then show all cases up to that time (``u`` and ``v`` finite). A Dataset without NaN or
@@ -296,11 +308,11 @@ def _with_results(ds, res, multi, names):
             rows = ds.sizes["time"]             # a case that stopped early: NaN after its last step
             data = np.stack([_pad(per_case[case], rows) if dims[0] == "time" else per_case[case]
                              for case in names])
-            new[name] = xr.DataArray(data, dims=("case", *dims), attrs=attrs)
+            new[name] = Variable(("case", *dims), data, attrs)
         else:
-            new[name] = xr.DataArray(per_case[names[0]], dims=dims, attrs=attrs)
+            new[name] = Variable(dims, per_case[names[0]], attrs)
     for name, (dims, data, attrs) in res["static"].items():
-        new[name] = xr.DataArray(data, dims=dims, attrs=attrs)
+        new[name] = Variable(dims, data, attrs)
     ds = ds.assign(new)
     for key, value in res["attrs"].items():
         ds.attrs[key] = value
@@ -313,10 +325,20 @@ def _with_constraint_coords(ds, structure):
     The kind of a contact is its element's (``soil``, ``gap``, ``cable``), that of a plastic
     multiplier ``yield`` and of a slip ``friction``.
     """
-    if getattr(structure, "foundation", None) is not None and "constraint" in ds.dims:
-        return ds.assign_coords(structure.foundation.constraint_coords())      # the footing's patches
+    footings = getattr(structure, "foundation", None)
+    if footings is not None and "constraint" in ds.dims:
+        own = _own_constraint_coords(structure) if structure.m else None
+        patches = footings.constraint_coords()                     # the footings' patches follow
+        if own is not None:
+            patches = {key: ("constraint", list(own[key][1]) + list(value[1])) for key, value in patches.items()}
+        return ds.assign_coords(patches)
     if not structure.m:
         return ds
+    return ds.assign_coords(_own_constraint_coords(structure))
+
+
+def _own_constraint_coords(structure) -> dict:
+    """x, y, kind and gap of the frame's own constraint unknowns (see :func:`_with_constraint_coords`)."""
     x, y, kind, gap = [], [], [], []
     for e, u in structure.constraints:
         nodes = [u.node] if u.node is not None else [node for node, _ in e.dofs]
@@ -326,8 +348,8 @@ def _with_constraint_coords(ds, structure):
         contact = u.kind == "contact"
         kind.append(e.kind if contact else u.kind)
         gap.append(float(-e.theta[u.row]) if contact and e.kind != "cable" else 0.0)
-    return ds.assign_coords(constraint_x=("constraint", x), constraint_y=("constraint", y),
-                            constraint_kind=("constraint", kind), constraint_gap=("constraint", gap))
+    return {"constraint_x": ("constraint", x), "constraint_y": ("constraint", y),
+            "constraint_kind": ("constraint", kind), "constraint_gap": ("constraint", gap)}
 
 
 def _with_model_kinds(ds, model):
@@ -443,7 +465,8 @@ def report(result: dict) -> str:
     structure's key results (periods, base shear, overturning moment, drift, energy balance)."""
     extra = result.get("extra", {})
     text = format_summary({**result, "extra": {k: v for k, v in extra.items()
-                                               if k not in ("figure", "cases", "figure_node", "figure_dof")}})
+                                               if k not in ("figure", "cases", "figure_node", "figure_dof",
+                                                            "comparison")}})
     units = result.get("units") or {}
     labels = result.get("case_labels") or {}       # the legend labels of the figures, if not the case names
     fig = extra.get("figure")
@@ -503,6 +526,8 @@ def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
         if not lines and p.get("periods"):
             periods = ", ".join(f"{T:.4g}" for T in p["periods"][:3])
             lines.append(f"periods of the bilateral structure [{time}]: {periods}")
+            for label, values in p.get("frame_periods", {}).items():
+                lines.append(f"  {label}, alone (the gaps open): {', '.join(f'{T:.4g}' for T in values)}")
         head = f"{(labels or {}).get(case, case)}:"
         shear = p["base_shear"]
         peak = shear["max"] if abs(shear["max"]) >= abs(shear["min"]) else shear["min"]
@@ -520,6 +545,11 @@ def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
         else:
             lines.append(f"{head} peak base shear {peak:.4g} {force} at t = {t_peak:.4g} {time}; "
                          f"overturning moment {mpeak:.4g} {force} {length} at t = {t_m:.4g} {time}")
+        for label, b in p.get("frames", {}).items():
+            fshear = b["base_shear"]
+            fpeak = fshear["max"] if abs(fshear["max"]) >= abs(fshear["min"]) else fshear["min"]
+            t_f = fshear["t_max"] if fpeak == fshear["max"] else fshear["t_min"]
+            lines.append(f"{' ' * len(head)} {label}: peak base shear {fpeak:.4g} {force} at t = {t_f:.4g} {time}")
         if p.get("drift_ratio"):
             label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
             lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}) at t = {d['t']:.4g} {time}")
@@ -608,9 +638,7 @@ def _with_node_displacements(ds, cases, structure, units):
         dims = ("time", "node", "component")
     else:
         dims = ("case", "time", "node", "component")
-    var = xr.DataArray(data, dims=dims, coords={"node": [str(n) for n in nodes],
-                                                "component": list(COMPONENTS)})
-    var.attrs["long_name"] = "displacements of every node (supported and rigidly linked included)"
+    var = Variable(dims, data, {"long_name": "displacements of every node (supported and rigidly linked included)"})
     if units and "length" in units:
         var.attrs["units"] = f"{units['length']} (ux, uy); rad (rz)"
-    return ds.assign(node_displacement=var)
+    return ds.assign_coords(node=[str(n) for n in nodes], component=list(COMPONENTS)).assign(node_displacement=var)

@@ -30,7 +30,10 @@ variable                  dims                                   content
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 
+from ..linalg import dense as _dense
+from ..model import Model
 from ..structure import forces as F
 from .energy import energy_balance, unknown_kinds
 from .inelastic import Inelastic
@@ -106,7 +109,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             from ..structure.foundation import structural_solution
 
             contact = foundation.contact_load(structure, sol)
-            contact_sol, sol = sol, structural_solution(sol)
+            contact_sol, sol = sol, structural_solution(sol, foundation.first)
         q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
         h = F.Histories.from_solution(structure, sol, rule, load0=q0)
         t = h.t
@@ -137,6 +140,12 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             reaction["ground_elements"].update(forces)
             reaction["at"].update(at)
         base = F.base_forces(structure, reaction, point)
+        per_frame = F.base_forces_per_frame(structure, reaction, point)
+        if per_frame:                       # several frames (pounding buildings): each its own
+            coords["frame"] = list(per_frame)
+            put("frame_base_shear", ("time", "frame"), case,
+                np.column_stack([b["base_shear"] for b in per_frame.values()]),
+                "base shear of each separate frame: sum of the x forces of the ground on it", Fu)
         if reaction["support"]:
             coords["support"] = list(reaction["support"])
             put("support_reaction", ("time", "support"), case, np.column_stack(list(reaction["support"].values())),
@@ -163,10 +172,13 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         histories = {}
         if structure.m:
             e, _ = structure.element_deformations(h.u, h.v)
+            histories = inelastic.histories(h, e)
+            if foundation is not None:      # the footings' patches follow: their upward motion + gap
+                e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])
             put("constraint_deformation", ("time", "constraint"), case, e,
                 ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
-                 "slip: tangential motion; hinge: end rotation in rad)"), L)
-            histories = inelastic.histories(h, e)
+                 "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
+                 "plus the gap)"), L)
             for name, (dims, values, long_name, unit) in histories.items():
                 put(name, dims, case, values, long_name, unit)
         energy = None
@@ -181,6 +193,9 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                     "1" if key == "relative_error" else moment_unit)
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
+        if per_frame:
+            peaks[case]["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
+                                     for label, b in per_frame.items()}
         peaks[case]["overturning_point"] = list(point)
         note = _linear_drift_note(structure, peaks[case])
         if note:
@@ -210,8 +225,47 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                                                      {"long_name": f"effective modal mass ratio along {name}"})
             for p in peaks.values():
                 p["periods"] = info["period"].tolist()
+        apart = _frame_periods(structure, model)
+        for p in peaks.values():
+            if apart:
+                p["frame_periods"] = apart
     return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"overturning_point": list(point)}}
+
+
+def _frame_periods(structure, model, count=3) -> dict:
+    """The lowest periods of each separate frame with the gaps between them open, if there are several.
+
+    The bilateral structure's modes hold every gap closed: two buildings that pound move as one.
+    Each frame alone is its part of ``K`` without the gap elements (``G E G^T`` over the other
+    elements' strains) and of ``M``. Returns frame label -> up to ``count`` periods; empty for one
+    frame (or a foundation model).
+    """
+    from types import SimpleNamespace
+
+    groups = F.frames(structure)
+    gaps = [e for e in structure.elements if e.kind == "gap"]
+    if len(groups) < 2 or not gaps or not isinstance(model, Model):
+        return {}
+    nat = structure.natural
+    keep = np.concatenate([np.full(e.E.shape[0], e.kind != "gap") for e in structure.elements])
+    G = sp.csr_matrix(nat.G)[:, np.flatnonzero(keep)]
+    E = sp.csr_matrix(nat.E)[np.flatnonzero(keep)][:, np.flatnonzero(keep)]
+    K = (G @ E @ G.T).toarray()
+    if structure.geometric is not None:
+        K = K + structure.geometric.toarray()
+    M = _dense(model.M)
+    dofs = structure.dofs
+    out = {}
+    for nodes in groups:
+        members = {dofs.masters.get(node, node) for node in nodes}
+        idx = [k for k, (node, _) in enumerate(dofs.free) if node in members]
+        if not idx:
+            continue
+        info = modes(SimpleNamespace(K=K[np.ix_(idx, idx)], M=M[np.ix_(idx, idx)]), count=count)
+        if info["period"].size:
+            out[f"frame of node {nodes[0]}"] = info["period"].tolist()
+    return out
 
 
 def _energy_keys(structure) -> tuple:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-EXAMPLES = ("liolios1990", "halfspace")
+EXAMPLES = ("liolios1990", "halfspace", "footings")
 UNITS_KN = {"length": "m", "force": "kN", "time": "s"}
 SETTINGS = ("dt", "t_end", "method", "rule", "lcp", "initial")
 
@@ -71,18 +71,21 @@ def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None
 
     ``"liolios1990"``: the paper's example. ``"halfspace"``: the paper's tower on the Winkler-Kelvin
     soil, cones and the elastic half-space under the pulse and an earthquake
-    (:func:`unilateral.analysis.halfspace_example.run_halfspace_example`).
+    (:func:`unilateral.analysis.halfspace_example.run_halfspace_example`). ``"footings"``: a
+    two-bay frame on two footings on one layered soil
+    (:func:`unilateral.analysis.footings_example.run_footings_example`).
     """
     if name not in EXAMPLES:
         raise ValueError(f"no example {name!r}; valid: {', '.join(EXAMPLES)}")
-    if name == "halfspace":
-        from .halfspace_example import run_halfspace_example
+    if name in ("halfspace", "footings"):           # examples with several runs and a figure of their own
+        from importlib import import_module
 
         unknown = set(overrides) - set(SETTINGS)
         if unknown:
             raise TypeError(f"unknown setting(s) {sorted(unknown)}; valid: {', '.join(SETTINGS)}")
-        return run_halfspace_example(Path(out) if out is not None else Path(name), figures=figures,
-                                     progress=progress, **overrides)
+        runner = getattr(import_module(f"{__package__}.{name}_example"), f"run_{name}_example")
+        return runner(Path(out) if out is not None else Path(name), figures=figures, progress=progress,
+                      figure_process=figure_process, **overrides)
     from ..structure.examples import liolios1990
 
     structure, load, info = liolios1990()
@@ -131,7 +134,9 @@ def case_labels(kinds) -> dict | None:
 def _kinds(spec) -> list[str]:
     """The kind of each unknown of a model file: the element's for a contact, else its family."""
     if spec.structure is not None:
-        return [e.kind if u.kind == "contact" else u.kind for e, u in spec.structure.constraints]
+        footings = spec.structure.foundation
+        return ([e.kind if u.kind == "contact" else u.kind for e, u in spec.structure.constraints]
+                + ["foundation"] * (0 if footings is None else footings.m))
     return list(getattr(getattr(spec.model, "law", None), "kinds", ()))
 
 

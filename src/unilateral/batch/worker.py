@@ -237,7 +237,7 @@ class FrameResults:
         if self.foundation is not None:
             from ..structure.foundation import structural_solution
 
-            sol = structural_solution(sol)
+            sol = structural_solution(sol, self.foundation.first)
         return StateRows.of_solution(sol, self.rule)
 
     def peak_base_shear(self) -> float:

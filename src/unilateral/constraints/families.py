@@ -9,6 +9,8 @@ families. Each family names its unknowns (indices into ``0..m-1``) and says
 * its **rows**: the constraint function of an unknown is, by default, its own ``psi`` (the
   associated law, ``psi = F^T u - H v - g``); friction replaces the ``psi`` of a slip by
   ``psi_slip + mu psi_normal`` (``T - mu N``): a non-associated law, a non-symmetric step LCP;
+* its **row sign**: :class:`SoilContact` rows (a soil in the Laplace domain, in the dual form:
+  the unknown is the contact force, the row the opening) enter the LCP with ``P_ii = -1``;
 * its **kind** (``"contact"``, ``"yield"``, ``"friction"``), for reports and figures.
 
 Methods never look at families: they receive the :class:`~unilateral.constraints.law.StepLaw`
@@ -74,6 +76,24 @@ class Contact(ConstraintFamily):
 
     law = "holonomic"
     kind = "contact"
+
+
+class SoilContact(Contact):
+    """Contacts with a soil given in the Laplace domain, in the dual (force) form.
+
+    A footing patch ``j`` touches a soil whose surface displacement is a convolution of the contact
+    forces (``Phi * c``, :class:`~unilateral.soil.SoilFlexibility`): its unknown is the compressive
+    contact force ``c_j >= 0`` and its constraint function the opening ``o_j >= 0``
+    (:class:`~unilateral.soil.FoundationModel`). In the kernel of a model that also has the paper's
+    (primal) unknowns, its row carries ``+o`` (a symmetric ``Lambda``); the row map turns it into
+    the LCP's ``w = o`` (``P`` has ``-1`` on its diagonal), so that methods see only the step law.
+    """
+
+    law = "holonomic"
+    kind = "contact"
+
+    def row_coupling(self):
+        return tuple((int(i), int(i), -2.0) for i in self.indices)
 
 
 class Yield(ConstraintFamily):

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .families import ConstraintFamily, Contact
+from .families import ConstraintFamily, Contact, SoilContact
 
 #: Compiled marches: no rate unknowns and ``P = I``; rate unknowns only; rate unknowns and ``P``.
 LAW_CONTACT, LAW_RATE, LAW_GENERAL = 0, 1, 2
@@ -123,8 +123,16 @@ def step_law(families, m: int) -> StepLaw:
             kinds[i] = family.kind
         for i, j in family.pairs():
             partner[i], partner[j] = j, i
+    dual = np.zeros(m, dtype=bool)
+    for family in families:
+        dual[family.indices] = isinstance(family, SoilContact)
     for family in families:
         for row, col, factor in family.row_coupling():
+            if row != col and dual[col]:
+                raise ValueError(f"friction row {row} of family {family.name!r} takes its normal force from "
+                                 f"unknown {col}, a contact with a soil in the Laplace domain (its row is the "
+                                 "opening, not the force): friction on such patches is not available; give "
+                                 "the footing a slider or a friction element on a spring contact")
             if rate[col]:
                 raise ValueError(f"friction row {row} of family {family.name!r} takes its normal force from "
                                  f"unknown {col}, which is not a contact")

@@ -71,7 +71,10 @@ class BackgroundFigures:
         return sys.platform.startswith("linux") and hasattr(os, "fork")
 
     def submit(self, ds, out_dir, formats) -> None:
-        """Send the Dataset to draw and where to (``out_dir``, ``formats`` of ``draw_figures``)."""
+        """Send the Dataset to draw and where to (``out_dir``, ``formats`` of ``draw_figures``).
+
+        ``ds``: an :class:`xarray.Dataset` or a :class:`unilateral.io.dataset.Dataset` (neither process
+        then imports xarray)."""
         data = pickle.dumps((ds, str(out_dir), tuple(formats)), protocol=pickle.HIGHEST_PROTOCOL)
         with os.fdopen(self._job, "wb") as pipe:
             pipe.write(data)
@@ -143,11 +146,9 @@ def _child(job_read: int, reply_write: int, parent: int, preload) -> None:
             os._exit(0)
         ds, out_dir, formats = pickle.loads(data)
         try:
-            reply = ("ok", [str(p) for p in draw_figures(ds, out_dir, formats)])
-        except WriteError as exc:
-            reply = ("write_error", (str(exc.path), exc.errno, exc.reason))
+            reply = _draw_in_two(ds, out_dir, formats)
         except Exception as exc:
-            reply = ("error", (f"{type(exc).__name__}: {exc}", traceback.format_exc()))
+            reply = _failure(exc)
         with os.fdopen(reply_write, "wb") as pipe:
             pipe.write(pickle.dumps(reply))
         code = 0
@@ -155,6 +156,70 @@ def _child(job_read: int, reply_write: int, parent: int, preload) -> None:
         pass
     finally:
         os._exit(code)
+
+
+def _failure(exc: Exception) -> tuple:
+    if isinstance(exc, WriteError):
+        return ("write_error", (str(exc.path), exc.errno, exc.reason))
+    return ("error", (f"{type(exc).__name__}: {exc}", traceback.format_exc()))
+
+
+def _draw_share(ds, out_dir, formats, names) -> tuple:
+    """Draw the figures ``names`` in order: ``(index, reply)``, the reply of the first that fails (its
+    index in :data:`~unilateral.figures.results.FIGURES`) or ``(None, ("ok", files))``."""
+    from .results import FIGURES, draw_figures
+
+    order = [name for name, _ in FIGURES]
+    written = []
+    for name in names:
+        try:
+            written += [str(p) for p in draw_figures(ds, out_dir, formats, only=(name,))]
+        except Exception as exc:
+            return order.index(name), _failure(exc)
+    return None, ("ok", written)
+
+
+def _draw_in_two(ds, out_dir, formats) -> tuple:
+    """Draw the figures as :func:`~unilateral.figures.results.draw_figures` does, half of them in a
+    process forked for it: on a machine with two cores the caller, done with its own outputs, waits
+    for the figures alone (Agg draws on one core). The reply is the files in the order of
+    ``draw_figures``, or the failure of the first figure (in that order) that failed."""
+    from .results import FIGURES
+
+    names = [name for name, _ in FIGURES]
+    theirs = names[1::2] if len(names) > 1 else []
+    helper = None
+    if theirs:
+        read_fd, write_fd = os.pipe()
+        pid = os.fork()
+        if pid == 0:                                        # the helper: never returns
+            code = 1
+            try:
+                os.close(read_fd)
+                _die_with_parent()
+                with os.fdopen(write_fd, "wb") as pipe:
+                    pipe.write(pickle.dumps(_draw_share(ds, out_dir, formats, theirs)))
+                code = 0
+            except BaseException:                           # noqa: BLE001 - nothing may escape a fork
+                pass
+            finally:
+                os._exit(code)
+        os.close(write_fd)
+        helper = (pid, read_fd)
+    results = [_draw_share(ds, out_dir, formats, [name for name in names if name not in theirs])]
+    if helper is not None:
+        pid, read_fd = helper
+        with os.fdopen(read_fd, "rb") as pipe:
+            data = pipe.read()
+        _, status = os.waitpid(pid, 0)
+        if not data:
+            raise FigureProcessError(f"the figure helper process ended without a result ({_status_text(status)})")
+        results.append(pickle.loads(data))
+    failed = [(index, reply) for index, reply in results if index is not None]
+    if failed:
+        return min(failed, key=lambda item: item[0])[1]
+    files = [path for _, (_, paths) in results for path in paths]
+    return "ok", sorted(files, key=lambda path: names.index(Path(path).name.rpartition(".")[0]))
 
 
 def _die_with_parent() -> None:

@@ -138,13 +138,14 @@ def _map_rows(n: int, max_rows: int = 1000):
     return np.append(np.linspace(0, n, max_rows, endpoint=False).astype(int), n)
 
 
-def draw_figures(ds, out_dir, formats=("png",), *, skipped=None) -> list[Path]:
+def draw_figures(ds, out_dir, formats=("png",), *, skipped=None, only=None) -> list[Path]:
     """Draw every figure the Dataset supports into ``out_dir``; return the files written.
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A ``results.nc`` Dataset (:func:`unilateral.analysis.outputs.figure_view` of it).
+    ds : xarray.Dataset or unilateral.io.dataset.Dataset
+        A ``results.nc`` Dataset (:func:`unilateral.analysis.outputs.figure_view` of it), read by
+        xarray (``unilateral plot``) or as written (:func:`unilateral.analysis.write_outputs`).
     out_dir : str or path-like
         Created if missing.
     formats : sequence of str
@@ -153,6 +154,8 @@ def draw_figures(ds, out_dir, formats=("png",), *, skipped=None) -> list[Path]:
         Receives ``"<figure>: <why>"`` for each figure the Dataset cannot give (a variable missing,
         an attribute that names nothing), and the others are drawn. Without it the first such
         figure raises :class:`~unilateral.figures.FigureDataError`.
+    only : collection of str, optional
+        The names of the figures to draw (of :data:`FIGURES`); default: all.
     """
     formats = tuple(formats)
     if not formats:
@@ -161,6 +164,8 @@ def draw_figures(ds, out_dir, formats=("png",), *, skipped=None) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     written = []
     for name, draw in FIGURES:
+        if only is not None and name not in only:
+            continue
         try:
             fig = _draw(draw, ds)
         except FigureDataError as exc:

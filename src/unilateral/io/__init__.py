@@ -7,25 +7,28 @@
   netCDF-4 (h5netcdf) and CSV; :func:`open_results` checks a ``results.nc`` before reading it.
 - :mod:`~unilateral.io.summary`: the key figures of a run as a JSON-ready dict and a terminal table.
 
-The names of :mod:`~unilateral.io.results` are imported on first use: importing the package (as
-:mod:`unilateral.loads` does, for :mod:`~unilateral.io.files`) does not import xarray.
+Every name is imported on first use: importing the package (as :mod:`unilateral.loads` does, for
+:mod:`~unilateral.io.files`, and the command line's check of a model file) imports neither numpy
+nor xarray.
 """
 
+import sys
+import types
 from importlib import import_module
 
-from unilateral.io.atomic import (WriteError, atomic_path, atomic_write, to_jsonable, write_json_atomic,
-                                  write_text_atomic)
-from unilateral.io.files import InputFileError, file_problem, read_input_bytes, read_input_text
-from unilateral.io.folder import OutputFolder, OutputFolderError
-from unilateral.io.summary import format_summary, summary
+#: Public name -> the submodule that defines it, imported on first use (:mod:`~unilateral.io.results`
+#: imports xarray, :mod:`~unilateral.io.atomic` and :mod:`~unilateral.io.summary` numpy).
+_EXPORTS = {
+    **dict.fromkeys(("WriteError", "atomic_path", "atomic_write", "to_jsonable", "write_json_atomic",
+                     "write_text_atomic"), "atomic"),
+    **dict.fromkeys(("InputFileError", "file_problem", "read_input_bytes", "read_input_text"), "files"),
+    **dict.fromkeys(("OutputFolder", "OutputFolderError"), "folder"),
+    **dict.fromkeys(("format_summary", "summary"), "summary"),
+    **dict.fromkeys(("ResultsFileError", "from_dataset", "load_netcdf", "open_results", "save_csv",
+                     "save_netcdf", "to_dataset", "write_netcdf"), "results"),
+}
 
-#: Names of :mod:`unilateral.io.results` (imports xarray), imported on first use.
-_EXPORTS = dict.fromkeys(("ResultsFileError", "from_dataset", "load_netcdf", "open_results", "save_csv",
-                          "save_netcdf", "to_dataset", "write_netcdf"), "results")
-
-__all__ = sorted([*_EXPORTS, "InputFileError", "OutputFolder", "OutputFolderError", "WriteError", "atomic_path",
-                  "atomic_write", "file_problem", "format_summary", "read_input_bytes", "read_input_text",
-                  "summary", "to_jsonable", "write_json_atomic", "write_text_atomic"])
+__all__ = sorted(_EXPORTS)
 
 
 def __getattr__(name):
@@ -39,3 +42,16 @@ def __getattr__(name):
 
 def __dir__():
     return sorted(set(globals()) | set(_EXPORTS))
+
+
+class _Package(types.ModuleType):
+    """The package module: ``unilateral.io.summary`` stays the function when the submodule of that name
+    is imported (the import system binds the module to the package's attribute)."""
+
+    def __setattr__(self, name, value):
+        if name == "summary" and isinstance(value, types.ModuleType):
+            value = value.summary
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

@@ -13,6 +13,9 @@ Several analyses on one time axis, e.g. ``{"unilateral": sol, "bilateral": bil}`
 Dataset with a leading ``case`` dimension. Attributes equal in all cases stay attributes; those
 that differ (``success``, ``message``, ``stats``, timings, ...) become variables along ``case``, so
 ``from_dataset(ds.sel(case="bilateral"))`` gives back that case's Solution.
+
+xarray is imported by the functions that need it: :mod:`unilateral.io.dataset` (the command line's
+writer of ``results.nc``, without xarray) shares the helpers of this module.
 """
 
 from __future__ import annotations
@@ -27,14 +30,17 @@ import shutil
 import sys
 import threading
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from .. import __version__
 from ..result import Solution
 from .atomic import WriteError, atomic_write, to_jsonable, write_text_atomic
 from .files import file_problem, size_text
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 ENGINE = "h5netcdf"
 
@@ -68,6 +74,8 @@ def to_dataset(data: Solution | dict[str, Solution], *, units: dict | None = Non
     -------
     xarray.Dataset
     """
+    import xarray as xr
+
     if isinstance(data, dict):
         return _combine({label: to_dataset(sol, units=units, attrs=attrs) for label, sol in data.items()})
     if not isinstance(data, Solution):
@@ -129,6 +137,8 @@ def save_netcdf(data: Solution | dict[str, Solution] | xr.Dataset, path: str | o
     pathlib.Path
         The target path.
     """
+    import xarray as xr
+
     if isinstance(data, xr.Dataset):
         if units is not None or attrs is not None:
             raise TypeError("units and attrs apply to Solutions; set them on the Dataset instead")
@@ -196,8 +206,8 @@ def without_dask_arrays():
 
     xarray checks every new variable against ``dask.array.Array`` and imports ``dask.array`` for
     that (0.3-0.9 s); a process that has not imported Dask holds no Dask arrays, so the check can
-    only say no. The command line's ``run``, ``example`` and ``plot`` run in this block. If Dask is
-    imported already, or xarray keeps its cache of array modules otherwise, nothing changes.
+    only say no. The command line's ``plot`` runs in this block. If Dask is imported already, or
+    xarray keeps its cache of array modules otherwise, nothing changes.
     """
     try:
         from xarray.namedarray import pycompat
@@ -233,6 +243,8 @@ def _check_free_space(path: Path, nbytes: int) -> None:
 
 def load_netcdf(path: str | os.PathLike) -> xr.Dataset:
     """Read a netCDF file written by :func:`save_netcdf` into memory (the file is closed)."""
+    import xarray as xr
+
     return xr.load_dataset(path, engine=ENGINE, decode_times=False, decode_timedelta=False)
 
 
@@ -407,6 +419,8 @@ def _combine(cases: dict[str, xr.Dataset]) -> xr.Dataset:
                 f"{ds['time'].values[-1]:g}], case {first_label!r} has {first.sizes['time']} in "
                 f"[{first['time'].values[0]:g}, {first['time'].values[-1]:g}]; cases share a Dataset only "
                 "on a common time axis (did one analysis stop early?): store them separately")
+    import xarray as xr
+
     datasets = list(cases.values())
     common, per_case = {}, {}
     for key in dict.fromkeys(key for ds in datasets for key in ds.attrs):

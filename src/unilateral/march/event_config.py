@@ -140,6 +140,16 @@ class Config:
         self.max_frequency = float(np.max(np.abs(lam.imag), initial=0.0))
         self.max_rate = float(np.max(np.abs(lam), initial=0.0))
         self._cache = {}
+        self._spectral = _UNSET
+
+    def spectral(self):
+        """The modal split of ``Y`` used to bound the event functions between sparse samples
+        (:class:`Spectral`, computed on first use and kept), or None when the structural block
+        ``A[:ny, :ny]`` is not safely diagonalisable (defective, ill-conditioned eigenvectors, an
+        eigenvalue shared with the load generator): the march then samples as finely as before."""
+        if self._spectral is _UNSET:
+            self._spectral = _spectral(self.A, self.E, self.ny)
+        return self._spectral
 
     def state_from(self, u, udot, v, z) -> np.ndarray:
         """``Y`` from the continuous quantities: u, the massive part of u', v, the load state z.
@@ -173,6 +183,79 @@ class Config:
                 P[j] = step @ P[j - 1]
             self._cache[key] = P
         return P
+
+
+_UNSET = object()
+#: Largest condition number of the eigenvector matrix for which the modal bounds are used.
+MAX_MODAL_CONDITION = 1e8
+
+
+class Spectral:
+    """The exact modal split of a configuration's solution, for bounds of the event functions.
+
+    With ``A = [[Ayy, Ayz], [0, S]]`` (the structure ``y`` driven by the load generator and the
+    frozen values ``z``) and ``Ayy = V diag(lam) V^-1``, the solution from ``Y`` is
+
+        Y(t) = sum_k (V_k, 0) c_k exp(lam_k t) + X exp(S t) z,   c = Wy y + Wz z,  X = [[Gamma], [I]]
+
+    (``Ayy Gamma - Gamma S = -Ayz``, so ``A X = X S``; ``Gamma = -V Wz``), and an event function
+    ``e_i = E_i Y`` is ``sum_k (E_i V_k) c_k exp(lam_k t) + (E_i X) z(t)``: every mode's share of
+    it is bounded by ``|E_i V_k| |c_k|`` (times ``exp(Re lam_k t)`` if that grows), its second
+    derivative by ``|lam_k|^2`` times that, and the load's share's second derivative by
+    ``|E_i X S^2| |z(t)|``. The modes are sorted by increasing ``|lam|``.
+
+    Attributes
+    ----------
+    mag2 : (ny,) ``|lam_k|^2``;  growth : (ny,) ``max(Re lam_k, 0)``, max_growth its largest
+    W : (ny, NY) complex ``[Wy, Wz]``, the modal coordinates ``c = W Y``; absW its absolute values
+        (for the round-off of ``c``)
+    absEV : (m, ny) ``|E_y V|``;  absEXS2 : (m, nz) ``|E X S^2|``
+    condition : the condition number (1-norm) of ``V``
+    """
+
+    def __init__(self, lam, V, Wy, Wz, E, S, condition):
+        ny = lam.size
+        order = np.argsort(np.abs(lam), kind="stable")
+        lam, V, Wy, Wz = lam[order], V[:, order], Wy[order], Wz[order]
+        self.mag2 = np.abs(lam) ** 2
+        self.growth = np.maximum(lam.real, 0.0)
+        self.max_growth = float(self.growth.max(initial=0.0))
+        self.W = np.hstack([Wy, Wz])
+        self.absW = np.abs(self.W)
+        self.absEV = np.abs(E[:, :ny] @ V)
+        EX = E[:, :ny] @ (-(V @ Wz)).real + E[:, ny:]
+        self.absEXS2 = np.abs(EX @ S @ S)
+        self.condition = float(condition)
+
+
+def _spectral(A, E, ny):
+    """:class:`Spectral` of the augmented matrix ``A`` with ``ny`` structural states, or None."""
+    if ny == 0 or not np.all(np.isfinite(A)):
+        return None
+    Ayy, Ayz, S = A[:ny, :ny], A[:ny, ny:], A[ny:, ny:]
+    try:
+        lam, V = np.linalg.eig(Ayy)
+        Wy = np.linalg.inv(V)
+    except np.linalg.LinAlgError:
+        return None
+    condition = np.linalg.norm(V, 1) * np.linalg.norm(Wy, 1)
+    if not np.isfinite(condition) or condition > MAX_MODAL_CONDITION:
+        return None
+    nz = S.shape[0]
+    WA = Wy @ Ayz
+    Wz = np.zeros((ny, nz), dtype=complex)
+    if nz:
+        mu = np.linalg.eigvals(S) if np.any(S) else np.zeros(nz)
+        size = max(np.abs(lam).max(initial=0.0), np.abs(S).max(initial=0.0), 1e-300)
+        # an eigenvalue shared with the load generator (a free body under a constant load): no split
+        if np.min(np.abs(lam[:, None] - mu[None, :])) <= 1e-8 * size:
+            return None
+        eye = np.eye(nz)
+        for k in range(ny):
+            Wz[k] = np.linalg.solve((lam[k] * eye - S).T, WA[k])
+        if not np.all(np.isfinite(Wz)):
+            return None
+    return Spectral(lam, V, Wy, Wz, E, S, condition)
 
 
 def _frozen(open_mask, rate) -> np.ndarray:

@@ -90,7 +90,7 @@ class CQ(Method):
             W = model.weights(disc.N, disc.dt, disc.rule, **weight_options)
             name = march.get("history") or ("fft" if disc.N > FFT_HISTORY_MIN_STEPS else "naive")
             name = V.choice("cq_options['history']", name, HISTORIES)
-            clcp = lambda psi_affine, c_b: march_weights(W, psi_affine, c_b, disc, run, **march)
+            clcp = lambda psi_affine, z_b: march_weights(W, psi_affine, z_b, disc, run, law=model.law, **march)
             return 0.5 * (W[0] + W[0].T), lambda: HISTORIES[name](W), clcp
 
         return solve_foundation(model, load, initial, disc, run, operators=operators)

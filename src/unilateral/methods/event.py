@@ -21,7 +21,11 @@ class Event(Method):
     have an exact piecewise form: a :class:`~unilateral.loads.LoadHistory` of the package's time
     functions and records, an array (taken as piecewise linear between the grid samples) or None.
     The output on the grid is the left limit at each ``t_k``; the rule is not used. For small
-    models (n up to a few hundred): it is the yardstick of the convergence tests.
+    models (n up to a few hundred): it is the yardstick of the convergence tests. The events are
+    bracketed on a sub-grid at half a radian of the fastest oscillation, evaluated only where a
+    modal bound cannot rule out a crossing: a stiff structure (axially rigid columns) costs about
+    one matrix-vector product per output step away from the events, not ``duration x fastest
+    frequency`` sub-steps (``benchmarks/event_speed.py``).
 
     Yield and friction families (:mod:`unilateral.constraints`) are followed the same way: a
     yielding or slipping multiplier is free with its constraint function held at zero, an

@@ -14,9 +14,25 @@ the file, the key path and the bad value, says what is wrong and what would be v
 ``model.toml: elements[3].node_j = 17: no node 17 (nodes are 1..12)``.
 """
 
-from .build import LoadHistory, ModelSpec, build_model_spec, load_model_file
-from .errors import ModelFileError
-from .schema import model_file_schema, write_schema
+from importlib import import_module
 
-__all__ = ["LoadHistory", "ModelFileError", "ModelSpec", "build_model_spec", "load_model_file", "model_file_schema",
-           "write_schema"]
+#: Public name -> the submodule that defines it, imported on first use: :mod:`.build` imports numpy,
+#: scipy and the structure code, while :mod:`.schema` and :mod:`.errors` (pydantic only) let the
+#: command line check a model file's keys and values before those.
+_EXPORTS = {**dict.fromkeys(("LoadHistory", "ModelSpec", "build_model_spec", "load_model_file"), "build"),
+            "ModelFileError": "errors", **dict.fromkeys(("model_file_schema", "write_schema"), "schema")}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))

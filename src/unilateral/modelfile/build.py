@@ -21,6 +21,7 @@ from pydantic import ValidationError
 
 from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Rectangular, Tabulated,
                      Triangular, force_factor, length_factor, read_record)
+from ..loads.site_response import free_field
 from ..loads.units import mass_factor
 from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
 from ..model import Model
@@ -299,7 +300,78 @@ def _record_problems(document: ModelFile) -> list[str]:
         if not at2 and motion.units is None:
             problems.append(f"{key_path(('loads', 'ground_motion', k, 'units'))}: missing key (a plain-text "
                             'record needs the units of its values, e.g. units = "g" or "cm/s2")')
+    return problems + _site_problems(document)
+
+
+_SITE_KEYS = ("layers = [{thickness, Vs or G, nu, rho, damping}, ...] and base = {Vs or G, nu, rho, damping} "
+              'or "rigid"')
+
+
+def _site_problems(document: ModelFile) -> list[str]:
+    """``[site]`` and the keys ``at``, ``depth``, ``wave`` of the ground motions that use it."""
+    site, problems = document.site, []
+    tables = []
+    if site is not None:
+        if not site.layers:
+            problems.append(value_problem(("site", "layers"), [], "give at least one layer, from the surface down "
+                                          "({thickness, Vs or G, nu, rho, damping})"))
+        tables = [(("site", "layers", j), layer) for j, layer in enumerate(site.layers)]
+        tables += [] if site.base is None else [(("site", "base"), site.base)]
+        for where, table in tables:
+            if table.G is None and table.Vs is None:
+                problems.append(f"{key_path((*where, 'G'))}: missing key (give G [F/L^2] or Vs [L/T])")
+            elif table.G is not None and table.Vs is not None:
+                problems.append(value_problem((*where, "Vs"), table.Vs, "give either G or Vs, not both"))
+    frame = document.matrices is None
+    vertical = None
+    for k, motion in enumerate(document.loads.ground_motion):
+        parts = ("loads", "ground_motion", k)
+        if motion.depth is not None and motion.at != "within":
+            problems.append(value_problem((*parts, "depth"), motion.depth, 'only for at = "within" (a record taken '
+                                          "at depth)"))
+        if motion.wave is not None and frame:
+            problems.append(value_problem((*parts, "wave"), motion.wave, "only for matrix-level models (a frame's "
+                                          'direction sets the waves: "ux" S waves, "uy" P waves): remove it'))
+        if motion.at == "surface":
+            continue
+        if site is None:
+            problems.append(value_problem((*parts, "at"), motion.at, f"needs the [site] table with the soil profile "
+                                          f"under the record ({_SITE_KEYS})"))
+            continue
+        total = sum(layer.thickness for layer in site.layers)
+        if motion.at == "outcrop" and site.base is None:
+            problems.append(value_problem((*parts, "at"), motion.at, 'a rigid base (site.base = "rigid") has no '
+                                          'outcrop motion: give the motion of the base with at = "within", depth = '
+                                          f"{total:g}, or an elastic site.base"))
+        if motion.at == "within" and motion.depth is None:
+            problems.append(f"{key_path((*parts, 'depth'))}: missing key (at = \"within\" needs the depth [L] of "
+                            "the record below the surface)")
+        elif motion.at == "within" and motion.depth > total * (1.0 + 1e-12):
+            problems.append(value_problem((*parts, "depth"), motion.depth, f"below the [site] profile: give 0 <= "
+                                          f"depth <= {total:g} (the thickness of the layers, the top of the base)"))
+        if not frame and motion.wave is None:
+            problems.append(f"{key_path((*parts, 'wave'))}: missing key (a matrix-level model with at = "
+                            f'{toml_value(motion.at)} needs wave = "S" (horizontal motion) or "P" (vertical))')
+        if vertical is None and (motion.direction == "uy" if frame else motion.wave == "P"):
+            vertical = k
+    if vertical is not None:
+        for where, table in tables:
+            if table.nu is None:
+                problems.append(f"{key_path((*where, 'nu'))}: missing key (loads.ground_motion[{vertical}] is "
+                                "vertical: P waves, which need Poisson's ratio, 0 <= nu < 0.5)")
     return problems
+
+
+def _site_profile(document: ModelFile) -> tuple[list[dict], dict | None]:
+    """``layers, base`` of ``[site]`` for :func:`~unilateral.loads.site_response.free_field`, rho in the
+    consistent mass unit."""
+    to_mass = _mass_factor(document.units)
+
+    def table(t):
+        values = {key: value for key, value in t.model_dump().items() if value is not None}
+        return {**values, "rho": values["rho"] * to_mass}
+    site = document.site
+    return [table(layer) for layer in site.layers], None if site.base is None else table(site.base)
 
 
 def _unilateral_problems(document: ModelFile) -> list[str]:
@@ -347,12 +419,18 @@ def _yield_force_problems(at, e) -> list[str]:
 
 
 def _foundation_problems(document: ModelFile) -> list[str]:
-    """The keys of ``[foundation]`` that go together (soil model and its parameters, nodes)."""
-    f = document.foundation
-    if f is None or document.matrices is not None:
+    """The keys of every footing that go together (soil model and its parameters, nodes)."""
+    if document.matrices is not None:
         return []
     problems = []
-    at = ("foundation",)
+    for at, f in document.footings:
+        problems += _footing_problems(document, at, f)
+    return problems
+
+
+def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
+    """The problems of one footing ``f`` at key path ``at``."""
+    problems = []
     ids = [node.id for node in document.nodes]
     for k, node in enumerate(f.nodes or ()):
         if node not in set(ids):
@@ -366,8 +444,23 @@ def _foundation_problems(document: ModelFile) -> list[str]:
                                       "omit nodes for a rigid footing"))
     if f.nodes is None and f.width is None:
         problems.append(f"{key_path((*at, 'width'))}: missing key (a rigid footing needs its width along x)")
+    if f.nodes is not None and (f.mass or f.J):
+        problems.append(value_problem((*at, "mass" if f.mass else "J"), f.mass or f.J, "only for a rigid footing "
+                                      "(give a flexible footing's masses to its nodes in [[masses]])"))
     soil, where = f.soil, (*at, "soil")
     m = len(f.nodes) if f.nodes is not None else (f.patches or 3)
+    if soil.model != "layered" and (soil.layers is not None or soil.base != "halfspace"):
+        problems.append(value_problem((*where, "layers" if soil.layers is not None else "base"),
+                                      soil.layers if soil.layers is not None else soil.base,
+                                      f'only for model = "layered" (model = {toml_value(soil.model)})'))
+    if soil.model == "layered":
+        if not soil.layers:
+            problems.append(f"{key_path((*where, 'layers'))}: missing key (model = \"layered\" needs the layers "
+                            "from the surface down: [{ thickness = ..., Vs = ..., nu = ..., rho = ... }])")
+        if soil.base == "rigid":
+            return problems + [value_problem((*where, key), getattr(soil, key), 'not used with base = "rigid": '
+                                             "remove it") for key in ("G", "Vs", "nu", "rho")
+                               if getattr(soil, key) is not None]
     if soil.model == "winkler-kelvin":
         for key in ("G", "Vs", "nu", "rho"):
             if getattr(soil, key) is not None:
@@ -397,7 +490,7 @@ def _foundation_problems(document: ModelFile) -> list[str]:
         if value is not None and value != 0.0:
             problems.append(value_problem((*where, key), value, f'only for model = "winkler-kelvin" (model = '
                                           f"{toml_value(soil.model)} takes G or Vs, nu, rho)"))
-    problems += _soil_scale_problems(document, where)
+    problems += _soil_scale_problems(document, f, where)
     if soil.model == "cones" and soil.damping:
         problems.append(value_problem((*where, "damping"), soil.damping, 'the cones have no material damping; '
                                       'use damping = 0 or model = "halfspace"'))
@@ -407,13 +500,13 @@ def _foundation_problems(document: ModelFile) -> list[str]:
     return problems
 
 
-def _soil_scale_problems(document: ModelFile, where: tuple) -> list[str]:
+def _soil_scale_problems(document: ModelFile, f, where: tuple) -> list[str]:
     """Moduli derived from the soil's ``G`` or ``Vs``, ``rho`` and the footing's area that overflow or vanish.
 
     ``G = rho Vs^2``, ``Vs = sqrt(G / rho)`` and the footing's stiffness ``G sqrt(A)`` and dashpot
     ``rho Vs A`` (``A = width length``) must be finite numbers > 0.
     """
-    f, soil = document.foundation, document.foundation.soil
+    soil = f.soil
     if soil.rho is None or (soil.G is None) == (soil.Vs is None):
         return []
     key = "G" if soil.G is not None else "Vs"
@@ -452,14 +545,17 @@ def _build_structure(document: ModelFile) -> Structure:
     for k, mass in enumerate(document.masses):
         with _at(key_path(("masses", k))):
             fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass)
-    f = document.foundation
-    if f is not None:
+    for at, f in document.footings:
         soil = {key: value for key, value in f.soil.model_dump().items() if value is not None}
         if soil.get("rho") is not None:
             soil["rho"] = soil["rho"] * to_mass
-        with _at("foundation"):
+        if soil.get("layers") is not None:
+            soil["layers"] = [{key: value * to_mass if key == "rho" else value for key, value in layer.items()
+                               if value is not None} for layer in soil["layers"]]
+        with _at(key_path(at)):
             fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=soil, patches=f.patches,
-                          nodes=f.nodes, horizontal=f.horizontal, gap=f.gap)
+                          nodes=f.nodes, horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
+                          J=f.J * to_mass)
     rayleigh = document.damping.rayleigh if document.damping is not None else None
     if rayleigh is not None:
         with _at("damping.rayleigh"):
@@ -550,7 +646,14 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
                    if getattr(motion, key) is not None}
         with _at(key_path((*parts, "file"))):
             record = read_record(folder / motion.file, **options)
-        a_g = Tabulated(record.time / seconds, record.acceleration * (motion.scale * to_model))
+        acceleration = record.acceleration
+        if motion.at != "surface":              # the free-field surface motion of [site]
+            wave = motion.wave or ("P" if motion.direction == "uy" else "S")
+            layers, base = _site_profile(document)
+            with _at(key_path((*parts, "at"))):
+                acceleration = free_field(acceleration, record.dt / seconds, layers, base, at=motion.at,
+                                          depth=motion.depth, wave=wave)
+        a_g = Tabulated(record.time / seconds, acceleration * (motion.scale * to_model))
         terms.append((-np.asarray(model.M @ r).ravel(), a_g))
     return LoadHistory(constant, tuple(terms))
 

@@ -20,9 +20,9 @@ from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchem
 from pydantic.fields import FieldInfo
 from pydantic_core import PydanticCustomError
 
-from ..lcp import LCP_SOLVERS
-from ..rules import RULES
-from ..methods import MATRIX_METHOD_NAMES
+from .. import _LCP_NAMES as LCP_SOLVERS
+from .. import _RULE_NAMES as RULES
+from .. import _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES
 
 LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
@@ -444,6 +444,14 @@ class GroundMotion(Table):
     dt: Positive | None = Field(None, description="Time step of a one-column text record [s].")
     skip_header: int | None = Field(None, ge=0, description=(
         "Plain-text records: header lines to skip at the top of the file (default 0)."))
+    at: Literal["surface", "outcrop", "within"] = Field("surface", title="record location", description=(
+        "Where the record was taken: surface (used as it is), outcrop (at an outcrop of the [site] "
+        "half-space) or within (at depth in the [site] profile); not surface: the free-field surface motion "
+        "by 1D site response of [site]."))
+    depth: NonNegative | None = Field(None, description="at = \"within\": depth of the record below the surface [L].")
+    wave: Literal["S", "P"] | None = Field(None, title="wave type", description=(
+        "Matrix-level models with at not surface: S (horizontal) or P (vertical) waves; a frame's direction "
+        "sets it (ux: S, uy: P)."))
 
 
 class Loads(Table):
@@ -453,6 +461,54 @@ class Loads(Table):
     nodal: list[NodalLoad] = []
     distributed: list[DistributedLoad] = []
     ground_motion: list[GroundMotion] = []
+
+
+class SiteBase(Table):
+    """The elastic half-space under the [site] layers."""
+
+    G: Positive | None = Field(None, description="Shear modulus [F/L^2]; or give Vs.")
+    Vs: Positive | None = Field(None, description="Shear-wave speed [L/T]; or give G.")
+    nu: Annotated[float, Field(ge=0.0, lt=0.5)] | None = Field(None, description=(
+        "Poisson's ratio, 0 <= nu < 0.5 (needed for P waves, vertical ground motion)."))
+    rho: Positive = Field(description="Mass density [F T^2/L^4, or units.mass/L^3].")
+    damping: Annotated[float, Field(ge=0.0, lt=1.0)] = Field(0.0, description="Hysteretic damping ratio.")
+
+
+class SiteLayer(Table):
+    """A horizontal soil layer of [site], from the surface down."""
+
+    thickness: Positive = Field(description="Thickness [L].")
+    G: Positive | None = Field(None, description="Shear modulus [F/L^2]; or give Vs.")
+    Vs: Positive | None = Field(None, description="Shear-wave speed [L/T]; or give G.")
+    nu: Annotated[float, Field(ge=0.0, lt=0.5)] | None = Field(None, description=(
+        "Poisson's ratio, 0 <= nu < 0.5 (needed for P waves, vertical ground motion)."))
+    rho: Positive = Field(description="Mass density [F T^2/L^4, or units.mass/L^3].")
+    damping: Annotated[float, Field(ge=0.0, lt=1.0)] = Field(0.0, description="Hysteretic damping ratio.")
+
+
+def _rigid_in_schema(schema: dict) -> None:
+    """JSON schema of ``base``: the table or the string "rigid" (read as None)."""
+    schema["anyOf"] = [{"const": "rigid"} if item.get("type") == "null" else item for item in schema["anyOf"]]
+
+
+class Site(Table):
+    """[site]: the 1D soil profile of the free field, horizontal layers over a half-space or a rigid base."""
+
+    EXAMPLE: ClassVar[str] = ('[site] layers = [{ thickness = 20.0, Vs = 200.0, nu = 0.3, rho = 1.9, damping = 0.05 }], '
+                              'base = { Vs = 800.0, nu = 0.25, rho = 2.2, damping = 0.01 }')
+    layers: list[SiteLayer] = Field(description="The layers from the surface down (at least one).")
+    base: SiteBase | None = Field(json_schema_extra=_rigid_in_schema, description=(
+        'The elastic half-space under the layers, or "rigid" (read as None).'))
+
+    @model_validator(mode="before")
+    @classmethod
+    def _rigid_base(cls, data):
+        if isinstance(data, dict) and isinstance(data.get("base"), str):
+            if data["base"] != "rigid":
+                raise PydanticCustomError("site_base", 'base = {value}: expected "rigid" or a table of the '
+                                          "half-space (G or Vs, nu, rho, damping)", {"value": json.dumps(data["base"])})
+            data = {**data, "base": None}
+        return data
 
 
 # ---------------------------------------------------------------------- analysis and output
@@ -509,9 +565,10 @@ class Matrices(Table):
 class FoundationSoil(Table):
     """[foundation.soil]: the soil medium under the footing and its model."""
 
-    model: Literal["halfspace", "cones", "winkler-kelvin"] = Field(title="soil model", description=(
-        "halfspace: the rigorous (visco)elastic half-space; cones: the footing's vertical cone (Wolf) "
-        "spread over the patches; winkler-kelvin: a tensionless spring k and dashpot c per patch."))
+    model: Literal["halfspace", "layered", "cones", "winkler-kelvin"] = Field(title="soil model", description=(
+        "halfspace: the rigorous (visco)elastic half-space; layered: horizontal layers over it (or over a "
+        "rigid base); cones: the footing's vertical cone (Wolf) spread over the patches; winkler-kelvin: a "
+        "tensionless spring k and dashpot c per patch."))
     G: Positive | None = Field(None, description="Shear modulus [F/L^2] (halfspace, cones); or give Vs.")
     Vs: Positive | None = Field(None, description="Shear-wave speed [L/T] (halfspace, cones); or give G.")
     nu: Annotated[float, Field(ge=0.0, lt=0.5)] | None = Field(None, description="Poisson's ratio, 0 <= nu < 0.5.")
@@ -522,10 +579,16 @@ class FoundationSoil(Table):
         "winkler-kelvin: spring of each patch [F/L], one number or one per patch."))
     c: NonNegative | list[NonNegative] = Field(0.0, description=(
         "winkler-kelvin: dashpot of each patch [F T/L], one number or one per patch."))
+    layers: list[SiteLayer] | None = Field(None, description=(
+        "layered: the layers from the surface down (thickness, G or Vs, nu, rho, damping); the half-space "
+        "under them is G or Vs, nu, rho, damping of this table."))
+    base: Literal["halfspace", "rigid"] = Field("halfspace", description=(
+        "layered: what the layers rest on, the half-space of this table or a rigid base."))
 
 
 class Foundation(Table):
-    """[foundation]: a footing resting on a soil medium through unilateral contacts."""
+    """[[foundations]] (or the single [foundation]): a footing resting on a soil medium through
+    unilateral contacts."""
 
     EXAMPLE: ClassVar[str] = ('[foundation] node = 2, width = 10.0, length = 10.0, patches = 4, '
                               'soil = { model = "halfspace", Vs = 100.0, nu = 0.33, rho = 2.0 }')
@@ -542,6 +605,8 @@ class Foundation(Table):
         "support: ux of node supported; cone: Wolf's horizontal cone as a bilateral spring and dashpot at "
         "node; none: restrained otherwise."))
     gap: float = Field(0.0, description="Opening at u = 0 with the soil unloaded [L]; negative: a penetration.")
+    mass: NonNegative = Field(0.0, description="Rigid footing: its own mass on ux, uy of node [M].")
+    J: NonNegative = Field(0.0, description="Rigid footing: its rotary inertia on rz of node [M L^2].")
     soil: FoundationSoil
 
 
@@ -557,11 +622,29 @@ class ModelFile(Table):
     masses: list[Mass] = []
     damping: Damping | None = None
     foundation: Foundation | None = None
+    foundations: list[Foundation] = Field([], description=(
+        "Several footings: on a half-space they share it (give each the same soil), elsewhere uncoupled."))
     matrices: Matrices | None = None
     loads: Loads = Loads()
+    site: Site | None = None
     analysis: Analysis
     output: Output = Output()
 
+
+    @model_validator(mode="after")
+    def _one_way_to_give_footings(self):
+        if self.foundation is not None and self.foundations:
+            raise PydanticCustomError("footings", (
+                "give the footings either as [foundation] (one) or as [[foundations]] (any number), not both: "
+                "move [foundation] into [[foundations]]"))
+        return self
+
+    @property
+    def footings(self) -> list:
+        """``(key path, Foundation)`` of every footing: ``[foundation]`` or ``[[foundations]]``."""
+        if self.foundation is not None:
+            return [(("foundation",), self.foundation)]
+        return [(("foundations", k), f) for k, f in enumerate(self.foundations)]
 
     @model_validator(mode="after")
     def _mass_unit_for_frames(self):
@@ -573,7 +656,7 @@ class ModelFile(Table):
 
 
 FRAME_SECTIONS = ("nodes", "supports", "rigid_links", "elements", "unilateral", "masses", "damping",
-                  "foundation")
+                  "foundation", "foundations")
 
 
 # ---------------------------------------------------------------------- helpers

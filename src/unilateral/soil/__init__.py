@@ -5,7 +5,11 @@ Modules (one concept each):
 * :mod:`.patches` - rectangular surface patches (``RectangularPatches``, ``strips``, ``grid``, ``disc``).
 * :mod:`.statics` - closed-form Boussinesq flexibilities of points and rectangles (Love/Steinbrenner).
 * :mod:`.lamb` - Lamb's problem in the Laplace domain: wavenumber kernel, deformed contour.
-* :mod:`.halfspace` - ``HalfSpace``: rigorous surface flexibility ``Phi(s)`` of patches, point Green's fn.
+* :mod:`.halfspace` - ``HalfSpace``: rigorous surface flexibility ``Phi(s)`` of patches (vertical, or
+  the horizontal and vertical Green's tensor), point Green's fn.
+* :mod:`.layered` - ``Layered``: horizontal layers over a half-space or a rigid base, the same ``Phi(s)``.
+* :mod:`.rigid` - ``rigid_impedance``: impedances of a rigid footing from its patches.
+* :mod:`.structure_weights` - the structure's CQ weights of a foundation model by compiled stepping.
 * :mod:`.pekeris` - Pekeris (1955) / Mooney / Kausel closed form of the step point-load response.
 * :mod:`.impedances` - Veletsos & Verbic (1973) rational disc impedances.
 * :mod:`.cones` - Wolf (1994) cone models and cone-type coupled flexibility of patches.
@@ -29,8 +33,10 @@ _LAZY = {
     **dict.fromkeys(("FoundationKernel", "FoundationModel", "SoilFlexibility", "SoilPoles"), "foundation_model"),
     **dict.fromkeys(("RationalFit", "fit_rational", "read_table"), "fit"),
     "HalfSpace": "halfspace",
+    "Layered": "layered",
     **dict.fromkeys(("VeletsosVerbic", "veletsos_verbic"), "impedances"),
     **dict.fromkeys(("RectangularPatches", "disc", "grid", "points", "strips"), "patches"),
+    **dict.fromkeys(("rigid_impedance", "rigid_kinematics"), "rigid"),
     **dict.fromkeys(("arrival_times", "lamb_step_vertical", "pekeris_quarter"), "pekeris"),
     **dict.fromkeys(("boussinesq", "mean_inverse_distance", "rectangle_corner_displacement"), "statics"),
     "step_response": "timedomain",

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.linalg import block_diag
 
 from .. import _validate as V
 from ..kernels.base import Kernel
@@ -72,6 +73,14 @@ class SoilPoles:
     def static(self) -> np.ndarray:
         """``Phi(0)`` (m, m) real."""
         return self.evaluate(np.zeros(1))[0].real
+
+
+def static_block(parts, m, starts) -> np.ndarray:
+    """``diag(P0_1, P0_2, ...)`` (m, m) of the parts' pole-residue constants."""
+    out = np.zeros((m, m))
+    for p, a in zip(parts, starts):
+        out[a:a + p.m, a:a + p.m] = p.poles.P0
+    return out
 
 
 def _scalar_poles(num, den, where):
@@ -330,17 +339,21 @@ class SoilFlexibility:
     # ------------------------------------------------------------------ constructors
     @classmethod
     def halfspace(cls, halfspace, patches, *, kmax_factor=1.0) -> SoilFlexibility:
-        """The rigorous flexibility of rectangular patches on a :class:`~unilateral.soil.HalfSpace`.
+        """The rigorous flexibility of rectangular patches on a :class:`~unilateral.soil.HalfSpace`
+        or a :class:`~unilateral.soil.Layered` soil.
 
         ``Phi = halfspace.surface_flexibility(patches, s)`` (each distinct pair geometry computed
         once). One contact per patch, in the order of ``patches``; the contact force of a patch is
         its uniform pressure times its area. Not rational: ``method="cq"``.
         """
         from .halfspace import HalfSpace
+        from .layered import Layered
         from .patches import RectangularPatches
 
+        if isinstance(halfspace, Layered):
+            return cls._layered(halfspace, patches, kmax_factor)
         if not isinstance(halfspace, HalfSpace):
-            raise TypeError(f"halfspace must be a unilateral.soil.HalfSpace, got {V.describe(halfspace)}")
+            raise TypeError(f"halfspace must be a unilateral.soil.HalfSpace or Layered, got {V.describe(halfspace)}")
         if not isinstance(patches, RectangularPatches):
             raise TypeError(f"patches must be RectangularPatches (strips, grid, disc), got {V.describe(patches)}")
         if np.any(patches.sizes <= 0):
@@ -354,6 +367,72 @@ class SoilFlexibility:
             lo = patches.centres - 0.5 * patches.sizes
             hi = patches.centres + 0.5 * patches.sizes
             soil.memory = 3.0 * float(np.hypot(*(hi.max(axis=0) - lo.min(axis=0)))) / halfspace.cr
+        return soil
+
+    @classmethod
+    def block_diagonal(cls, parts) -> SoilFlexibility:
+        """Uncoupled soils side by side: ``Phi = diag(Phi_1, Phi_2, ...)`` (contacts in that order).
+
+        Footings on soils that do not interact through the ground (cones, Winkler-Kelvin beds, or
+        flexibilities given per footing). Rational (``method="modal"``), Kelvin and diagonal if
+        every part is.
+        """
+        parts = list(parts)
+        if not parts or not all(isinstance(p, SoilFlexibility) for p in parts):
+            raise TypeError("parts must be a non-empty list of SoilFlexibility")
+        sizes = [p.m for p in parts]
+        m = sum(sizes)
+        starts = np.cumsum([0] + sizes)
+
+        def func(s):
+            out = np.zeros((np.size(s), m, m), dtype=complex)
+            for p, a in zip(parts, starts):
+                out[:, a:a + p.m, a:a + p.m] = p.evaluate(s)
+            return out
+
+        def static():
+            out = np.zeros((m, m))
+            for p, a in zip(parts, starts):
+                out[a:a + p.m, a:a + p.m] = p.static()
+            return out
+
+        diagonal = None
+        if all(p.is_diagonal for p in parts):
+            diagonal = lambda s: np.concatenate([p._diagonal(s) for p in parts], axis=1)
+        poles = None
+        if all(p.is_rational for p in parts):
+            pad = lambda A, a, k: np.pad(A, ((0, 0), (a, m - a - k)))
+            poles = SoilPoles(np.concatenate([p.poles.poles for p in parts]),
+                              np.vstack([pad(p.poles.B, a, p.m) for p, a in zip(parts, starts)]),
+                              np.vstack([pad(p.poles.Cf, a, p.m) for p, a in zip(parts, starts)]),
+                              static_block(parts, m, starts))
+        kelvin = None
+        if all(p.kelvin is not None for p in parts):
+            kelvin = (np.concatenate([p.kelvin[0] for p in parts]), np.concatenate([p.kelvin[1] for p in parts]))
+        out = cls(func, m, static=static, poles=poles, kelvin=kelvin, diagonal=diagonal,
+                  description="; ".join(p.description for p in parts))
+        memories = [p.memory for p in parts]
+        out.memory = None if any(x is None for x in memories) else max(memories)
+        return out
+
+    @classmethod
+    def _layered(cls, layered, patches, kmax_factor) -> SoilFlexibility:
+        """:meth:`halfspace` for a :class:`~unilateral.soil.Layered` soil."""
+        from .patches import RectangularPatches
+
+        if not isinstance(patches, RectangularPatches) or np.any(patches.sizes <= 0):
+            raise ValueError("patches must be RectangularPatches with positive sides")
+        func = lambda s: layered.surface_flexibility(patches, s, kmax_factor=kmax_factor)
+        soil = cls(func, patches.m, description=f"{layered!r}, {patches.m} patches")
+        materials = layered.materials + ([] if layered.halfspace is None else [layered.halfspace])
+        if all(x.damping == 0.0 or x.damping_model == "kelvin_voigt" for x in materials):
+            # the truncation hint: three Rayleigh-wave travel times of the slowest material across the
+            # patches and ten vertical round trips through the layers (the weights grow past it)
+            lo = patches.centres - 0.5 * patches.sizes
+            hi = patches.centres + 0.5 * patches.sizes
+            slowest = min(x.cr for x in materials)
+            depth = sum(2.0 * t / x.cs for t, x in zip(layered.thickness, layered.materials))
+            soil.memory = 3.0 * float(np.hypot(*(hi.max(axis=0) - lo.min(axis=0)))) / slowest + 10.0 * depth
         return soil
 
     @classmethod
@@ -575,6 +654,12 @@ class FoundationModel:
     gap : (m,)
     dof_names, constraint_names : list of str (``contact_names``)
 
+    A structure with unilateral elements of its own (gaps, cables, yielding links, hinges, sliders:
+    a :class:`~unilateral.model.Model` with its constraint families) rests on the soil with
+    :meth:`on`: the model's ``m_p`` constraints come first, the ``m_s`` soil contacts (a
+    :class:`~unilateral.constraints.SoilContact` family) after them, and one CLCP couples them
+    (``docs/theory.md``, section 12).
+
     Notes
     -----
     Units: any consistent set (e.g. kN, m, s: then ``Phi`` is in m/kN).
@@ -609,7 +694,43 @@ class FoundationModel:
         self.gap = V.as_vector("gap", 0.0 if gap is None else gap, m)
         self.dof_names = _names("dof_names", dof_names, n, "u")
         self.constraint_names = _names("contact_names", contact_names, m, "c")
+        #: The structure's own unilateral constraints (a Model), or None (:meth:`on`).
+        self.structure = None
         self._check_rigid_modes()
+
+    @classmethod
+    def on(cls, structure: Model, T, soil, *, gap=None, contact_names=None) -> FoundationModel:
+        """A :class:`~unilateral.model.Model` with constraints of its own, resting on the soil.
+
+        The model's ``M, K, C`` are the structure without the soil; its constraints (any
+        families: contact, yield, friction) keep their indices ``0 .. m_p - 1``; the soil
+        contacts follow, ``m_p .. m_p + m_s - 1``, with the meaning of the plain form (``v`` the
+        opening, ``psi = -c``). The solution's constraints are the model's and then the contacts.
+
+        Parameters
+        ----------
+        structure : Model
+            With constant ``g`` and imposed-strain load ``q_imposed``.
+        T, soil, gap, contact_names : as for the constructor (``m_s`` contacts).
+        """
+        if not isinstance(structure, Model):
+            raise TypeError(f"structure must be a unilateral.Model, got {V.describe(structure)}")
+        if not (structure.g_is_constant and structure.q_imposed_is_constant):
+            raise ValueError("a structure on a soil needs constant g and q_imposed (loads that vary in time "
+                             "go in load=)")
+        ms = V.as_matrix("T", T, (structure.n, None)).shape[1]
+        if contact_names is None:
+            contact_names = [f"soil{j}" for j in range(ms)]
+        out = cls(structure.M, structure.K, T, soil, C=structure.C, gap=gap, dof_names=structure.dof_names,
+                  contact_names=contact_names)
+        twice = set(structure.constraint_names) & set(out.constraint_names)
+        if twice:
+            raise ValueError(f"contact_names: {sorted(twice)[:3]} are also names of the structure's constraints; "
+                             "names must be unique")
+        if structure.m:
+            out.structure = structure
+            out.constraint_names = list(structure.constraint_names) + out.constraint_names
+        return out
 
     # ------------------------------------------------------------------ sizes and flags
     @property
@@ -618,31 +739,53 @@ class FoundationModel:
         return self.K.shape[0]
 
     @property
-    def m(self) -> int:
-        """Number of contacts."""
+    def mp(self) -> int:
+        """Number of the structure's own constraints (:meth:`on`; 0 for a plain foundation model)."""
+        return 0 if self.structure is None else self.structure.m
+
+    @property
+    def ms(self) -> int:
+        """Number of soil contacts (columns of ``T``)."""
         return self.T.shape[1]
 
     @property
+    def m(self) -> int:
+        """Number of constraints: the structure's and the soil contacts."""
+        return self.mp + self.ms
+
+    @property
+    def mixed(self) -> bool:
+        """The structure has constraints of its own: the CLCP mixes the primal and the dual form."""
+        return self.structure is not None
+
+    @property
     def contact_names(self) -> list:
-        return self.constraint_names
+        """The names of the soil contacts."""
+        return self.constraint_names[self.mp:]
 
     @property
     def law(self):
-        """Contacts only (:func:`unilateral.constraints.contact_law`)."""
-        from ..constraints import contact_law
+        """The step law: the structure's families and the soil contacts (dual rows).
 
-        return contact_law(self.m)
+        A plain foundation model: contacts only (its kernel ``Lambda_D`` is positive definite).
+        """
+        from ..constraints import SoilContact, contact_law, step_law
+
+        if not self.mixed:
+            return contact_law(self.ms)
+        return step_law(list(self.structure.families) + [SoilContact(np.arange(self.mp, self.m), name="soil")],
+                        self.m)
 
     @property
     def sparse(self) -> bool:
         return sp.issparse(self.K)
 
-    #: The foundation model has no imposed-strain load (the gap is in the contact law).
+    #: Imposed strains of the structure's elements are constant (the gap is in the contact law).
     q_imposed_is_constant = True
 
     def q_imposed(self, t) -> np.ndarray:
-        """Zero: loads are applied through ``load`` only (the interface of ``Model``)."""
-        return np.zeros(self.n)
+        """The structure's imposed-strain load (constant; zero for a plain foundation model)."""
+        return np.zeros(self.n) if self.structure is None else self.structure.q_imposed(0.0)
 
     def damping(self):
         """C, or a zero matrix of the right kind if the structure is undamped."""
@@ -660,14 +803,20 @@ class FoundationModel:
 
     # ------------------------------------------------------------------ kernels
     def kernel(self) -> FoundationKernel:
-        """``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)``: the kernel of the dual CLCP."""
+        """``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)``: the kernel of the dual CLCP (plain models)."""
+        self._plain("kernel")
         return FoundationKernel(self)
+
+    def _plain(self, what):
+        if self.mixed:
+            raise ValueError(f"{what}: not available for a structure with constraints of its own on the soil "
+                             "(FoundationModel.on); use method='cq'")
 
     def structure_flexibility(self, s) -> np.ndarray:
         """``T^T D(s)^-1 T`` for ``s`` (L,) (``s != 0`` if ``K`` is singular): (L, m, m)."""
         s = np.atleast_1d(np.asarray(s))
         dtype = float if np.isrealobj(s) else complex
-        out = np.empty((s.size, self.m, self.m), dtype=dtype)
+        out = np.empty((s.size, self.ms, self.ms), dtype=dtype)
         if self.n <= _DENSE_BATCH_MAX_N:
             K, M, T = dense(self.K), dense(self.M), dense(self.T)
             Cd = None if self.C is None else dense(self.C)
@@ -685,35 +834,61 @@ class FoundationModel:
         return out
 
     def weights(self, N: int, dt: float, rule, **cq_options) -> np.ndarray:
-        """Convolution-quadrature weights ``W_0 .. W_N`` of ``Lambda_D(s)``: (N+1, m, m).
+        """Convolution-quadrature weights ``W_0 .. W_N`` of the model's kernel: (N+1, m, m).
 
-        The structure's part ``T^T D(s)^-1 T`` is computed exactly as the impulse responses of the
-        rule applied to the structure (one linear sweep per contact): these *are* its CQ weights
+        Plain model: the weights of ``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)`` (positive definite).
+        The structure's part is computed exactly as the impulse responses of the rule applied to the
+        structure (all columns of :meth:`impulse_basis` stepped together by compiled code,
+        :func:`~unilateral.soil.structure_weights.structure_weights`): these *are* its CQ weights
         (zero initial data), without the round-off that the FFT on a circle suffers where
         ``D(s)`` is ill-conditioned at small ``|s|`` (a footing resting only on the soil has a
         pole of ``D(s)^-1`` at ``s = 0``; axially rigid members add stiffness 1e7 times larger).
         The soil's part is :meth:`SoilFlexibility.cq_weights` (truncated where the soil's impulse
         response has died out; ``cq_options``: ``L``, ``rho`` force the full FFT).
+
+        Mixed model (:meth:`on`): the weights of the symmetric kernel
+        ``Lambda(s) = H_a - F_a^T D(s)^-1 F_a - diag(0, Phi(s))`` with ``F_a = [F, T]``,
+        ``H_a = diag(H, 0)``: rows of the structure's constraints ``psi``, rows of the soil contacts
+        ``+opening`` (the :class:`~unilateral.constraints.SoilContact` row map makes them the LCP's
+        ``w``; ``docs/theory.md``, section 12).
         """
-        from ..march.direct import sweep_direct
-        from ..march.stepper import StructureStepper
         from ..rules import get_rule
 
         rule = get_rule(rule, cq=True)
-        N, m, n = int(N), self.m, self.n
+        N, m = int(N), self.m
         free = self.stepping_model()
-        zeros_n, zeros_m = np.zeros((N + 2, n)), np.zeros((N + 2, m))
         basis = self.impulse_basis()
+        if free.viscous:
+            W = self._swept_weights(free, rule, dt, N, basis)
+        else:
+            from .structure_weights import structure_weights
+
+            W = structure_weights(self.M, self.K, self.C, free.F, rule, dt, N, basis=basis)
+            W[0] -= free.H @ basis
+        if basis.shape[1] < m:
+            W = W @ basis.T
+        soil = self.soil.cq_weights(N, dt, rule, **cq_options)
+        if not self.mixed:
+            return W + soil
+        W = -W
+        W[:, self.mp:, self.mp:] -= soil
+        return W
+
+    def _swept_weights(self, free, rule, dt, N, basis) -> np.ndarray:
+        """The structure's weights by one linear sweep per impulse (Kelvin elements of the structure)."""
+        from ..march.direct import sweep_direct
+        from ..march.stepper import StructureStepper
+
+        m, n = self.m, self.n
+        zeros_n, zeros_m = np.zeros((N + 2, n)), np.zeros((N + 2, m))
         W = np.empty((N + 1, m, basis.shape[1]))
         for j in range(basis.shape[1]):
             stepper = StructureStepper(free, rule, dt, zeros_n, zeros_m, None, condensed=False)
             impulse = np.zeros((N + 2, m))
             impulse[1] = basis[:, j]
-            _, _, _, opening, _ = sweep_direct(stepper, N + 1, np.zeros(m), np.zeros(m), impulse)
-            W[:, :, j] = opening[1:]
-        if basis.shape[1] < m:
-            W = W @ basis.T
-        return W + self.soil.cq_weights(N, dt, rule, **cq_options)
+            _, _, _, response, _ = sweep_direct(stepper, N + 1, np.zeros(m), np.zeros(m), impulse)
+            W[:, :, j] = response[1:]
+        return W
 
     def impulse_basis(self) -> np.ndarray:
         """(m, r) orthonormal impulses whose responses give the structure's weights of every contact.
@@ -722,8 +897,11 @@ class FoundationModel:
         right singular vectors of ``T`` of its ``r`` nonzero singular values, the response to
         ``e_j`` is that to ``V V^T e_j``. A rigid footing (``r = 2``: ``uy``, ``rz``) on hundreds
         of patches then takes two sweeps instead of one per patch. The identity (one sweep per
-        contact) when ``r`` is not below ``m / 4``, where the saving would not pay.
+        contact) when ``r`` is not below ``m / 4``, where the saving would not pay, and for a mixed
+        model (the structure's constraints have ``H``).
         """
+        if self.mixed:
+            return np.eye(self.m)
         T = dense(self.T)
         _, sv, vt = np.linalg.svd(T, full_matrices=False)
         r = int(np.sum(sv > sv.max(initial=0.0) * max(T.shape) * np.finfo(float).eps))
@@ -735,7 +913,8 @@ class FoundationModel:
 
         With ``S0 = Phi(0)^-1`` the soil is a set of springs in series with the contacts:
         ``K + T S0 T^T``, ``F = T S0``, ``H = S0``, ``g = -S0 gap``, imposed load ``-T S0 gap``;
-        its static state is the static state of this model (``psi = -c``).
+        its static state is the static state of this model (``psi = -c``). A mixed model's own
+        constraints come first, as they are.
         """
         S0 = np.linalg.inv(self.soil.static())
         S0 = 0.5 * (S0 + S0.T)
@@ -754,7 +933,10 @@ class FoundationModel:
         return self._spring_model(np.diag(k), np.diag(c) if np.any(c) else None)
 
     def _spring_model(self, S, Cs) -> Model:
-        T = dense(self.T) if self.n <= _CHECK_MAX_N else self.T
+        """The structure with springs ``S`` (and dashpots ``Cs``) in series with the soil contacts."""
+        from ..constraints import Contact, default_families
+
+        T = dense(self.T) if self.n <= _CHECK_MAX_N else sp.csr_matrix(self.T)
         TS = T @ S
         add = lambda A, B: (A + B) if not sp.issparse(A) else (A + sp.csr_matrix(B))
         K = add(self.K, TS @ T.T)
@@ -762,11 +944,28 @@ class FoundationModel:
         if Cs is not None:
             C = add(self.damping(), T @ Cs @ T.T)
             F_v, H_v = T @ Cs, Cs
-        q_imp = -(TS @ self.gap)
+        q_imp = self.q_imposed(0.0) - np.asarray(TS @ self.gap).ravel()
+        F, H, g, families = TS, S, -(S @ self.gap), None
+        base = self.structure
+        if base is not None:
+            mp, ms = self.mp, self.ms
+            stack = (lambda A, B: sp.hstack([sp.csr_matrix(A), sp.csr_matrix(B)]).tocsr()) \
+                if (sp.issparse(base.F) or sp.issparse(TS)) else (lambda A, B: np.hstack([A, B]))
+            F = stack(base.F, TS)
+            H = block_diag(dense(base.H), S)
+            g = np.concatenate([base.g(0.0), g])
+            if base.viscous or Cs is not None:
+                zeros_v = np.zeros((self.n, ms)) if Cs is None else F_v
+                F_v = stack(np.zeros((self.n, mp)) if base.F_v is None else dense(base.F_v), zeros_v)
+                H_v = block_diag(np.zeros((mp, mp)) if base.H_v is None else dense(base.H_v),
+                                 np.zeros((ms, ms)) if Cs is None else Cs)
+            families = list(base.families) + [Contact(np.arange(mp, mp + ms), name="soil")]
+        else:
+            families = default_families(self.ms)
         try:
-            return Model(self.M, K, TS, S, C=C, g=-(S @ self.gap), F_v=F_v, H_v=H_v,
+            return Model(self.M, K, F, H, C=C, g=g, F_v=F_v, H_v=H_v,
                          q_imposed=q_imp if np.any(q_imp) else None,
-                         dof_names=self.dof_names, constraint_names=self.constraint_names)
+                         dof_names=self.dof_names, constraint_names=self.constraint_names, families=families)
         except ValueError as exc:
             raise ValueError(f"the structure on the soil's static springs is not stable ({exc}): "
                              "K + T Phi(0)^-1 T^T must be positive definite; support the structure or "
@@ -787,6 +986,7 @@ class FoundationModel:
         from ..kernels.pole_residue import PoleResidueKernel
         from ..kernels.poles_dense import check_points, dense_poles
 
+        self._plain("the pole-residue form")
         if not self.soil.is_rational:
             raise ValueError(f"the soil ({self.soil.description}) has no pole-residue form; "
                              "use method='cq'")
@@ -841,23 +1041,38 @@ class FoundationModel:
 
 
 class _FreeStructure:
-    """The structure without the soil, in the interface StructureStepper reads (F = T, H = 0)."""
+    """The structure without the soil, in the interface StructureStepper reads.
 
-    viscous = False
-    F_v = None
-    H_v = None
+    Columns ``F_a = [F, T]`` (the structure's own constraints, then the soil contacts) and
+    ``H_a = diag(H, 0)``: a sweep with prescribed increments ``dz`` loads the structure with
+    ``F_a dz`` and returns ``offset + F_a^T du - H_a dz`` (the structural part of the rows: the
+    constraint functions and the openings).
+    """
 
     def __init__(self, model: FoundationModel):
-        self.M, self.K, self.C, self.F = model.M, model.K, model.C, model.T
-        self.H = np.zeros((model.m, model.m))
+        self.M, self.K, self.C = model.M, model.K, model.C
         self.n, self.m = model.n, model.m
         self._model = model
+        base, ms = model.structure, model.ms
+        self.F, self.H, self.F_v, self.H_v = model.T, np.zeros((ms, ms)), None, None
+        if base is not None:
+            mp = base.m
+            sparse = sp.issparse(base.F) or sp.issparse(model.T)
+            stack = (lambda A, B: sp.hstack([sp.csr_matrix(A), sp.csr_matrix(B)]).tocsr()) if sparse \
+                else (lambda A, B: np.hstack([dense(A), dense(B)]))
+            self.F = stack(base.F, model.T)
+            self.H = block_diag(dense(base.H), np.zeros((ms, ms)))
+            if base.viscous:
+                self.F_v = stack(np.zeros((self.n, mp)) if base.F_v is None else base.F_v, np.zeros((self.n, ms)))
+                self.H_v = block_diag(np.zeros((mp, mp)) if base.H_v is None else dense(base.H_v),
+                                      np.zeros((ms, ms)))
+        self.viscous = self.F_v is not None
 
     def damping(self):
         return self._model.damping()
 
     def H_of(self, s):
-        return self.H
+        return self.H if self.H_v is None else self.H + s * self.H_v
 
 
 class FoundationKernel(Kernel):

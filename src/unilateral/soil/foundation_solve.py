@@ -33,12 +33,15 @@ def foundation_base_state(model, q_static, initial, solver) -> InitialState:
 
     ``"static"``: the static unilateral equilibrium under ``q_static`` with the soil's static
     flexibility (:meth:`FoundationModel.static_model`). ``"rest"``: ``u = 0``, soil unloaded
-    (``gap >= 0``). A dict of ``u0``, ``udot0``: given values with the soil unloaded
-    (``T^T u0 + gap >= 0``).
+    (``gap >= 0``; a mixed model's own constraints at ``v = 0`` need ``g >= 0``). A dict of ``u0``,
+    ``udot0`` (plain models): given values with the soil unloaded (``T^T u0 + gap >= 0``).
+    The rows are the model's: a mixed model's own constraints (``v``, ``psi`` of the paper), then
+    the soil contacts.
     """
     if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
         primal = model.static_model()
-        return static_state(primal, q_static + primal.q_imposed(0.0), solver)
+        # q_static holds the structure's own imposed-strain load; the soil's springs add theirs
+        return static_state(primal, q_static + primal.q_imposed(0.0) - model.q_imposed(0.0), solver)
     if isinstance(initial, str):
         initial = {}
     if not isinstance(initial, dict):
@@ -47,40 +50,62 @@ def foundation_base_state(model, q_static, initial, solver) -> InitialState:
     if unknown:
         raise ValueError(f"initial for a FoundationModel takes 'u0' and 'udot0' (the soil starts "
                          f"unloaded, c = 0); got unknown keys {sorted(unknown)}")
+    if model.mixed and initial:
+        raise ValueError("initial: a structure with constraints of its own on the soil starts from 'static' or "
+                         "'rest'; given u0, udot0 are for a FoundationModel without them")
     u0 = V.as_vector("initial['u0']", initial.get("u0", 0.0), model.n)
     udot0 = V.as_vector("initial['udot0']", initial.get("udot0", 0.0), model.n)
     v0 = transpose_times(model.T, u0) + model.gap
     scale = 1.0 + float(np.abs(transpose_times(model.T, u0)).max(initial=0.0) + np.abs(model.gap).max())
     if np.any(v0 < -1e-12 * scale):
         i = int(np.argmin(v0))
-        raise ValueError(f"the initial state penetrates the unloaded soil at contact {model.constraint_names[i]!r}: "
+        raise ValueError(f"the initial state penetrates the unloaded soil at contact {model.contact_names[i]!r}: "
                          f"opening T^T u0 + gap = {v0[i]:.6g} < 0; start from initial='static', or give u0 "
                          "with the foundation on or above the soil")
-    return InitialState(v=np.maximum(v0, 0.0), psi=np.zeros(model.m), u=u0, udot=udot0)
+    psi = np.zeros(model.m)
+    if model.mixed:
+        psi[: model.mp] = -model.structure.g(0.0)
+        if np.any(psi > 0):
+            i = int(np.argmax(psi))
+            raise ValueError(f"initial='rest': constraint {model.constraint_names[i]!r} is violated at u = 0 "
+                             f"(g = {-psi[i]:.6g} < 0); start from initial='static'")
+    return InitialState(v=np.concatenate([np.zeros(model.mp), np.maximum(v0, 0.0)]), psi=psi, u=u0, udot=udot0)
 
 
-def hold_openings(W0, history, psi_affine, c_b, *, callback=None):
-    """Contact forces that hold every opening at its initial value: the bilateral dual CLCP.
+def hold_openings(W0, history, psi_affine, z_b, mp=0, *, callback=None):
+    """Contact forces that hold every opening at its initial value: the bilateral CLCP.
 
-    Solves ``-psi_affine_n + sum_j W_j (c_{n-j} - c_b) = v_b`` (``v_b = -psi_affine_0``) step by
-    step; ``history`` sums ``sum_{j>=1} W_j dc_{n-j}`` (stored weights or pole recursions).
+    With the structure's own constraints (the first ``mp`` rows; their unknowns held at their base
+    values) and the soil contacts after them, solves the soil rows of
+    ``psi_affine_n - sum_j W_j (z_{n-j} - z_b) = psi_affine_0`` step by step; ``history`` sums
+    ``sum_{j>=1} W_j dz_{n-j}`` (stored weights or pole recursions). ``W0``'s soil block is
+    definite (positive for a plain model, negative in a mixed one).
 
     Returns
     -------
-    c : (N+1, m)
+    c : (N+1, m_s) the contact forces
+    psi : (N+1, mp) the structure's constraint functions with every contact held
     """
     N, m = psi_affine.shape[0] - 1, psi_affine.shape[1]
-    factor = sla.cho_factor(0.5 * (W0 + W0.T))
-    v_b = -psi_affine[0]
-    c = np.empty((N + 1, m))
-    c[0] = c_b
+    Wss = W0[mp:, mp:]
+    sign = 1.0 if mp == 0 else -1.0
+    # the inverse of the (small) definite block, once: a product per step instead of a solve
+    inverse = sign * sla.cho_solve(sla.cho_factor(sign * 0.5 * (Wss + Wss.T)), np.eye(m - mp))
+    coupling = W0[:mp, mp:]
+    dz = np.zeros(m)
+    c = np.empty((N + 1, m - mp))
+    psi = np.empty((N + 1, mp))
+    c[0], psi[0] = z_b[mp:], psi_affine[0, :mp]
     for k in range(1, N + 1):
-        dc = sla.cho_solve(factor, v_b + psi_affine[k] - history.value(k))
-        history.push(k, dc)
-        c[k] = c_b + dc
+        h = history.value(k)
+        dz[mp:] = inverse @ (psi_affine[k, mp:] - psi_affine[0, mp:] - h[mp:])
+        history.push(k, dz)
+        c[k] = z_b[mp:] + dz[mp:]
+        if mp:
+            psi[k] = psi_affine[k, :mp] - h[:mp] - coupling @ dz[mp:]
         if callback is not None:
             callback(k, N)
-    return c
+    return c, psi
 
 
 def solve_foundation(model, load, initial, disc, run, *, operators):
@@ -91,14 +116,15 @@ def solve_foundation(model, load, initial, disc, run, *, operators):
     model : FoundationModel
     load, initial, disc, run : as for :meth:`unilateral.methods.base.Method.solve`
     operators : callable ``operators() -> (W0, new_history, march)``
-        ``W0`` (m, m) the first weight ``Lambda_D(s*)``; ``new_history()`` a fresh history of the
-        convolution sum; ``march(psi_affine, c_b) -> (c, psi, log)`` the unilateral march.
+        ``W0`` (m, m) the first weight of the model's kernel; ``new_history()`` a fresh history of
+        the convolution sum; ``march(psi_affine, z_b) -> (z, psi, log)`` the march of the CLCP.
 
     Returns
     -------
     Solution
         ``v`` openings (>= 0), ``psi = -c`` (<= 0), ``psiL = -c`` with every contact held at its
-        initial opening, ``u``, ``udot``; ``stats["formulation"]``.
+        initial opening, ``u``, ``udot``; ``stats["formulation"]``. A mixed model's own
+        constraints first, with the paper's ``v`` and ``psi``.
     """
     loads = step_loads(model, load, disc)
     init = foundation_base_state(model, loads.q_static, initial, run.solver)
@@ -106,36 +132,48 @@ def solve_foundation(model, load, initial, disc, run, *, operators):
         return failed_at_start(model, init, run)
     run.stats["static_lcp_iterations"] = init.lcp_iterations
     run.stats["n"] = model.n
-    run.stats["formulation"] = "dual CLCP in the contact forces c = -psi (docs/theory.md, section 12)"
+    run.stats["formulation"] = ("dual CLCP in the contact forces c = -psi (docs/theory.md, section 12)"
+                                if not model.mixed else
+                                "mixed CLCP: the structure's constraints in the paper's form, the soil contacts "
+                                "in the contact forces (docs/theory.md, section 12)")
     run.timer.lap("initial")
-    u_b, v_b, c_b = init.u, init.v, -init.psi
+    mp = model.mp
+    # unknowns z: the structure's v, then the contact forces c; rows: the structure's psi, the openings
+    z_b = np.concatenate([init.v[:mp], -init.psi[mp:]])
+    row_b = np.concatenate([init.psi[:mp], init.v[mp:]])
+    u_b = init.u
     N, m = disc.N, model.m
     free = model.stepping_model()
-    # the increments obey M du'' + C du' + K du = q - K u_b + T c_b + T dc (zero for the static base)
-    load_inc = loads.table() + np.asarray(model.T @ c_b).ravel() - np.asarray(model.K @ u_b).ravel()
-    offset = np.tile(v_b, (N + 1, 1))
+    # the increments obey M du'' + C du' + K du = q + q_imposed - K u_b + F_a z_b + F_a dz (the table
+    # holds q + q_imposed)
+    load_inc = loads.table() + np.asarray(free.F @ z_b).ravel() - np.asarray(model.K @ u_b).ravel()
+    offset = np.tile(row_b, (N + 1, 1))
 
     def stepper():
         return StructureStepper(free, disc.rule, disc.dt, load_inc, offset, init.udot, condensed=False)
 
-    _, _, _, opening_free, _ = sweep_direct(stepper(), N, c_b, v_b)
-    psi_affine = -opening_free
+    _, _, _, rows_free, _ = sweep_direct(stepper(), N, z_b, row_b)
+    # a plain model marches -opening (its kernel Lambda_D is positive definite); a mixed one the rows
+    psi_affine = rows_free if model.mixed else -rows_free
     run.timer.lap("bilateral")
     W0, new_history, march = operators()
     run.timer.lap("weights")
-    held = hold_openings(W0, new_history(), psi_affine, c_b)
-    psiL = -held
+    held, psi_held = hold_openings(W0, new_history(), psi_affine, z_b, mp)
+    psiL = np.hstack([psi_held, -held])
     run.timer.lap("held")
     if run.bilateral:
-        c, opening, log = held, np.tile(v_b, (N + 1, 1)), StepLog(m, c_b > 0)
+        z = np.hstack([np.tile(z_b[:mp], (N + 1, 1)), held])
+        rows = np.hstack([psi_held, np.tile(-row_b[mp:], (N + 1, 1))])
+        log = StepLog(m, np.concatenate([z_b[:mp] > 0, held[0] > 0]))
     else:
-        c, psi_dual, log = march(psi_affine, c_b)
-        # w of the LCP: round-off (+-1e-20) where the contact carries a force; exactly 0 there, as
-        # the primal form's v (a contact is open where v > 0)
-        opening = np.where(c > 0, 0.0, -psi_dual)
+        z, rows, log = march(psi_affine, z_b)
+    c = z[:, mp:]
+    # the LCP's w of a contact: round-off (+-1e-20) where it carries a force; exactly 0 there, as the
+    # primal form's v (a contact is open where v > 0)
+    opening = np.where(c > 0, 0.0, -rows[:, mp:])
     run.timer.lap("steps")
-    K = c.shape[0] - 1
-    du, dud, _, _, _ = sweep_direct(stepper(), K, c_b, v_b, c - c_b)
+    K = z.shape[0] - 1
+    du, dud, _, _, _ = sweep_direct(stepper(), K, z_b, row_b, z - z_b)
     run.timer.lap("recover")
-    return finish(model, run, log, t=disc.t[: K + 1], v=opening, psi=-c, psiL=psiL[: K + 1],
-                  u=u_b + du, udot=dud)
+    return finish(model, run, log, t=disc.t[: K + 1], v=np.hstack([z[:, :mp], opening]),
+                  psi=np.hstack([rows[:, :mp], -c]), psiL=psiL[: K + 1], u=u_b + du, udot=dud)

@@ -1,4 +1,5 @@
-"""Homogeneous (visco)elastic half-space: vertical surface flexibilities in the Laplace domain."""
+"""Homogeneous (visco)elastic half-space: surface flexibilities (vertical, horizontal, coupled) in the
+Laplace domain."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import numpy as np
 from .. import _validate as V
 from . import lamb
 from .patches import RectangularPatches, pair_table
-from .statics import mean_inverse_distance
+from .statics import cerruti_averages, mean_inverse_distance
 
 __all__ = ["HalfSpace"]
 
@@ -44,8 +45,10 @@ class HalfSpace:
 
     Notes
     -----
-    Range of validity: linear (visco)elasticity, small strains, welded/relaxed distinction irrelevant
-    since only vertical tractions act (relaxed contact: no shear tractions on the surface).
+    Range of validity: linear (visco)elasticity, small strains. With ``components="z"`` only vertical
+    tractions act (relaxed contact: no shear tractions on the surface); ``"xz"``/``"xyz"`` give the
+    surface Green's tensor (horizontal and coupled components) for horizontal loads and bonded
+    contact (see :mod:`.rigid`). :meth:`surface_displacement` and :meth:`point_green` are vertical only.
     """
 
     def __init__(self, G, nu, rho, damping=0.0, damping_model="constant_q", omega_ref=2 * np.pi):
@@ -119,12 +122,22 @@ class HalfSpace:
         return vals
 
     # --- public API ----------------------------------------------------------------------------
-    def surface_flexibility(self, patches: RectangularPatches, s, *, kmax_factor=1.0) -> np.ndarray:
-        """Vertical surface flexibility matrix ``Phi(s)`` of rectangular patches.
+    def surface_flexibility(self, patches: RectangularPatches, s, *, components="z",
+                            kmax_factor=1.0) -> np.ndarray:
+        """Surface flexibility matrix ``Phi(s)`` of rectangular patches (vertical or full tensor).
 
-        ``Phi_ij(s)`` is the vertical displacement averaged over patch ``i`` per unit total vertical
-        force uniformly distributed on patch ``j`` (Laplace transforms). Averaging (a Galerkin
-        definition) makes ``Phi`` symmetric.
+        ``Phi_ij(s)`` is the displacement component of row ``i`` averaged over its patch per unit total
+        force of the component of column ``j`` uniformly distributed on its patch (Laplace
+        transforms). Averaging (a Galerkin definition) makes ``Phi`` symmetric (reciprocity).
+
+        Sign convention: ``z`` positive *down* (into the soil), ``x, y`` along the patch coordinates.
+        Horizontal-vertical coupling: a horizontal force ``+x`` at the origin moves the surface point
+        at ``(x, y)`` vertically by ``+(1 - 2 nu) x/(4 pi G r^2)`` statically, i.e. *down* ahead of the
+        force (``x > 0``) and up behind it; reciprocally a downward force draws the surface inward,
+        ``u_x = -(1 - 2 nu) x/(4 pi G r^2)`` (Cerruti 1882, Boussinesq 1885; Johnson, *Contact
+        Mechanics*, 1985, Sec. 3.2; Kausel, *Fundamental Solutions in Elastodynamics*, 2006). So
+        ``Phi_{z_i x_j}`` is odd in ``x_i - x_j`` (statically of its sign), and reciprocity gives
+        ``Phi_{x_i z_j} = Phi_{z_j x_i}``.
 
         Parameters
         ----------
@@ -133,13 +146,17 @@ class HalfSpace:
         s : complex scalar or (ns,) array, 1/s
             Laplace variable(s), ``Re s >= 0`` (``s = i omega`` gives the frequency-domain flexibility as
             the limit from ``Re s > 0``; ``s = 0`` the static Boussinesq flexibility, exact, closed form).
+        components : {"z", "xz", "xyz"}
+            ``"z"`` (default): vertical only, (ns, m, m). ``"xz"``: (ns, 2m, 2m), rows/columns
+            ``0..m-1`` the x components of the m patches, ``m..2m-1`` the z components (no y forces;
+            the y displacements are not returned). ``"xyz"``: (ns, 3m, 3m), x then y then z blocks.
         kmax_factor : float
             Multiplies the wavenumber truncation (for convergence studies).
 
         Returns
         -------
-        Phi : (ns, m, m) complex, m/N
-            ``Phi(conj s) = conj Phi(s)``.
+        Phi : (ns, m, m), (ns, 2m, 2m) or (ns, 3m, 3m) complex, m/N
+            Symmetric; ``Phi(conj s) = conj Phi(s)``.
 
         Notes
         -----
@@ -149,17 +166,40 @@ class HalfSpace:
         all ``s``, so the cost is one ``(ns x nk) @ (nk x pairs)`` product. Accuracy ~1e-6 relative (see
         tests). Truncation ``k_max = 6 max|s/c_s| + 30/a_min``
         (``a_min`` the smallest patch side).
+
+        Horizontal and coupled components (``components != "z"``): the static part is Cerruti's
+        solution averaged in closed form (:func:`.statics.cerruti_averages`); the dynamic residual uses
+        the P-SV radial, SH and coupling kernels of :func:`.lamb.tensor_kernels` with the angular
+        factors ``cos^2``, ``cos sin``, ``cos``/``sin`` of :func:`.lamb.angular_components` on the same
+        contour (the odd components with ``sin(k_x dx)``-type factors, then signed by
+        ``sgn(dx)``, ``sgn(dy)``).
         """
         if not isinstance(patches, RectangularPatches):
             raise TypeError(f"patches must be RectangularPatches, got {V.describe(patches)}")
         if np.any(patches.sizes <= 0):
             raise ValueError("surface_flexibility needs patches with positive sides (the self-flexibility "
                              "of a point or line is infinite); use point_green for points")
+        comps = V.choice("components", components, {"z", "xz", "xyz"})
         sq, flip, Gs, S, zero = self._prepare(s)
         keys, index = pair_table(patches, patches, symmetric=True)
-        vals = self._pairs(keys, S, zero, kmax_factor)
-        vals = self._finish(vals, Gs, flip)
-        return vals[:, index]
+        if comps == "z":
+            vals = self._pairs(keys, S, zero, kmax_factor)
+            vals = self._finish(vals, Gs, flip)
+            return vals[:, index]
+        vals = self._tensor_pairs(keys, S, zero, kmax_factor, comps)
+        vals = {nm: self._finish(v, Gs, flip)[:, index] for nm, v in vals.items()}
+        d = patches.centres[:, None, :] - patches.centres[None, :, :]
+        sx, sy = np.sign(d[..., 0]), np.sign(d[..., 1])
+        zx = vals["zx"] * sx
+        if comps == "xz":
+            blocks = [[vals["xx"], zx.transpose(0, 2, 1)], [zx, vals["zz"]]]
+        else:
+            xy = vals["xy"] * (sx * sy)
+            zy = vals["zy"] * sy
+            blocks = [[vals["xx"], xy, zx.transpose(0, 2, 1)],
+                      [xy, vals["yy"], zy.transpose(0, 2, 1)],
+                      [zx, zy, vals["zz"]]]
+        return np.block(blocks)
 
     def surface_displacement(self, points, patches: RectangularPatches, s, *, kmax_factor=1.0):
         """Vertical displacement at surface points per unit force uniformly spread on each patch.
@@ -266,4 +306,46 @@ class HalfSpace:
                 sl = slice(i, i + step)
                 res[sl] = (lamb.kernel(k, Sd[sl], eta, nu) * wk) @ H / (4.0 * np.pi ** 2)
             vals[dyn] += res
+        return vals
+
+    def _tensor_pairs(self, keys, S, zero, kmax_factor, comps):
+        """{component: (ns, P)} values times ``G(s)`` at ``(|dx|, |dy|)`` (odd ones unsigned)."""
+        nu, eta = self.nu, lamb.eta_of(self.nu)
+        A = np.array([cerruti_averages(*kk[:2], kk[2:4], kk[4:6]) for kk in keys])     # (P, 6)
+        inv_r, rxx, ryy, rxy, lx, ly = A.T
+        c = 1.0 / (2.0 * np.pi)
+        static = {"zz": (1.0 - nu) * c * inv_r, "xx": c * (inv_r - nu * rxx),
+                  "zx": (1.0 - 2.0 * nu) * 0.5 * c * lx}
+        names = ["1", "cc", "c"]
+        if comps == "xyz":
+            static.update(yy=c * (inv_r - nu * ryy), xy=-nu * c * rxy, zy=(1.0 - 2.0 * nu) * 0.5 * c * ly)
+            names += ["cs", "s"]
+        vals = {nm: np.repeat(v[None, :].astype(complex), S.size, axis=0) for nm, v in static.items()}
+        dyn = ~zero
+        if np.any(dyn):
+            Sd = S[dyn]
+            sig = np.abs(np.sqrt(Sd))
+            sizes = keys[:, 2:]
+            a_min = float(sizes[sizes > 0].min())
+            D = float(lamb.pair_extent(keys).max())
+            k, w = lamb.contour(np.sqrt(eta) * sig.min(), D,
+                                kmax_factor * (6.0 * sig.max() + 30.0 / a_min))
+            H = lamb.angular_components(k, keys, names)
+            Hss = H["1"] - H["cc"]
+            wk = (w * k)[None, :] / (4.0 * np.pi ** 2)
+            res = {nm: np.empty((Sd.size, keys.shape[0]), dtype=complex) for nm in static}
+            step = max(1, _CHUNK // (4 * k.size))
+            for i in range(0, Sd.size, step):
+                sl = slice(i, i + step)
+                kzz = lamb.kernel(k, Sd[sl], eta, nu) * wk
+                krr, ktt, kc = (kk * wk for kk in lamb.tensor_kernels(k, Sd[sl], eta, nu))
+                res["zz"][sl] = kzz @ H["1"]
+                res["xx"][sl] = krr @ H["cc"] + ktt @ Hss
+                res["zx"][sl] = kc @ H["c"]
+                if comps == "xyz":
+                    res["yy"][sl] = krr @ Hss + ktt @ H["cc"]
+                    res["xy"][sl] = -((krr - ktt) @ H["cs"])
+                    res["zy"][sl] = kc @ H["s"]
+            for nm in static:
+                vals[nm][dyn] += res[nm]
         return vals

@@ -28,6 +28,11 @@ Numerics (all new here, in this module):
 * angular factor of a receiver/source rectangle pair: ``H(k) = int_0^2pi S_r S_s cos(k_x dx) cos(k_y dy)
   dtheta`` (``S`` = products of sincs), independent of ``s``; periodic trapezoidal rule in ``theta``
   (exponentially convergent, ``~ k D + 24`` points per period).
+
+Horizontal and coupled components (the surface Green's tensor): :func:`tensor_kernels` (P-SV radial,
+SH, vertical/radial coupling; derivation in the comment block above it) and
+:func:`angular_components` (angular factors weighted by ``cos^2``, ``cos sin``, ``cos``, ``sin`` of the
+wavenumber angle, with ``sin(k_x dx)``-type factors for the odd components), on the same contour.
 """
 
 from __future__ import annotations
@@ -188,3 +193,130 @@ def angular(k, keys, chunk_entries: int = 2_000_000) -> np.ndarray:
 def point_hankel(k, r):
     """``2 pi J0(k r)`` (nk, nr): the angular factor of a point/point pair."""
     return 2.0 * np.pi * jv(0, k[:, None] * r[None, :])
+
+
+# --- horizontal and coupled components (surface Green's tensor) ----------------------------------
+#
+# Same half-space, same transform (inverse ``(1/4 pi^2) int G_hat e^{+i k.x} d^2k``). A surface traction
+# with components ``t_r`` (along the wavenumber vector), ``t_t`` (across it) and ``t_z`` (down) gives,
+# derived here from the potentials ``phi = A e^{-alpha z}``, ``psi = B e^{-beta z}`` and the traction
+# conditions ``sigma_zz = -t_z``, ``sigma_xz = -t_r`` at ``z = 0`` (cf. Kausel 2006, surface Green's
+# functions of a half-space; Lamb 1904),
+#
+#     G u_r = [S beta t_r - i k C t_z] / R,   G u_z = [i k C t_r + S alpha t_z] / R,   G u_t = t_t / beta,
+#
+# with ``C = 2 k^2 + S - 2 alpha beta``. Statics (``S -> 0``): ``S beta/R -> (1-nu)/k``,
+# ``1/beta -> 1/k`` and ``i k C/R -> -i (1 - 2 nu)/(2 k)``, the transforms of Cerruti's solution.
+# With ``k = k (cos theta, sin theta)``: ``G_xx = cos^2 K_rr + sin^2 K_tt``, ``G_xy = cos sin (K_rr - K_tt)``,
+# ``G_zx = cos(theta) i k C/R = -G_xz``. The odd parts of ``e^{i k.x}`` pair with the odd angular
+# weights: ``Phi_zx = (1/4pi^2) int k dk K_c int cos(theta) S_r S_s sin(k_x dx) cos(k_y dy) dtheta`` with
+# ``K_c = i (i k C/R) = k (2 alpha beta - a)/R`` (real for real ``k, s``; static ``(1 - 2 nu)/(2 k)``), and
+# ``Phi_xy = -(1/4pi^2) int k dk (K_rr - K_tt) int cos sin S_r S_s sin(k_x dx) sin(k_y dy) dtheta``.
+
+def tensor_kernels(k, S, eta, nu):
+    """Dynamic residuals (``s``-dependent part) of the horizontal/coupled kernels, times ``G(s)``.
+
+    Parameters
+    ----------
+    k : (nk,) complex
+        Contour nodes.
+    S : (ns,) complex
+        ``sigma_s^2 = s^2 rho/G(s)``.
+    eta, nu : float
+
+    Returns
+    -------
+    K_rr, K_tt, K_c : (ns, nk) complex, 1/m
+        ``S beta/R - (1-nu)/k`` (P-SV radial), ``1/beta - 1/k`` (SH) and
+        ``k (2 alpha beta - a)/R - (1-2 nu)/(2k)`` (vertical/radial coupling). Each is rationalised
+        for ``|S| < |k|^2/2`` (``R (a^2 + 4 k^2 alpha beta) = S P``, ``2 alpha beta - a =
+        S (4 eta k^2 + (4 eta - 1) S)/(2 alpha beta + a)``) to avoid cancellation, as in :func:`kernel`.
+    """
+    K2 = (k * k)[None, :]
+    kk = k[None, :]
+    S = S[:, None]
+    al = np.sqrt(K2 + eta * S)
+    be = np.sqrt(K2 + S)
+    a = 2.0 * K2 + S
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        R = a * a - 4.0 * K2 * al * be
+        P = ((16.0 * (1.0 - eta) * K2 + 8.0 * (3.0 - 2.0 * eta) * S) * K2 + 8.0 * S * S) * K2 + S ** 3
+        Q = (a * a + 4.0 * K2 * al * be) / P                   # = S / R
+        small = np.abs(S) < 0.5 * np.abs(K2)
+        krr = np.where(small, be * Q, S * be / R)
+        kc = np.where(small, kk * (4.0 * eta * K2 + (4.0 * eta - 1.0) * S) * Q / (2.0 * al * be + a),
+                      kk * (2.0 * al * be - a) / R)
+    ktt = -S / (kk * be * (kk + be))
+    return krr - (1.0 - nu) / kk, ktt, kc - (0.5 - nu) / kk
+
+
+def _factors_odd(kc, keys, odd):
+    """As :func:`_factors` with ``sin(kc d)`` instead of ``cos(kc d)`` when ``odd``."""
+    if not odd:
+        return _factors(kc, keys)
+    sizes, group = np.unique(keys[:, 1:], axis=0, return_inverse=True)
+    sincs = [_factor(kc, 0.0, a1, a2) for a1, a2 in sizes]
+    return np.stack([np.sin(kc * d) * sincs[g] for (d, _, _), g in zip(keys, group.ravel())], axis=-1)
+
+
+#: angular weights of the tensor components: name -> (weight(cos, sin), x factor odd, y factor odd)
+ANGULAR_SPECS = {
+    "1": (None, False, False),                       # zz (and xx + yy)
+    "cc": (lambda c, s: c * c, False, False),        # xx: cos^2 K_rr + sin^2 K_tt
+    "cs": (lambda c, s: c * s, True, True),          # xy
+    "c": (lambda c, s: c, True, False),              # zx
+    "s": (lambda c, s: s, False, True),              # zy
+}
+
+
+def angular_components(k, keys, names, chunk_entries: int = 2_000_000) -> dict:
+    """Angular factors of the tensor components for pair keys (P, 6) (``|dx|, |dy|`` >= 0).
+
+    ``H_name(k) = int_0^2pi w(theta) X(k cos theta) Y(k sin theta) dtheta`` with ``X`` the sinc
+    product times ``cos(k_x |dx|)`` (even) or ``sin(k_x |dx|)`` (odd) and likewise ``Y``; the weight
+    ``w`` and the parities are those of :data:`ANGULAR_SPECS` (each integrand is even under
+    ``theta -> -theta`` and ``theta -> pi - theta``, so the first quadrant suffices, as in
+    :func:`angular`). Returns ``{name: (nk, P) complex}``.
+    """
+    k = np.asarray(k)
+    P = keys.shape[0]
+    xkeys, ix = np.unique(np.round(keys[:, [0, 2, 4]], 12), axis=0, return_inverse=True)
+    ykeys, iy = np.unique(np.round(keys[:, [1, 3, 5]], 12), axis=0, return_inverse=True)
+    ix, iy = ix.ravel(), iy.ravel()
+    Rmax = float(pair_extent(keys).max())
+    specs = [(nm,) + ANGULAR_SPECS[nm] for nm in names]
+    need_x = {odd for _, _, odd, _ in specs}
+    need_y = {odd for _, _, _, odd in specs}
+
+    def n_needed(kabs):
+        return int(np.ceil((1.1 * kabs * Rmax + 24.0) / 4.0))
+
+    out = {nm: np.empty((k.size, P), dtype=complex) for nm in names}
+    order = np.argsort(np.abs(k))
+    kabs_sorted = np.abs(k[order])
+    start = 0
+    while start < k.size:
+        limit = 1.25 * n_needed(kabs_sorted[start]) + 2
+        stop = start + 1
+        while stop < k.size and n_needed(kabs_sorted[stop]) <= limit:
+            stop += 1
+        idx = order[start:stop]
+        n = n_needed(kabs_sorted[stop - 1])
+        step = max(1, chunk_entries // (n * (2 * len(xkeys) + 2 * len(ykeys) + len(names) * P)))
+        theta = (np.arange(n) + 0.5) * (0.5 * np.pi / n)
+        c, s = np.cos(theta), np.sin(theta)
+        for j in range(0, idx.size, step):
+            sel = idx[j:j + step]
+            kk = k[sel][:, None]
+            kx, ky = kk * c[None, :], kk * s[None, :]
+            SX = {odd: _factors_odd(kx, xkeys, odd) for odd in need_x}        # (q, n, Ux)
+            SY = {odd: _factors_odd(ky, ykeys, odd) for odd in need_y}        # (q, n, Uy)
+            for oy in need_y:                                   # one product per y parity
+                group = [sp for sp in specs if sp[3] == oy]
+                Sx = np.concatenate([SX[ox] if wfun is None else SX[ox] * wfun(c, s)[None, :, None]
+                                     for _, wfun, ox, _ in group], axis=2)   # (q, n, g Ux)
+                M = np.matmul(Sx.transpose(0, 2, 1), SY[oy])                 # (q, g Ux, Uy)
+                for i, (nm, *_rest) in enumerate(group):
+                    out[nm][sel] = (2.0 * np.pi / n) * M[:, i * len(xkeys) + ix, iy]
+        start = stop
+    return out

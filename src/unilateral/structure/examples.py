@@ -228,3 +228,71 @@ def halfspace_tower(soil="halfspace", *, load="pulse", patches=4, record=None, p
             "static_stiffness": float(ones @ np.linalg.solve(fnd.soil.static(), ones)),
             "figure": {"node": 2, "dof": "rz", "label": "rocking of the footing (rad)"}}
     return structure, history, info
+
+
+#: The site of :func:`two_bay_on_footings`: a soft layer over stiffer ground (kN, m, s; rho in t/m^3).
+FOOTINGS_SITE = {"model": "layered", "layers": [{"thickness": 4.0, "Vs": 120.0, "nu": 0.35, "rho": 1.8}],
+                 "Vs": 300.0, "nu": 0.3, "rho": 2.0}
+
+
+def two_bay_on_footings(*, soil=None, record=None, pga=4.0, duration=6.0):
+    """A two-storey, two-bay frame on two footings on one soil, under a ground motion (kN, m, s).
+
+    Bays 6 m, storeys 3.5 m; columns 400 x 400 mm, beams 300 x 500 mm, E = 30 GPa; floor masses
+    60 t (15, 30, 15 t at the joints); rigid-plastic hinges (My = 180 kN m) at both ends of the
+    first-floor beams; mass-proportional damping, 5 % at the first period (0.48 s on the soil's
+    static springs). The left and middle columns stand on one rigid footing ``"A"`` (8 m wide,
+    3 m long, 20 t, centred at x = 3 m, node 10, rigidly linked to the column bases 1 and 2), the
+    right column on footing ``"B"`` (3 m wide, 8 t, node 3); 3.5 m of ground between them. Both
+    rest on the same soil (default :data:`FOOTINGS_SITE`: a 4 m layer with Vs = 120 m/s over a
+    half-space with Vs = 300 m/s), 8 and 3 strips: the footings interact through the ground.
+    Horizontally each footing is held at its node (no sliding). Gravity (g = 9.81 m/s^2) and a
+    horizontal ground motion ``-M r a_g``.
+
+    Parameters
+    ----------
+    soil : dict, optional
+        The soil of both footings (:class:`~unilateral.structure.foundation.SoilSpec` fields).
+    record : GroundMotion or time function, optional
+        Ground acceleration (m/s^2); default the synthetic record of
+        :func:`unilateral.loads.synthetic_accelerogram` (``duration`` s, PGA ``pga`` m/s^2,
+        f_g = 3 Hz, seed 7).
+
+    Returns
+    -------
+    structure, load, info : info has ``units``, ``figure`` (roof ux), ``edges``
+        ``{footing: (x_left, x_right)}``.
+    """
+    from ..loads import synthetic_accelerogram
+
+    fr = Frame2D()
+    for node, x, y in ((1, 0.0, 0.0), (2, 6.0, 0.0), (3, 12.0, 0.0), (10, 3.0, 0.0)):
+        fr.node(node, x, y)
+    for level, y in ((1, 3.5), (2, 7.0)):
+        for k, x in enumerate((0.0, 6.0, 12.0)):
+            fr.node(10 * level + k + 1, x, y)
+    fr.rigid_link(10, 1)
+    fr.rigid_link(10, 2)
+    column, beam = dict(E=30e6, A=0.16, I=0.4 ** 4 / 12), dict(E=30e6, A=0.15, I=0.3 * 0.5 ** 3 / 12)
+    for k in (1, 2, 3):
+        fr.beam(f"C{k}_1", k, 10 + k, **column)
+        fr.beam(f"C{k}_2", 10 + k, 20 + k, **column)
+    for level in (1, 2):
+        for bay in (1, 2):
+            fr.beam(f"B{level}_{bay}", 10 * level + bay, 10 * level + bay + 1, **beam)
+    for bay in (1, 2):
+        fr.hinge(f"B1_{bay}.i", f"B1_{bay}", "i", My=180.0)
+        fr.hinge(f"B1_{bay}.j", f"B1_{bay}", "j", My=180.0)
+    for level in (1, 2):
+        for k, m in enumerate((15.0, 30.0, 15.0)):
+            fr.mass(10 * level + k + 1, m)
+    fr.rayleigh(a0=1.3)                   # mass-proportional: 5 % at the first period, 0.48 s
+    spec = dict(FOOTINGS_SITE if soil is None else soil)
+    fr.foundation("A", 10, width=8.0, length=3.0, patches=8, soil=spec, mass=20.0, J=20.0 * 8.0 ** 2 / 12)
+    fr.foundation("B", 3, width=3.0, length=3.0, patches=3, soil=spec, mass=8.0, J=8.0 * 3.0 ** 2 / 12)
+    structure = fr.build()
+    a_g = record if record is not None else synthetic_accelerogram(duration, 0.01, pga, seed=7, f_g=3.0)
+    load = LoadHistory(structure.gravity(9.81), [structure.ground_motion(a_g, "ux")])
+    info = {"units": "kN, m, s", "figure": {"node": 21, "dof": "ux", "label": "roof displacement ux of node 21 (m)"},
+            "edges": {"A": (-1.0, 7.0), "B": (10.5, 13.5)}}
+    return structure, load, info

@@ -462,6 +462,61 @@ def base_forces(structure, reaction: dict, point=(0.0, 0.0)) -> dict:
     return {"base_shear": fx, "base_vertical": fy, "overturning_moment": mz}
 
 
+def frames(structure) -> list[list]:
+    """The separate frames of a structure: groups of nodes joined by anything but a gap element.
+
+    Two buildings that pound through ``gap`` links are two frames; beams, bars, springs between
+    nodes, rigid links and every other two-node element join nodes into one. Returns the node
+    groups (each in the order of ``structure.dofs.nodes``), largest first; one group for a single
+    frame.
+    """
+    parent = {node: node for node in structure.coords}
+
+    def root(node):
+        while parent[node] != node:
+            parent[node] = parent[parent[node]]
+            node = parent[node]
+        return node
+
+    def join(a, b):
+        parent[root(a)] = root(b)
+
+    for e in list(structure.elements) + list(structure.dashpots):
+        if e.kind == "gap":
+            continue
+        nodes = list(dict.fromkeys(node for node, _ in e.dofs))
+        for other in nodes[1:]:
+            join(nodes[0], other)
+    for slave, master in structure.dofs.masters.items():
+        join(slave, master)
+    groups = {}
+    for node in structure.coords:
+        groups.setdefault(root(node), []).append(node)
+    return sorted(groups.values(), key=len, reverse=True)
+
+
+def base_forces_per_frame(structure, reaction: dict, point=(0.0, 0.0)) -> dict:
+    """:func:`base_forces` of each separate frame (:func:`frames`), if there are several.
+
+    Returns
+    -------
+    dict frame label (``"frame of node <first node>"``) -> the dict of :func:`base_forces`; empty
+    for a single frame.
+    """
+    groups = [g for g in frames(structure) if any(reaction["at"][label] in g for label in reaction["at"])]
+    if len(groups) < 2:
+        return {}
+    out = {}
+    for nodes in groups:
+        members = set(nodes)
+        part = {"support": {k: v for k, v in reaction["support"].items() if reaction["at"][k] in members},
+                "ground_elements": {k: v for k, v in reaction["ground_elements"].items()
+                                    if reaction["at"][k] in members},
+                "at": reaction["at"]}
+        out[f"frame of node {nodes[0]}"] = base_forces(structure, part, point)
+    return out
+
+
 def _components(label, f):
     out = np.zeros((len(f), 3))
     out[:, DOF_NAMES.index(label.rsplit(".", 1)[1])] = f

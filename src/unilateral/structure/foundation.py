@@ -44,9 +44,11 @@ from dataclasses import dataclass, fields
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["HORIZONTAL", "SOIL_MODELS", "Foundation", "SoilSpec", "soil_flexibility"]
+__all__ = ["HORIZONTAL", "SOIL_MODELS", "Footings", "Foundation", "SoilSpec", "soil_flexibility"]
 
-SOIL_MODELS = ("halfspace", "cones", "winkler-kelvin")
+SOIL_MODELS = ("halfspace", "layered", "cones", "winkler-kelvin")
+#: Soils whose patches interact through the ground (one flexibility for every footing on them).
+COUPLED_SOILS = ("halfspace", "layered")
 HORIZONTAL = ("support", "cone", "none")
 
 
@@ -56,9 +58,10 @@ class SoilSpec:
 
     Attributes
     ----------
-    model : {"halfspace", "cones", "winkler-kelvin"}
-        The rigorous half-space, the footing's vertical cone spread over the patches, or the
-        paper's Kelvin elements (see :mod:`unilateral.structure.foundation`).
+    model : {"halfspace", "layered", "cones", "winkler-kelvin"}
+        The rigorous half-space, horizontal layers over it (:class:`~unilateral.soil.Layered`),
+        the footing's vertical cone spread over the patches, or the paper's Kelvin elements (see
+        :mod:`unilateral.structure.foundation`).
     G : float, force/length^2
         Shear modulus (or give ``Vs``; ``G = rho Vs^2``).
     Vs : float, length/time
@@ -72,6 +75,12 @@ class SoilSpec:
         ``"winkler-kelvin"``: the spring of each patch (one number: the same for every patch).
     c : float or sequence of m floats, force time/length
         ``"winkler-kelvin"``: the dashpot of each patch (default 0).
+    layers : sequence of dict, optional
+        ``"layered"``: the layers from the surface down, each ``thickness``, ``G`` or ``Vs``,
+        ``nu``, ``rho``, ``damping``; the half-space under them is ``G`` or ``Vs``, ``nu``, ``rho``,
+        ``damping`` of this spec, or a rigid base with ``base="rigid"``.
+    base : {"halfspace", "rigid"}
+        ``"layered"``: what the layers rest on.
     """
 
     model: str
@@ -82,6 +91,8 @@ class SoilSpec:
     damping: float = 0.0
     k: object = None
     c: object = 0.0
+    layers: object = None
+    base: str = "halfspace"
 
     @classmethod
     def from_dict(cls, data: dict, where: str = "soil") -> SoilSpec:
@@ -157,6 +168,10 @@ def soil_flexibility(soil, patches, where="soil"):
         k = _per_patch(where, "k", spec.k, m, ">0")
         c = _per_patch(where, "c", spec.c, m, ">=0")
         return SoilFlexibility.kelvin(k, c), spec
+    if spec.model == "layered":
+        return SoilFlexibility.halfspace(layered_soil(spec, where), patches), spec
+    if spec.layers is not None or spec.base != "halfspace":
+        raise ValueError(f"{where}: layers and base are for model='layered'; remove them for model={spec.model!r}")
     if spec.k is not None or (spec.c not in (None, 0, 0.0)):
         raise ValueError(f"{where}: k and c are for model='winkler-kelvin'; model={spec.model!r} takes G or Vs, "
                          "nu, rho (and damping)")
@@ -182,6 +197,43 @@ def soil_flexibility(soil, patches, where="soil"):
     from ..soil.halfspace import HalfSpace
 
     return SoilFlexibility.halfspace(HalfSpace(G, nu, rho, float(damping)), patches), spec
+
+
+def layered_soil(spec: SoilSpec, where="soil"):
+    """The :class:`~unilateral.soil.Layered` soil of a ``"layered"`` spec."""
+    from ..soil.halfspace import HalfSpace
+    from ..soil.layered import Layered
+
+    if not isinstance(spec.layers, (list, tuple)) or not spec.layers:
+        raise ValueError(f"{where}: model='layered' needs layers, a list of tables with thickness, G or Vs, nu, "
+                         f"rho (and damping), from the surface down; got layers={spec.layers!r}")
+    if spec.k is not None or (spec.c not in (None, 0, 0.0)):
+        raise ValueError(f"{where}: k and c are for model='winkler-kelvin'; remove them for model='layered'")
+    if spec.base not in ("halfspace", "rigid"):
+        raise ValueError(f"{where}: base={spec.base!r} is not valid; valid: 'halfspace' (G or Vs, nu, rho, damping "
+                         "of the soil table) or 'rigid'")
+    layers = [dict(layer) for layer in spec.layers]
+    for k, layer in enumerate(layers):
+        if isinstance(layer.get("nu"), numbers.Real) and not layer["nu"] < 0.5:
+            raise ValueError(f"{where}: layers[{k}]['nu'] = {layer['nu']!r}: the layered soil is compressible; "
+                             "give nu in [0, 0.5)")
+    if spec.base == "rigid":
+        given = [key for key in ("G", "Vs", "nu", "rho") if getattr(spec, key) is not None]
+        if given or spec.damping:
+            raise ValueError(f"{where}: base='rigid' takes no half-space ({', '.join(given) or 'damping'} given): "
+                             "remove them, or use base='halfspace'")
+        try:
+            return Layered(layers, None)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{where}: {exc}") from None
+    damping = spec.damping
+    if isinstance(damping, bool) or not isinstance(damping, numbers.Real) or not 0.0 <= damping < 1.0:
+        raise ValueError(f"{where}: damping={damping!r} is not valid; give a damping ratio in [0, 1)")
+    base = HalfSpace(spec.shear_modulus(where), spec.poisson(where), _positive(where, "rho", spec.rho), float(damping))
+    try:
+        return Layered(layers, base)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{where}: {exc}") from None
 
 
 @dataclass(frozen=True, eq=False)
@@ -282,19 +334,149 @@ class Foundation:
         return forces, at
 
 
-def structural_solution(sol):
-    """A view of a foundation model's solution for the frame's results: ``v`` without columns.
+class Footings:
+    """All the footings of a frame on one soil: their patches share one flexibility ``Phi(s)``.
 
-    The frame of a foundation has no unilateral elements of its own; its end forces, supports,
-    accelerations and energies are those of ``M u'' + C u' + K u = q + T c`` with the contact
-    forces as a load (:meth:`Foundation.contact_load`).
+    On a half-space (or a layered soil) every patch of every footing is coupled to every other
+    through the ground (structure-soil-structure interaction); footings on cones or on Winkler-Kelvin
+    beds are uncoupled (a block-diagonal ``Phi``). The soil contacts follow the frame's own
+    constraints in the model and its solutions: ``first`` is their number.
+
+    Attributes
+    ----------
+    footings : tuple of Foundation
+    soil : SoilFlexibility of all ``m`` patches (footing by footing, in the order attached)
+    first : int, the index of the first soil contact among the model's constraints
+    """
+
+    def __init__(self, footings, first=0):
+        self.footings = tuple(footings)
+        self.first = int(first)
+        self.soil = _group_soil(self.footings)
+        self.patches = _concat_patches([f.patches for f in self.footings])
+        self.gap = np.concatenate([f.gap for f in self.footings])
+        self.contact_names = tuple(name for f in self.footings for name in f.contact_names)
+
+    @property
+    def m(self) -> int:
+        """Number of contact patches of all footings."""
+        return self.patches.m
+
+    @property
+    def name(self) -> str:
+        return ", ".join(f.name for f in self.footings)
+
+    def __len__(self) -> int:
+        return len(self.footings)
+
+    def contact_nodes(self) -> list:
+        return [node for f in self.footings for node in f.contact_nodes()]
+
+    def moved_rows(self, coords) -> list:
+        return [row for f in self.footings for row in f.moved_rows(coords)]
+
+    def T(self, dofs, coords) -> np.ndarray:
+        """``T`` (n, m) of all patches."""
+        return np.hstack([f.T(dofs, coords) for f in self.footings])
+
+    def constraint_coords(self) -> dict:
+        """x, y, kind and gap of each patch along ``constraint`` (after the frame's own constraints)."""
+        parts = [f.constraint_coords() for f in self.footings]
+        return {key: ("constraint", [x for p in parts for x in p[key][1]]) for key in parts[0]}
+
+    def contact_forces(self, sol) -> np.ndarray:
+        """Compressive contact forces ``c = -psi`` (N+1, m) of a solution (force)."""
+        return -np.asarray(sol.psi, dtype=float)[:, self.first:]
+
+    def contact_load(self, structure, sol) -> np.ndarray:
+        """``T c`` (N+1, n): the load of the contact forces on the structure."""
+        return self.contact_forces(sol) @ self.T(structure.dofs, structure.coords).T
+
+    def ground_reactions(self, structure, sol) -> tuple[dict, dict]:
+        """The soil's forces on the structure per contact, as :meth:`Foundation.ground_reactions`."""
+        c = self.contact_forces(sol)
+        forces, at = {}, {}
+        start = 0
+        for f in self.footings:
+            part = np.zeros((c.shape[0], self.first + f.m))
+            part[:, self.first:] = -c[:, start:start + f.m]
+            got, where = f.ground_reactions(structure, _Psi(part, self.first))
+            forces |= got
+            at |= where
+            start += f.m
+        return forces, at
+
+
+class _Psi:
+    """A solution-like view holding ``psi`` (for a footing's own ground reactions)."""
+
+    def __init__(self, psi, first):
+        self.psi = psi[:, first:]
+
+
+def _concat_patches(parts):
+    from ..soil.patches import RectangularPatches
+
+    return RectangularPatches(np.vstack([p.centres for p in parts]), np.vstack([p.sizes for p in parts]))
+
+
+def _group_soil(footings):
+    """One flexibility of all the footings' patches (see :class:`Footings`)."""
+    from ..soil.foundation_model import SoilFlexibility
+
+    if len(footings) == 1:
+        return footings[0].soil
+    specs = [f.spec for f in footings]
+    coupled = [s is not None and s.model in COUPLED_SOILS for s in specs]
+    if any(coupled):
+        names = ", ".join(repr(f.name) for f in footings)
+        if not all(coupled) or len({_material(s) for s in specs}) > 1:
+            raise ValueError(f"foundations {names}: footings on a half-space or a layered soil share that soil "
+                             "(their patches interact through the ground): give every footing the same soil, "
+                             f"got {[_material(s) if s else 'a SoilFlexibility' for s in specs]}")
+        if len({round(f.y, 9) for f in footings}) > 1:
+            raise ValueError(f"foundations {names}: footings on one soil medium lie on its surface, at one "
+                             f"elevation; got y = {sorted({f.y for f in footings})}")
+        return soil_flexibility(specs[0], _concat_patches([f.patches for f in footings]),
+                                f"foundation {footings[0].name!r}: soil")[0]
+    return SoilFlexibility.block_diagonal([f.soil for f in footings])
+
+
+def _material(spec):
+    return (spec.model, spec.G, spec.Vs, spec.nu, spec.rho, spec.damping, repr(getattr(spec, "layers", None)),
+            repr(getattr(spec, "base", None)))
+
+
+def _check_overlap(footings, new, where):
+    """Raise if the new footing's plan overlaps a footing already attached at the same elevation."""
+    lo, hi = new.patches.centres[:, 0] - 0.5 * new.patches.sizes[:, 0], \
+        new.patches.centres[:, 0] + 0.5 * new.patches.sizes[:, 0]
+    for other in footings:
+        if abs(other.y - new.y) > 1e-9 * max(1.0, abs(new.y)):
+            continue
+        olo = other.patches.centres[:, 0] - 0.5 * other.patches.sizes[:, 0]
+        ohi = other.patches.centres[:, 0] + 0.5 * other.patches.sizes[:, 0]
+        overlap = min(hi.max(), ohi.max()) - max(lo.min(), olo.min())
+        if overlap > 1e-9 * max(new.width, other.width):
+            raise ValueError(f"{where}: the footing (x from {lo.min():g} to {hi.max():g}) overlaps footing "
+                             f"{other.name!r} (x from {olo.min():g} to {ohi.max():g}) by {overlap:g}; footings "
+                             "on the ground must not overlap")
+
+
+def structural_solution(sol, first=0):
+    """A view of a foundation model's solution for the frame's results: the frame's own constraints.
+
+    The frame's end forces, supports, accelerations and energies are those of
+    ``M u'' + C u' + K u = q + F v + T c`` with the soil's contact forces as a load
+    (:meth:`Footings.contact_load`); ``first`` is the number of the frame's own constraints (its
+    unilateral, yielding and friction elements), whose columns are kept.
     """
     from ..result import Solution
 
-    N1 = len(sol.t)
-    empty = np.zeros((N1, 0))
-    return Solution(t=sol.t, v=empty, psi=empty, psiL=None, u=sol.u, udot=sol.udot, success=sol.success,
-                    message=sol.message, stats=dict(sol.stats), dof_names=sol.dof_names, constraint_names=[])
+    keep = lambda a: None if a is None else np.asarray(a)[:, :first]
+    return Solution(t=sol.t, v=keep(sol.v), psi=keep(sol.psi), psiL=keep(sol.psiL), u=sol.u, udot=sol.udot,
+                    success=sol.success, message=sol.message, stats=dict(sol.stats), dof_names=sol.dof_names,
+                    constraint_names=list(sol.constraint_names)[:first])
 
 
 def add_soil_energy(energy: dict, contact_load: np.ndarray, u: np.ndarray) -> dict:
@@ -402,22 +584,26 @@ def horizontal_cone(fnd: Foundation, where: str) -> tuple[float, float]:
     return float(c.K), float(c.C)
 
 
-def to_foundation_model(structure):
-    """The :class:`~unilateral.soil.FoundationModel` of a frame with a foundation."""
+def to_foundation_model(structure, model=None):
+    """The :class:`~unilateral.soil.FoundationModel` of a frame with footings on a soil medium.
+
+    ``model`` is the frame's own :class:`~unilateral.model.Model` (its unilateral, yielding and
+    friction elements), or None for a frame without any: the footings' contacts then are the
+    model's only constraints.
+    """
     from ..soil.foundation_model import FoundationModel
 
     fnd = structure.foundation
-    if structure.m:
-        raise ValueError(f"the frame has a foundation on a soil medium ({fnd.name!r}) and unilateral elements "
-                         f"({', '.join(structure.constraint_names[:5])}): a FoundationModel has the footing's "
-                         "contacts only; model the other contacts as part of the foundation or leave them out")
-    nat = structure.natural
-    theta = nat.theta(0.0)
-    if np.any(theta):
-        raise ValueError("the frame has imposed strains (axial_strain, curvature) and a foundation on a soil "
-                         "medium: a FoundationModel takes no imposed strains; give them as loads")
-    K = (nat.G @ nat.E @ nat.G.T).tocsr()
     T = fnd.T(structure.dofs, structure.coords)
+    if model is not None:
+        if structure.n > 2000:
+            T = sp.csr_matrix(T)
+        return FoundationModel.on(model, T, fnd.soil, gap=fnd.gap, contact_names=list(fnd.contact_names))
+    nat = structure.natural
+    if np.any(nat.theta(0.0)):
+        raise ValueError("the frame has imposed strains (axial_strain, curvature) and a foundation on a soil "
+                         "medium: give them as loads")
+    K = (nat.G @ nat.E @ nat.G.T).tocsr()
     dense = structure.n <= 2000
     M, C = structure.M, structure.C
     if dense:

@@ -66,7 +66,7 @@ class Frame2D:
         self._rayleigh: tuple[float, float] | None = None
         self._modal: tuple | None = None
         self._p_delta: tuple | None = None
-        self._foundation = None
+        self._foundations = []
 
     # ------------------------------------------------------------------ nodes and supports
     def node(self, node_id, x, y) -> None:
@@ -422,10 +422,15 @@ class Frame2D:
 
     # ------------------------------------------------------------------ foundation on a soil medium
     def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
-                   horizontal="support", gap=0.0) -> None:
+                   horizontal="support", gap=0.0, mass=0.0, J=0.0) -> None:
         """A footing resting on a soil medium (half-space, cones or Winkler-Kelvin) through
         unilateral contacts; :meth:`Structure.to_model` then gives a
         :class:`~unilateral.soil.FoundationModel` (``docs/theory.md``, section 12).
+
+        Any number of footings, beside any other element (gaps, pounding links, cables, soil
+        springs, yielding links, hinges, sliders). Footings on a half-space share it: every patch
+        of every footing is coupled through the ground (give them the same soil); footings on
+        cones or Winkler-Kelvin beds are uncoupled. Footings at one elevation must not overlap.
 
         Rigid footing (``nodes=None``): ``node`` carries the footing's ``uy`` and ``rz``;
         ``patches`` strips (default 3) across ``width`` (the frame's x, centred on ``node``), each
@@ -454,17 +459,15 @@ class Frame2D:
             horizontal cone as a bilateral spring and dashpot at ``node`` (no sliding), or nothing.
         gap : float or (m,) array, length
             Opening at ``u = 0`` with the soil unloaded (negative: a penetration).
-
-        Only one foundation per frame, and none with other unilateral elements.
+        mass, J : float >= 0, mass and mass length^2
+            The rigid footing's own mass (on ``ux``, ``uy`` of ``node``) and rotary inertia (on
+            ``rz``); a flexible footing's masses are those of its nodes (:meth:`mass`).
         """
-        from .foundation import build_foundation, horizontal_cone
+        from .foundation import _check_overlap, build_foundation, horizontal_cone
 
         where = f"foundation {name!r}"
         if not isinstance(name, str) or not name:
             raise TypeError(f"foundation name must be a non-empty str, got {name!r}")
-        if self._foundation is not None:
-            raise ValueError(f"{where}: the frame already has a foundation ({self._foundation.name!r}); one "
-                             "foundation per frame (the half-space couples every patch)")
         if name in self._names:
             raise ValueError(f"{where}: the name is already used by another element")
         self._node(where, "node", node)
@@ -473,6 +476,14 @@ class Frame2D:
         fnd = build_foundation(name=name, node=node, nodes=nodes, width=width, length=length, soil=soil,
                                patches=3 if patches is None and nodes is None else patches,
                                horizontal=horizontal, gap=gap, coords=self._coords)
+        used = {n for f in self._foundations for n in f.contact_nodes()}
+        if used & set(fnd.contact_nodes()):
+            raise ValueError(f"{where}: node(s) {sorted(used & set(fnd.contact_nodes()), key=repr)} already rest on "
+                             "another footing; give each footing its own nodes")
+        _check_overlap(self._foundations, fnd, where)
+        if (mass or J) and not fnd.rigid:
+            raise ValueError(f"{where}: mass={mass!r}, J={J!r} are for a rigid footing; give a flexible footing's "
+                             "masses to its nodes with Frame2D.mass")
         for contact in fnd.contact_nodes():
             if contact in self._links:
                 continue
@@ -485,7 +496,9 @@ class Frame2D:
             K, C = horizontal_cone(fnd, where)
             self.spring(f"{name}.horizontal_spring", node, K, direction="ux")
             self.dashpot(f"{name}.horizontal_dashpot", node, C, direction="ux")
-        self._foundation = fnd
+        if mass or J:
+            self.mass(node, mass, J=J)
+        self._foundations.append(fnd)
         self._names.add(name)
 
     # ------------------------------------------------------------------ build
@@ -503,9 +516,9 @@ class Frame2D:
         everything = self._elements + self._dashpots
         rotated = {node for e in everything for node, dof in e.dofs if dof == "rz"}
         rotated |= {node for node, mass in self._mass.items() if mass[2] > 0}
-        fnd = self._foundation
-        if fnd is not None and fnd.rigid and fnd.m > 1:
-            rotated.add(fnd.node)                       # the footing rocks on its patches
+        for footing in self._foundations:
+            if footing.rigid and footing.m > 1:
+                rotated.add(footing.node)               # the footing rocks on its patches
         dofs = DofMap(self._coords, self._restrained, rotated, self._links)
         if dofs.n == 0:
             raise ValueError("every DOF is supported or linked: the frame has no free DOF")
@@ -526,12 +539,17 @@ class Frame2D:
         M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
         K = (G @ E @ G.T).tocsr()
         on_soil = set()
-        if fnd is not None:                             # the soil stiffens these (FoundationModel checks)
-            for terms in fnd.moved_rows(self._coords):
+        for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
+            for terms in footing.moved_rows(self._coords):
                 on_soil |= {(node, dof) for node, dof, _ in terms}
         _check_stiffness(K, dofs, exempt=on_soil)
         C = self._damping(dofs, M, K)
         natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=ConstantStrain(theta), E_v=E_v)
+        footings = None
+        if self._foundations:
+            from .foundation import Footings
+
+            footings = Footings(self._foundations, first=m)
         structure = Structure(
             natural=natural, M=M, C=C, dofs=dofs,
             element_names=tuple(e.name for e in self._elements),
@@ -540,11 +558,11 @@ class Frame2D:
             constraint_strains=rows, nodal_mass=nodal_mass,
             elements=tuple(self._elements), dashpots=tuple(self._dashpots),
             coords={node: xy.copy() for node, xy in self._coords.items()}, rayleigh=self._rayleigh,
-            foundation=fnd,
+            foundation=footings,
         )
         if self._p_delta is None:
             return structure
-        if fnd is not None:
+        if self._foundations:
             raise ValueError("p_delta: not available with a foundation on a soil medium")
         g, (dx, dy) = self._p_delta
         load = structure.gravity(g, (dx, dy)) if (dx or dy) else np.zeros(structure.n)
@@ -652,9 +670,10 @@ class Structure:
     dashpots : the attached dashpots (their viscosity is in ``C``)
     coords : dict node -> (2,) coordinates
     rayleigh : ``(a0, a1)`` of the Rayleigh damping in ``C``, or None
-    foundation : :class:`~unilateral.structure.foundation.Foundation` or None
-        A footing on a soil medium (:meth:`Frame2D.foundation`); its contacts are not among
-        ``constraint_names`` (``m`` counts the frame's own unilateral elements).
+    foundation : :class:`~unilateral.structure.foundation.Footings` or None
+        The footings on a soil medium (:meth:`Frame2D.foundation`); their contacts are not among
+        ``constraint_names`` (``m`` counts the frame's own unilateral elements); in the model and
+        its solutions they follow the frame's own constraints.
     geometric : (n, n) csr or None
         P-Delta (:meth:`Frame2D.p_delta`): the geometric stiffness of the gravity's axial forces,
         added to ``K`` by :meth:`to_model`.
@@ -731,12 +750,14 @@ class Structure:
         Without a foundation: the reduced problem (eqs. 13-16) via :meth:`Model.from_natural`; DOF
         names are ``"node.dof"`` (e.g. ``"3.uy"``), constraint names :attr:`constraint_names`, and the
         constraint families those of :meth:`families`.
-        With a foundation (:meth:`Frame2D.foundation`): the
+        With footings (:meth:`Frame2D.foundation`): the
         :class:`~unilateral.soil.FoundationModel` of the frame's ``M, K, C`` without the soil, ``T``
-        of the footing, the soil's ``Phi(s)`` and the footing's gap; constraint names are the
-        contact names. Its solutions have ``v`` the openings and ``psi = -c`` (minus the contact forces).
+        of the footings, the soil's ``Phi(s)`` and the footings' gaps; the frame's own constraints
+        (if any, :meth:`FoundationModel.on <unilateral.soil.FoundationModel.on>`) come first, then
+        the contacts. Its solutions have for the contacts ``v`` the openings and ``psi = -c``
+        (minus the contact forces).
         """
-        if self.foundation is not None:
+        if self.foundation is not None and not self.m:
             from .foundation import to_foundation_model
 
             return to_foundation_model(self)
@@ -746,7 +767,12 @@ class Structure:
             theta=nat.theta(0.0),                   # the builder's imposed strains are constant
             C=self.C, E_v=nat.E_v, dof_names=self.dofs.names,
             constraint_names=list(self.constraint_names), families=self.families(),
+            on_soil=self.foundation is not None,
         )
+        if self.foundation is not None:
+            from .foundation import to_foundation_model
+
+            return to_foundation_model(self, model)
         if self.geometric is not None:
             from ..model import _check_definite
 
