@@ -331,3 +331,33 @@ def test_event_limits_the_contact_changes_in_proportion_to_the_time_reached():
                            "this is expected, or use method='cq' or 'direct'")
     np.testing.assert_array_equal(sol.u, full.u[:len(sol.t)])
     assert default_max_events(1000, 1) == 100 * 1001
+
+
+def test_a_synthetic_record_too_long_to_generate_is_refused_before_allocating():
+    from unilateral.loads import synthetic_accelerogram
+
+    for duration, dt in ((1e9, 0.01), (1e308, 1e-308)):
+        with pytest.raises(ValueError, match=r"samples: the record and its filtering would need about .* GiB"):
+            synthetic_accelerogram(duration, dt)
+    assert synthetic_accelerogram(2.0, 0.01).dt == 0.01
+
+
+def test_a_study_influence_vector_is_checked_from_its_header(tmp_path):
+    """The influence vector of a matrix-level study is read as the model files' matrices are: a
+    complex or wrongly sized file is refused naming it, before its values are used."""
+    from types import SimpleNamespace
+
+    import numpy as np
+    import scipy.io
+
+    from unilateral.batch.worker import _ground_vector
+
+    spec = SimpleNamespace(model=SimpleNamespace(n=3, M=np.diag([1.0, 2.0, 3.0])))
+    for name, values in (("r.mtx", np.ones((3, 1))), ("c.mtx", np.ones((3, 1)) * (1 + 1j)),
+                         ("w.mtx", np.ones((4, 1)))):
+        scipy.io.mmwrite(tmp_path / name, values)
+    assert np.allclose(_ground_vector(spec, {"influence": str(tmp_path / "r.mtx")}), [-1.0, -2.0, -3.0])
+    with pytest.raises(ValueError, match=r"c\.mtx.*complex matrix"):
+        _ground_vector(spec, {"influence": str(tmp_path / "c.mtx")})
+    with pytest.raises(ValueError, match=r"w\.mtx.*expected a vector of 3 entries"):
+        _ground_vector(spec, {"influence": str(tmp_path / "w.mtx")})

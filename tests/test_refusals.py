@@ -182,6 +182,7 @@ def test_a_scheduler_that_cannot_be_reached_is_a_clear_error(tmp_path, address, 
     result = run_batch(tmp_path, "--scheduler", address)
     assert result.exit_code == 2 and expected in " ".join(result.output.split()), result.output
     assert "Traceback" not in result.output
+    assert not (tmp_path / "out").exists()              # reached first: nothing written
 
 
 def test_batch_exits_non_zero_and_counts_the_failed_analyses(tmp_path):

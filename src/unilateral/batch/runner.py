@@ -132,6 +132,8 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
     if not isinstance(study, Study):
         study = load_study(study)
     out = Path(out)
+    # a scheduler given by its address is reached first: one that cannot be leaves no folder behind
+    client = connect(scheduler) if scheduler and not synchronous else None
     results = out / "results"
     results.mkdir(parents=True, exist_ok=True)
     _remove_stale_temporaries(results)
@@ -169,11 +171,14 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
                 bar.update(run_analysis(dict(analysis.payload, fsync=fsync), str(results), run_id))
                 ran += 1
         else:
-            ran += _run_dask(pending, results, run_id, scheduler, workers, bar, fsync)
+            ran += _run_dask(pending, results, run_id, (client, workers), bar, fsync)
+            client = None                               # closed by _run_dask
     except KeyboardInterrupt:
         interrupted = True
     finally:
         bar.close()
+        if client is not None:
+            _close(client, None)
     table = write_table(study, results, out)
     counts = {s: int((table["status"].values == s).sum()) for s in ("ok", "failed", "error", "timeout", "pending")}
     outcome = StudyResult(study=study, out=out, table=table, counts=counts, ran=ran, skipped=earlier,
@@ -268,10 +273,15 @@ def _ignore_interrupts():
     return signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _run_dask(todo, results: Path, run_id: str, scheduler, workers, bar: Progress, fsync=False) -> int:
+def _run_dask(todo, results: Path, run_id: str, cluster_spec, bar: Progress, fsync=False) -> int:
+    """Run ``todo`` on Dask: ``cluster_spec = (client, workers)``, a client of a scheduler already
+    reached, or None and the workers of a new LocalCluster."""
     from distributed import as_completed
 
-    client, cluster = start_cluster(workers, scheduler)
+    client, workers = cluster_spec
+    cluster = None
+    if client is None:
+        client, cluster = start_cluster(workers)
     futures = {}
     ran = 0
     try:

@@ -88,13 +88,16 @@ def _ground_vector(spec, ground: dict):
     if "direction" in ground:
         r = np.array([1.0 if dof == ground["direction"] else 0.0 for _, dof in spec.structure.dofs.free])
     else:
-        import scipy.io
-        import scipy.sparse as sp
+        from pathlib import Path
 
-        matrix = scipy.io.mmread(ground["influence"])
-        r = np.asarray(matrix.todense() if sp.issparse(matrix) else matrix, dtype=float).ravel()
-        if r.size != model.n:
-            raise ValueError(f"the influence vector {ground['influence']} has {r.size} entries, the model {model.n}")
+        from ..modelfile.errors import Problems
+        from ..modelfile.matrices import read_vector
+
+        path = Path(ground["influence"])
+        try:      # the header checked first (a real vector of n entries), as the model files' matrices
+            r = read_vector(("ground", "influence"), path.name, path.parent, model.n)
+        except Problems as exc:
+            raise ValueError(str(exc)) from None
     return -np.asarray(model.M @ r).ravel()
 
 

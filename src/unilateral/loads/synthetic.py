@@ -37,6 +37,13 @@ END_VALUE = 0.05
 """Value of either envelope at the end of the record (its peak is 1)."""
 
 
+#: Most samples of a synthetic record (about 1.3 GiB of work arrays at :data:`BYTES_PER_SAMPLE`).
+MAX_SAMPLES = 10_000_000
+#: Memory of the generation per sample: the noise, time, envelope and record (8 bytes each) and the
+#: filter's zero-padded FFT (two complex spectra and the transfer function of 2 n points).
+BYTES_PER_SAMPLE = 4 * 8 + 3 * 2 * 16 + 2 * 8
+
+
 def synthetic_accelerogram(duration: float = 20.0, dt: float = 0.01, pga: float = 3.0, *,
                            seed: int = 0, f_g: float = 2.5, zeta_g: float = 0.6,
                            envelope: str = "saragoni-hart") -> GroundMotion:
@@ -80,7 +87,13 @@ def synthetic_accelerogram(duration: float = 20.0, dt: float = 0.01, pga: float 
     envelope = choice("envelope", envelope, ENVELOPES)
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
         raise TypeError(f"seed must be an integer, got {seed!r}")
-    npts = math.floor(duration / dt + 1e-9) + 1
+    steps = duration / dt
+    if not steps <= MAX_SAMPLES:
+        memory = BYTES_PER_SAMPLE * min(steps, 1e300) / 2**30
+        raise ValueError(f"duration={duration!r} with dt={dt!r} is {steps:.3g} samples: the record and its "
+                         f"filtering would need about {memory:.3g} GiB; give at most {MAX_SAMPLES:.0e} samples "
+                         "(a shorter duration or a larger dt)")
+    npts = math.floor(steps + 1e-9) + 1
     if npts < 3:
         raise ValueError(f"duration={duration!r} must span at least 2 steps of dt={dt!r}")
     noise = np.random.default_rng(int(seed)).standard_normal(npts)
