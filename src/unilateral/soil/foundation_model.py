@@ -75,7 +75,7 @@ class SoilPoles:
         return self.evaluate(np.zeros(1))[0].real
 
 
-def static_block(parts, m, starts) -> np.ndarray:
+def _pole_constants(parts, m, starts) -> np.ndarray:
     """``diag(P0_1, P0_2, ...)`` (m, m) of the parts' pole-residue constants."""
     out = np.zeros((m, m))
     for p, a in zip(parts, starts):
@@ -405,7 +405,7 @@ class SoilFlexibility:
             poles = SoilPoles(np.concatenate([p.poles.poles for p in parts]),
                               np.vstack([pad(p.poles.B, a, p.m) for p, a in zip(parts, starts)]),
                               np.vstack([pad(p.poles.Cf, a, p.m) for p, a in zip(parts, starts)]),
-                              static_block(parts, m, starts))
+                              _pole_constants(parts, m, starts))
         kelvin = None
         if all(p.kelvin is not None for p in parts):
             kelvin = (np.concatenate([p.kelvin[0] for p in parts]), np.concatenate([p.kelvin[1] for p in parts]))

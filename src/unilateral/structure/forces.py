@@ -545,7 +545,7 @@ class BaseForceOperator:
     A run's base forces then cost two products of its :class:`StateRows` with (3, n + m)
     matrices instead of every element's forces at every step; they equal :func:`base_forces` of
     :func:`reactions` to round-off (``tests/test_structure_results.py``). A foundation on a soil
-    medium adds the soil's contact forces (:meth:`Foundation.ground_reactions`), which this
+    medium adds the soil's contact forces (:meth:`Footings.ground_reactions`), which this
     operator leaves out, as :func:`reactions` does.
 
     Attributes

@@ -307,23 +307,14 @@ class Foundation:
                 "constraint_gap": ("constraint", [float(g) for g in self.gap])}
 
     # ------------------------------------------------------------------ results of a solution
-    def contact_forces(self, sol) -> np.ndarray:
-        """Compressive contact forces ``c = -psi`` (N+1, m) of a solution (force)."""
-        return -np.asarray(sol.psi, dtype=float)
-
-    def contact_load(self, structure, sol) -> np.ndarray:
-        """``T c`` (N+1, n): the load of the contact forces on the structure."""
-        T = self.T(structure.dofs, structure.coords)
-        return self.contact_forces(sol) @ T.T
-
-    def ground_reactions(self, structure, sol) -> tuple[dict, dict]:
+    def ground_reactions(self, structure, c) -> tuple[dict, dict]:
         """The soil's forces on the structure, per contact: ``(fx, fy, mz)`` (N+1, 3) and the node.
 
-        Each contact force ``c_j`` acts upward at its patch centre; it is reported at the node it
-        acts on (``contact_nodes``) with the moment ``(x_j - x_node) c_j`` of the offset, so that
-        base forces and overturning moments about any point come out right.
+        ``c`` (N+1, m) are the footing's compressive contact forces. Each acts upward at its patch
+        centre; it is reported at the node it acts on (``contact_nodes``) with the moment
+        ``(x_j - x_node) c_j`` of the offset, so that base forces and overturning moments about any
+        point come out right.
         """
-        c = self.contact_forces(sol)
         forces, at = {}, {}
         for j, node in enumerate(self.contact_nodes()):
             f = np.zeros((c.shape[0], 3))
@@ -398,20 +389,11 @@ class Footings:
         forces, at = {}, {}
         start = 0
         for f in self.footings:
-            part = np.zeros((c.shape[0], self.first + f.m))
-            part[:, self.first:] = -c[:, start:start + f.m]
-            got, where = f.ground_reactions(structure, _Psi(part, self.first))
+            got, where = f.ground_reactions(structure, c[:, start:start + f.m])
             forces |= got
             at |= where
             start += f.m
         return forces, at
-
-
-class _Psi:
-    """A solution-like view holding ``psi`` (for a footing's own ground reactions)."""
-
-    def __init__(self, psi, first):
-        self.psi = psi[:, first:]
 
 
 def _concat_patches(parts):
@@ -443,8 +425,7 @@ def _group_soil(footings):
 
 
 def _material(spec):
-    return (spec.model, spec.G, spec.Vs, spec.nu, spec.rho, spec.damping, repr(getattr(spec, "layers", None)),
-            repr(getattr(spec, "base", None)))
+    return (spec.model, spec.G, spec.Vs, spec.nu, spec.rho, spec.damping, repr(spec.layers), spec.base)
 
 
 def _check_overlap(footings, new, where):
