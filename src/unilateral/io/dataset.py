@@ -16,18 +16,16 @@ same variables, dimensions, coordinates, attributes and ``_FillValue``), through
 from __future__ import annotations
 
 import io
-import json
 import os
 import sys
 from pathlib import Path
 
 import numpy as np
 
-from .. import __version__
 from ..result import Solution
 from . import results as _results
-from .atomic import atomic_write, to_jsonable
-from .results import _VARIABLES, _case_column, _flatten, _same, _var_attrs
+from .atomic import atomic_write
+from .results import _case_column, _same, check_common_time, dataset_parts
 
 
 class Variable:
@@ -219,25 +217,10 @@ def cases_dataset(data: Solution | dict[str, Solution], *, units: dict | None = 
     and attributes; ``cases_dataset(...).to_xarray()`` equals ``to_dataset(...)``)."""
     if isinstance(data, dict):
         return _combine({label: cases_dataset(sol, units=units, attrs=attrs) for label, sol in data.items()})
-    if not isinstance(data, Solution):
-        raise TypeError(f"data must be a Solution or a dict of Solutions, got {type(data).__name__}")
-    units = units or {}
-    data_vars = {}
-    for name, (dims, quantity, long_name) in _VARIABLES.items():
-        values = getattr(data, name)
-        if values is not None:
-            data_vars[name] = (dims, np.asarray(values, dtype=float), _var_attrs(long_name, units, quantity))
-    coords = {"time": ("time", np.asarray(data.t, dtype=float), _var_attrs("time", units, "time")),
-              "constraint": ("constraint", _labels(data.constraint_names))}
-    if "u" in data_vars or "udot" in data_vars:
-        coords["dof"] = ("dof", _labels(data.dof_names))
-    meta = {"source": f"unilateral {__version__}", "success": data.success, "message": data.message,
-            "stats": json.dumps(to_jsonable(data.stats))}
-    merged = _flatten(meta) | _flatten(data.stats)
-    for key, value in _flatten(attrs or {}).items():
-        if key in merged and not _same(merged[key], value):
-            raise ValueError(f"attrs[{key!r}] = {value!r} contradicts the solution's {key} = {merged[key]!r}")
-        merged[key] = value
+    data_vars, coords, merged = dataset_parts(data, units, attrs)
+    for dim in ("constraint", "dof"):
+        if dim in coords:
+            coords[dim] = (dim, _labels(coords[dim]))
     return Dataset(data_vars, coords=coords, attrs=merged)
 
 
@@ -250,14 +233,9 @@ def _combine(cases: dict[str, Dataset]) -> Dataset:
     """:func:`unilateral.io.results._combine`: one Dataset with a leading ``case`` dimension."""
     if not cases:
         raise ValueError("no cases to combine: the dict is empty")
-    (first_label, first), *rest = cases.items()
-    for label, ds in rest:
-        if not np.array_equal(ds["time"].values, first["time"].values):
-            raise ValueError(
-                f"case {label!r} has {ds.sizes['time']} times in [{ds['time'].values[0]:g}, "
-                f"{ds['time'].values[-1]:g}], case {first_label!r} has {first.sizes['time']} in "
-                f"[{first['time'].values[0]:g}, {first['time'].values[-1]:g}]; cases share a Dataset only "
-                "on a common time axis (did one analysis stop early?): store them separately")
+    check_common_time(cases)
+    first, *rest = cases.values()
+    for ds in rest:
         for name, var in first.coords.items():
             other = ds.coords.get(name)
             if other is None or other.dims != var.dims or not np.array_equal(other.values, var.values):

@@ -78,6 +78,13 @@ def to_dataset(data: Solution | dict[str, Solution], *, units: dict | None = Non
 
     if isinstance(data, dict):
         return _combine({label: to_dataset(sol, units=units, attrs=attrs) for label, sol in data.items()})
+    data_vars, coords, merged = dataset_parts(data, units, attrs)
+    return xr.Dataset(data_vars, coords=coords, attrs=merged)
+
+
+def dataset_parts(data: Solution, units: dict | None, attrs: dict | None) -> tuple[dict, dict, dict]:
+    """The variables, coordinates and attributes of one Solution's Dataset (:func:`to_dataset`, and
+    :func:`unilateral.io.dataset.cases_dataset` without xarray); ``constraint`` and ``dof`` as lists."""
     if not isinstance(data, Solution):
         raise TypeError(f"data must be a Solution or a dict of Solutions, got {type(data).__name__}")
     units = units or {}
@@ -97,7 +104,7 @@ def to_dataset(data: Solution | dict[str, Solution], *, units: dict | None = Non
         if key in merged and not _same(merged[key], value):
             raise ValueError(f"attrs[{key!r}] = {value!r} contradicts the solution's {key} = {merged[key]!r}")
         merged[key] = value
-    return xr.Dataset(data_vars, coords=coords, attrs=merged)
+    return data_vars, coords, merged
 
 
 def from_dataset(ds: xr.Dataset) -> Solution:
@@ -407,10 +414,8 @@ def _meta(ds: xr.Dataset, key: str):
     raise KeyError(f"the dataset has no {key!r} attribute; was it written by unilateral.io.to_dataset?")
 
 
-def _combine(cases: dict[str, xr.Dataset]) -> xr.Dataset:
-    """One Dataset with a leading ``case`` dimension; differing attributes become variables."""
-    if not cases:
-        raise ValueError("no cases to combine: the dict is empty")
+def check_common_time(cases: dict) -> None:
+    """Raise unless every case (a Dataset each) has the first case's time axis."""
     (first_label, first), *rest = cases.items()
     for label, ds in rest:
         if not np.array_equal(ds["time"].values, first["time"].values):
@@ -419,6 +424,13 @@ def _combine(cases: dict[str, xr.Dataset]) -> xr.Dataset:
                 f"{ds['time'].values[-1]:g}], case {first_label!r} has {first.sizes['time']} in "
                 f"[{first['time'].values[0]:g}, {first['time'].values[-1]:g}]; cases share a Dataset only "
                 "on a common time axis (did one analysis stop early?): store them separately")
+
+
+def _combine(cases: dict[str, xr.Dataset]) -> xr.Dataset:
+    """One Dataset with a leading ``case`` dimension; differing attributes become variables."""
+    if not cases:
+        raise ValueError("no cases to combine: the dict is empty")
+    check_common_time(cases)
     import xarray as xr
 
     datasets = list(cases.values())

@@ -15,6 +15,44 @@ __all__ = ["HalfSpace"]
 _CHUNK = 4_000_000          # complex entries per (s, k) block
 
 
+def laplace_points(s, materials):
+    """``(sq, flip, zero)``: the values ``s`` (ns,) checked (finite, ``Re s >= 0``) and folded into
+    the upper half-plane (``flip``: the ones conjugated, whose results are conjugated back), and
+    which are zero; ``s = 0`` is refused for a constant-Q material of ``materials`` (it creeps)."""
+    s = np.atleast_1d(np.asarray(s, dtype=complex))
+    if s.ndim != 1:
+        raise ValueError(f"s must be a scalar or 1-D array, got shape {s.shape}")
+    V.check_finite("s", s.view(float))
+    if np.any(s.real < -1e-12 * np.abs(s)):
+        bad = s[np.argmin(s.real)]
+        raise ValueError(f"s must satisfy Re s >= 0 (the kernel is defined there); got s = {bad!r}")
+    flip = s.imag < 0
+    sq = np.where(flip, np.conj(s), s)
+    zero = sq == 0
+    if np.any(zero) and any(m.damping > 0 and m.damping_model == "constant_q" for m in materials):
+        raise ValueError("s = 0 is not allowed with damping_model='constant_q' and damping > 0 "
+                         "(G(0) = 0: a constant-Q solid creeps); use damping=0 or 'kelvin_voigt'")
+    return sq, flip, zero
+
+
+def component_blocks(vals: dict, patches: RectangularPatches, components: str) -> np.ndarray:
+    """The (ns, c m, c m) matrix of the components ``"xz"`` or ``"xyz"`` from their pair values.
+
+    ``vals`` maps ``"xx"``, ``"zz"``, ``"zx"`` (and ``"yy"``, ``"xy"``, ``"zy"``) to (ns, m, m)
+    values for ``|dx|, |dy|``; the odd components take the signs of the separations here.
+    """
+    d = patches.centres[:, None, :] - patches.centres[None, :, :]
+    sx, sy = np.sign(d[..., 0]), np.sign(d[..., 1])
+    zx = vals["zx"] * sx
+    if components == "xz":
+        return np.block([[vals["xx"], zx.transpose(0, 2, 1)], [zx, vals["zz"]]])
+    xy = vals["xy"] * (sx * sy)
+    zy = vals["zy"] * sy
+    return np.block([[vals["xx"], xy, zx.transpose(0, 2, 1)],
+                     [xy, vals["yy"], zy.transpose(0, 2, 1)],
+                     [zx, zy, vals["zz"]]])
+
+
 class HalfSpace:
     """Homogeneous isotropic half-space, elastic or (causally) viscoelastic.
 
@@ -98,20 +136,8 @@ class HalfSpace:
 
     # --- helpers -------------------------------------------------------------------------------
     def _prepare(self, s):
-        s = np.atleast_1d(np.asarray(s, dtype=complex))
-        if s.ndim != 1:
-            raise ValueError(f"s must be a scalar or 1-D array, got shape {s.shape}")
-        V.check_finite("s", s.view(float))
-        if np.any(s.real < -1e-12 * np.abs(s)):
-            bad = s[np.argmin(s.real)]
-            raise ValueError(f"s must satisfy Re s >= 0 (the kernel is defined there); got s = {bad!r}")
-        flip = s.imag < 0
-        sq = np.where(flip, np.conj(s), s)
+        sq, flip, zero = laplace_points(s, [self])
         Gs = self.modulus(sq)
-        zero = sq == 0
-        if np.any(zero) and self.damping > 0 and self.damping_model == "constant_q":
-            raise ValueError("s = 0 is not allowed with damping_model='constant_q' and damping > 0 "
-                             "(G(0) = 0: a constant-Q solid creeps); use damping=0 or 'kelvin_voigt'")
         S = np.zeros(sq.shape, dtype=complex)
         S[~zero] = sq[~zero] ** 2 * self.rho / Gs[~zero]
         return sq, flip, Gs, S, zero
@@ -188,18 +214,7 @@ class HalfSpace:
             return vals[:, index]
         vals = self._tensor_pairs(keys, S, zero, kmax_factor, comps)
         vals = {nm: self._finish(v, Gs, flip)[:, index] for nm, v in vals.items()}
-        d = patches.centres[:, None, :] - patches.centres[None, :, :]
-        sx, sy = np.sign(d[..., 0]), np.sign(d[..., 1])
-        zx = vals["zx"] * sx
-        if comps == "xz":
-            blocks = [[vals["xx"], zx.transpose(0, 2, 1)], [zx, vals["zz"]]]
-        else:
-            xy = vals["xy"] * (sx * sy)
-            zy = vals["zy"] * sy
-            blocks = [[vals["xx"], xy, zx.transpose(0, 2, 1)],
-                      [xy, vals["yy"], zy.transpose(0, 2, 1)],
-                      [zx, zy, vals["zz"]]]
-        return np.block(blocks)
+        return component_blocks(vals, patches, comps)
 
     def surface_displacement(self, points, patches: RectangularPatches, s, *, kmax_factor=1.0):
         """Vertical displacement at surface points per unit force uniformly spread on each patch.

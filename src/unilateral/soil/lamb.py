@@ -146,6 +146,28 @@ def _factors(kc, keys):
     return np.stack([np.cos(kc * d) * sincs[g] for (d, _, _), g in zip(keys, group.ravel())], axis=-1)
 
 
+def _angular_groups(k, Rmax):
+    """Groups of wavenumbers with the number of angular nodes each needs: ``(indices, n)``.
+
+    ``n ~ 1.1 |k| R / 4 + 6`` nodes per quarter period (``R`` the largest pair extent) resolve the
+    angular factors to round-off; wavenumbers sorted by ``|k|`` are grouped while their need is
+    within 25 % of the group's first, which then takes the largest need of the group.
+    """
+    def n_needed(kabs):
+        return int(np.ceil((1.1 * kabs * Rmax + 24.0) / 4.0))
+
+    order = np.argsort(np.abs(k))
+    kabs_sorted = np.abs(k[order])
+    start = 0
+    while start < k.size:
+        limit = 1.25 * n_needed(kabs_sorted[start]) + 2
+        stop = start + 1
+        while stop < k.size and n_needed(kabs_sorted[stop]) <= limit:
+            stop += 1
+        yield order[start:stop], n_needed(kabs_sorted[stop - 1])
+        start = stop
+
+
 def angular(k, keys, chunk_entries: int = 2_000_000) -> np.ndarray:
     """Angular factors ``H_p(k)`` (nk, P) for pair keys (P, 6) ``|dx|, |dy|, a_r, b_r, a_s, b_s``.
 
@@ -161,20 +183,8 @@ def angular(k, keys, chunk_entries: int = 2_000_000) -> np.ndarray:
     ix, iy = ix.ravel(), iy.ravel()
     Rmax = float(pair_extent(keys).max())
 
-    def n_needed(kabs):
-        return int(np.ceil((1.1 * kabs * Rmax + 24.0) / 4.0))
-
     out = np.empty((k.size, P), dtype=complex)
-    order = np.argsort(np.abs(k))
-    kabs_sorted = np.abs(k[order])
-    start = 0
-    while start < k.size:
-        limit = 1.25 * n_needed(kabs_sorted[start]) + 2
-        stop = start + 1
-        while stop < k.size and n_needed(kabs_sorted[stop]) <= limit:
-            stop += 1
-        idx = order[start:stop]
-        n = n_needed(kabs_sorted[stop - 1])
+    for idx, n in _angular_groups(k, Rmax):
         step = max(1, chunk_entries // (n * (len(xkeys) + len(ykeys) + P)))
         theta = (np.arange(n) + 0.5) * (0.5 * np.pi / n)
         c, s = np.cos(theta), np.sin(theta)
@@ -186,7 +196,6 @@ def angular(k, keys, chunk_entries: int = 2_000_000) -> np.ndarray:
             Sy = _factors(ky, ykeys)                                        # (q, n, Uy)
             M = np.matmul(Sx.transpose(0, 2, 1), Sy)                       # (q, Ux, Uy)
             out[sel] = (2.0 * np.pi / n) * M[:, ix, iy]
-        start = stop
     return out
 
 
@@ -288,20 +297,8 @@ def angular_components(k, keys, names, chunk_entries: int = 2_000_000) -> dict:
     need_x = {odd for _, _, odd, _ in specs}
     need_y = {odd for _, _, _, odd in specs}
 
-    def n_needed(kabs):
-        return int(np.ceil((1.1 * kabs * Rmax + 24.0) / 4.0))
-
     out = {nm: np.empty((k.size, P), dtype=complex) for nm in names}
-    order = np.argsort(np.abs(k))
-    kabs_sorted = np.abs(k[order])
-    start = 0
-    while start < k.size:
-        limit = 1.25 * n_needed(kabs_sorted[start]) + 2
-        stop = start + 1
-        while stop < k.size and n_needed(kabs_sorted[stop]) <= limit:
-            stop += 1
-        idx = order[start:stop]
-        n = n_needed(kabs_sorted[stop - 1])
+    for idx, n in _angular_groups(k, Rmax):
         step = max(1, chunk_entries // (n * (2 * len(xkeys) + 2 * len(ykeys) + len(names) * P)))
         theta = (np.arange(n) + 0.5) * (0.5 * np.pi / n)
         c, s = np.cos(theta), np.sin(theta)
@@ -318,5 +315,4 @@ def angular_components(k, keys, names, chunk_entries: int = 2_000_000) -> dict:
                 M = np.matmul(Sx.transpose(0, 2, 1), SY[oy])                 # (q, g Ux, Uy)
                 for i, (nm, *_rest) in enumerate(group):
                     out[nm][sel] = (2.0 * np.pi / n) * M[:, i * len(xkeys) + ix, iy]
-        start = stop
     return out

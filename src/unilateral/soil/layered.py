@@ -106,7 +106,7 @@ import numpy as np
 
 from .. import _validate as V
 from . import lamb
-from .halfspace import HalfSpace
+from .halfspace import HalfSpace, component_blocks, laplace_points
 from .patches import RectangularPatches, pair_table
 
 __all__ = ["Layered"]
@@ -452,23 +452,7 @@ class Layered:
         return self.materials + ([] if self.halfspace is None else [self.halfspace])
 
     def _prepare(self, s):
-        s = np.atleast_1d(np.asarray(s, dtype=complex))
-        if s.ndim != 1:
-            raise ValueError(f"s must be a scalar or 1-D array, got shape {s.shape}")
-        V.check_finite("s", s.view(float))
-        if np.any(s.real < -1e-12 * np.abs(s)):
-            bad = s[np.argmin(s.real)]
-            raise ValueError(f"s must satisfy Re s >= 0 (the kernel is defined there); got s = {bad!r}")
-        flip = s.imag < 0
-        sq = np.where(flip, np.conj(s), s)
-        zero = sq == 0
-        if np.any(zero):
-            for mat in self._all_materials():
-                if mat.damping > 0 and mat.damping_model == "constant_q":
-                    raise ValueError("s = 0 is not allowed with damping_model='constant_q' and damping > 0 "
-                                     "(G(0) = 0: a constant-Q solid creeps); use damping=0 or "
-                                     "'kelvin_voigt'")
-        return sq, flip, zero
+        return laplace_points(s, self._all_materials())
 
     @staticmethod
     def _material_arrays(mat, sq, zero):
@@ -724,21 +708,7 @@ class Layered:
         keys, index = pair_table(patches, patches, symmetric=True)
         vals = self._difference(keys, sq, zero, kmax_factor, height_factor, comps)
         vals = {nm: v[:, index] for nm, v in vals.items()}
-        if comps == "z":
-            diff = vals["zz"]
-        else:
-            d = patches.centres[:, None, :] - patches.centres[None, :, :]
-            sx, sy = np.sign(d[..., 0]), np.sign(d[..., 1])
-            zx = vals["zx"] * sx
-            if comps == "xz":
-                blocks = [[vals["xx"], zx.transpose(0, 2, 1)], [zx, vals["zz"]]]
-            else:
-                xy = vals["xy"] * (sx * sy)
-                zy = vals["zy"] * sy
-                blocks = [[vals["xx"], xy, zx.transpose(0, 2, 1)],
-                          [xy, vals["yy"], zy.transpose(0, 2, 1)],
-                          [zx, zy, vals["zz"]]]
-            diff = np.block(blocks)
+        diff = vals["zz"] if comps == "z" else component_blocks(vals, patches, comps)
         diff[flip] = np.conj(diff[flip])
         base[flip] = np.conj(base[flip])
         out = base + diff
