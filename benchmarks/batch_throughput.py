@@ -5,30 +5,31 @@
 Measures, for the 100 analyses of ``examples/ida.toml`` (the rocking tower under 10 records at
 10 levels of Sa(T1)):
 
-* ``serial``: every analysis in this process, one after the other (``run_analysis``, as
-  ``--synchronous`` does), after one warm-up analysis (the first solve in a process loads the
-  compiled numba code from its disk cache, about 1 s, which is reported on its own);
+* ``plain loop``: every analysis in this process, one after the other, each building its model
+  variant anew (what a loop over the analyses without the batch runner does);
+* ``serial``: the same loop with the model variants cached per process (``run_analysis``, as
+  ``--synchronous`` does: the second analysis of a variant skips the build);
 * ``dask``: the same analyses as tasks on a LocalCluster of ``--workers`` single-threaded worker
-  processes, after a warm-up task on every worker (cluster start and warm-up reported on their
-  own), their results read from their files as ``run_study`` does; and the whole ``run_study``
-  (table and figures included) on the same cluster.
+  processes, their inputs (model text, record samples) scattered once and their results returned
+  to this process, as ``run_study`` does; and the whole ``run_study`` (inputs read and scattered,
+  results written, the table; not the figures, a cost per study) on the same cluster.
 
+Every case comes after a warm-up (the first solve in a process loads the compiled numba code from
+its disk cache, about 1 s, reported on its own; the cluster's start is reported on its own too).
+The table gives the analyses per second and their ratio to the plain loop, and the model builds.
 The overhead per analysis is the wall time per analysis (times the workers) less the time spent
-in ``unilateral.solve``, relative to the latter; it covers the task round trip, building the load
-(models and records are cached per worker), collecting the peaks and writing the result
-atomically. Collecting the peak quantities (``peaks ms``: for the IDA example the base shear and
-the energy balance over every step, which the study asks for) is part of it, and shown apart: the
-last column is the overhead besides it. The parallel efficiency is ``throughput(dask) / (workers * throughput(serial))``; the
-machine's own ceiling is measured too: ``--workers`` CPU-bound Python processes started together
-against one alone (virtual CPUs that share a core give less than one each). The CPU time of this
-process during the tasks (scheduler and client, per analysis) is reported: on a machine with as
-many cores as workers it is taken from them.
+in ``unilateral.solve``, relative to the latter; it covers the task round trip, building the load,
+collecting the peaks (``peaks ms``, shown apart: the last column is the overhead besides it) and,
+for the plain loop, the build. The parallel efficiency is ``throughput(dask) / (workers *
+throughput(serial))``; the machine's own ceiling is measured too: ``--workers`` CPU-bound Python
+processes started together against one alone (virtual CPUs that share a core give less than one
+each). The CPU time of this process during the tasks (scheduler and client, per analysis) is
+reported: on a machine with as many cores as workers it is taken from them.
 
 BLAS runs single-threaded in this process (``OPENBLAS_NUM_THREADS=1`` and the like, unless set), as
-Dask's nanny sets it in the workers: both cases do the same work, and a multi-threaded BLAS call
-waiting for a busy core does not stall the serial case. All the numbers depend on the load of the
-machine (``os.getloadavg()`` is reported). Results go to a JSON file (``--out``; default: a temporary
-folder, never the repository).
+Dask's nanny sets it in the workers: every case does the same work. All the numbers depend on the
+load of the machine (``/proc/loadavg``, reported before and after): compare the ratios. Results go
+to a JSON file (``--out``; default: a temporary folder, never the repository).
 """
 
 from __future__ import annotations
@@ -38,7 +39,6 @@ import json
 import os
 import platform
 import resource
-import shutil
 import statistics
 import subprocess
 import sys
@@ -54,53 +54,62 @@ ROOT = Path(__file__).resolve().parents[1]
 LOOP = "s = 0\nfor i in range(12_000_000):\n    s += i"
 
 
-def serial(study, folder: Path) -> dict:
-    from unilateral.batch.worker import run_analysis, warm_up
+def in_process(study, inputs, *, cached: bool) -> dict:
+    """The analyses one after the other in this process, the model variants cached or built anew."""
+    from unilateral.batch.runner import _inputs_of
+    from unilateral.batch.worker import cache_stats, clear_caches, run_analysis, warm_up
 
-    results = folder / "serial"
-    results.mkdir(parents=True)
     t0 = time.perf_counter()
     warm = warm_up()
-    (results / "warm").mkdir()
-    run_analysis(study.analyses[0].payload, str(results / "warm"), "")       # builds the model: cached
+    first = study.analyses[0]
+    run_analysis(first.payload, *_inputs_of(first, inputs.variants, inputs.records))
     warm_total = time.perf_counter() - t0
+    builds = cache_stats()["model_builds"]
+    out = []
     start = time.perf_counter()
-    out = [run_analysis(a.payload, str(results), "serial") for a in study.analyses]
+    for analysis in study.analyses:
+        if not cached:
+            clear_caches()
+        out.append(run_analysis(analysis.payload, *_inputs_of(analysis, inputs.variants, inputs.records), "serial"))
     wall = time.perf_counter() - start
-    return _summary("serial (in process)", out, wall, 1, {"warm_up_s": warm_total, "numba_load_s": warm})
+    case = "serial (in process, cached)" if cached else "plain loop (in process)"
+    return _summary(case, out, wall, 1, {"warm_up_s": warm_total, "numba_load_s": warm,
+                                         "model_builds": cache_stats()["model_builds"] - builds})
 
 
-def dask(study, folder: Path, workers: int) -> tuple[dict, dict]:
+def dask(study, inputs, folder: Path, workers: int) -> tuple[dict, dict]:
+    """The analyses as tasks on a new LocalCluster, then the whole ``run_study`` on it."""
     from distributed import wait
 
     from unilateral.batch import run_study
-    from unilateral.batch.runner import _close, start_cluster
-    from unilateral.batch.worker import run_analysis, warm_up
+    from unilateral.batch.runner import _close, _inputs_of, _Tasks, start_cluster
+    from unilateral.batch.worker import cache_stats, run_analysis, warm_up
 
     t0 = time.perf_counter()
     client, cluster = start_cluster(workers)
     started = time.perf_counter() - t0
     t0 = time.perf_counter()
     client.run(warm_up)
-    for k, address in enumerate(client.scheduler_info()["workers"]):     # a folder each: none finds the
-        warm = folder / "warm" / str(k)                                   # other's result and skips the build
-        warm.mkdir(parents=True)
-        client.submit(run_analysis, study.analyses[0].payload, str(warm), "", workers=[address], pure=False).result()
+    first = study.analyses[0]
+    for address in client.scheduler_info()["workers"]:                  # each worker builds the variant
+        client.submit(run_analysis, first.payload, *_inputs_of(first, inputs.variants, inputs.records),
+                      workers=[address], pure=False).result()
     warm_total = time.perf_counter() - t0
-    results = folder / "dask"
-    results.mkdir()
+    builds = sum(s["model_builds"] for s in client.run(cache_stats).values())
     cpu = _cpu_time()
     start = time.perf_counter()
-    futures = client.map(run_analysis, [a.payload for a in study.analyses], [str(results)] * len(study.analyses),
-                         ["dask"] * len(study.analyses), pure=False)
+    futures = _Tasks(client, inputs, "dask").submit(study.analyses)       # inputs scattered once
     wait(futures)
+    out = client.gather(futures)                                          # the results come back here
     wall = time.perf_counter() - start
     here = (_cpu_time() - cpu) / len(futures)
-    out = json_results(results)                        # as run_study: read, not fetched from the workers
+    builds = sum(s["model_builds"] for s in client.run(cache_stats).values()) - builds
     tasks = _summary(f"dask ({workers} workers)", out, wall, workers,
-                     {"cluster_start_s": started, "warm_up_s": warm_total, "client_scheduler_cpu_s": here})
+                     {"cluster_start_s": started, "warm_up_s": warm_total, "client_scheduler_cpu_s": here,
+                      "model_builds": builds})
+    del futures
     start = time.perf_counter()
-    result = run_study(study, folder / "study", scheduler=cluster.scheduler_address, progress=False)
+    result = run_study(study, folder / "study", scheduler=cluster.scheduler_address, progress=False, figures=False)
     whole = time.perf_counter() - start
     _close(client, cluster)
     solve = [r["solve_time"] for r in json_results(folder / "study" / "results")]
@@ -160,40 +169,59 @@ def main(argv=None):
     args = parser.parse_args(argv)
 
     from unilateral.batch import load_study
+    from unilateral.batch.inputs import study_inputs
 
     study = load_study(args.study)
+    inputs = study_inputs(study.analyses)
     folder = Path(tempfile.mkdtemp(prefix="unilateral-batch-bench-"))
-    load_before = os.getloadavg()
-    try:
-        rows = [serial(study, folder)]
-        tasks, whole = dask(study, folder, args.workers)
-        rows.append(tasks)
-    finally:
-        shutil.rmtree(folder / "serial", ignore_errors=True)
+    load_before = _loadavg()
+    rows = [in_process(study, inputs, cached=False), in_process(study, inputs, cached=True)]
+    tasks, whole = dask(study, inputs, folder, args.workers)
+    rows.append(tasks)
+    load_after = _loadavg()
     machine = ceiling(args.workers)
-    efficiency = rows[1]["per_second"] / (args.workers * rows[0]["per_second"])
+    plain = rows[0]["per_second"]
+    efficiency = rows[2]["per_second"] / (args.workers * rows[1]["per_second"])
     report = {"study": str(args.study), "analyses": len(study.analyses), "cpu_count": os.cpu_count(),
               "machine": platform.platform(), "python": platform.python_version(),
-              "loadavg_before": load_before, "loadavg_after": os.getloadavg(),
-              "cases": rows, "run_study": whole, "parallel_efficiency": efficiency, "ceiling": machine}
-    print(f"{'case':32s} {'an/s':>7s} {'wall s':>7s} {'solve ms':>9s} {'(cpu ms)':>9s} {'peaks ms':>9s} "
-          f"{'task ms':>8s} {'overhead/solve (task)':>22s} {'(end to end)':>13s} {'(besides peaks)':>16s}")
-    for r in rows:
-        print(f"{r['case']:32s} {r['per_second']:7.2f} {r['wall_s']:7.2f} {1e3 * r['mean_solve_s']:9.1f} "
-              f"{1e3 * r['mean_solve_cpu_s']:9.1f} {1e3 * r['mean_quantities_s']:9.2f} {1e3 * r['mean_task_s']:8.1f} "
-              f"{100 * r['overhead_in_task']:21.1f}% {100 * r['overhead_end_to_end']:12.1f}% "
-              f"{100 * r['overhead_end_to_end_besides_quantities']:15.1f}%")
-    print(f"{whole['case']:32s} {whole['per_second']:7.2f} {whole['wall_s']:7.2f} "
-          f"{1e3 * whole['mean_solve_s']:9.1f}   (table, figures included)")
-    print(f"parallel efficiency on {args.workers} workers: {100 * efficiency:.0f}%   "
-          f"(warm-up: serial {rows[0]['warm_up_s']:.1f} s, cluster start {rows[1]['cluster_start_s']:.1f} s "
-          f"+ warm-up {rows[1]['warm_up_s']:.1f} s; load average {load_before[0]:.2f} -> {os.getloadavg()[0]:.2f})")
-    print(f"this process (scheduler, client) during the tasks: {1e3 * rows[1]['client_scheduler_cpu_s']:.1f} ms CPU "
-          f"per analysis; machine ceiling: {args.workers} CPU-bound processes together run "
-          f"{machine['speedup']:.2f}x one alone (median of {', '.join(f'{x:.2f}' for x in machine['speedups'])})")
+              "loadavg_before": load_before, "loadavg_after": load_after,
+              "cases": [dict(r, ratio_to_plain_loop=r["per_second"] / plain) for r in rows],
+              "run_study": dict(whole, ratio_to_plain_loop=whole["per_second"] / plain),
+              "parallel_efficiency": efficiency, "ceiling": machine}
+    _print(report, args.workers)
     out = args.out or folder / "batch_throughput.json"
     out.write_text(json.dumps(report, indent=2) + "\n")
     print(f"written: {out}")
+
+
+def _loadavg() -> str:
+    """``/proc/loadavg`` (the 1, 5 and 15 minute load averages, ...), or ``os.getloadavg()``."""
+    try:
+        return Path("/proc/loadavg").read_text().strip()
+    except OSError:
+        return " ".join(f"{x:.2f}" for x in os.getloadavg())
+
+
+def _print(report: dict, workers: int) -> None:
+    """The table of the cases, the end-to-end run and the machine's ceiling."""
+    rows, whole, machine = report["cases"], report["run_study"], report["ceiling"]
+    print(f"{'case':30s} {'an/s':>7s} {'x plain':>8s} {'wall s':>7s} {'builds':>7s} {'solve ms':>9s} "
+          f"{'peaks ms':>9s} {'task ms':>8s} {'overhead/solve (task)':>22s} {'(end to end)':>13s} "
+          f"{'(besides peaks)':>16s}")
+    for r in rows:
+        print(f"{r['case']:30s} {r['per_second']:7.2f} {r['ratio_to_plain_loop']:8.2f} {r['wall_s']:7.2f} "
+              f"{r['model_builds']:7d} {1e3 * r['mean_solve_s']:9.1f} {1e3 * r['mean_quantities_s']:9.2f} "
+              f"{1e3 * r['mean_task_s']:8.1f} {100 * r['overhead_in_task']:21.1f}% "
+              f"{100 * r['overhead_end_to_end']:12.1f}% {100 * r['overhead_end_to_end_besides_quantities']:15.1f}%")
+    print(f"{whole['case']:30s} {whole['per_second']:7.2f} {whole['ratio_to_plain_loop']:8.2f} "
+          f"{whole['wall_s']:7.2f}         {1e3 * whole['mean_solve_s']:9.1f}   (inputs read and scattered, results written, table)")
+    print(f"parallel efficiency on {workers} workers (dask over {workers} x serial): "
+          f"{100 * report['parallel_efficiency']:.0f}%   (warm-up: serial {rows[1]['warm_up_s']:.1f} s, cluster start "
+          f"{rows[2]['cluster_start_s']:.1f} s + warm-up {rows[2]['warm_up_s']:.1f} s)")
+    print(f"load average (/proc/loadavg) before: {report['loadavg_before']}; after: {report['loadavg_after']}")
+    print(f"this process (scheduler, client) during the tasks: {1e3 * rows[2]['client_scheduler_cpu_s']:.1f} ms CPU "
+          f"per analysis; machine ceiling: {workers} CPU-bound processes together run "
+          f"{machine['speedup']:.2f}x one alone (median of {', '.join(f'{x:.2f}' for x in machine['speedups'])})")
 
 
 if __name__ == "__main__":

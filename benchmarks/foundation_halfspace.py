@@ -13,6 +13,8 @@ Reports the median over ``--repeat`` runs of
 * the target: ``m = 20``, ``N = 10^4`` (aim: <= 60 s on the development machine);
 * two such towers on footings of 20 strips each, 5 m apart on one half-space (40 coupled contacts),
   ``N = 10^4`` (aim: <= 60 s);
+* the same two footings sliding on the soil (x and z forces, friction): 160 unknowns, at
+  ``N = 1000`` and ``2000``;
 * the scaling in ``m`` (5, 10, 20, 40 at ``N = 10^4``) and in ``N`` (2500, 5000, 10^4, 2 10^4 at
   ``m = 20``), with the fitted exponents of ``time ~ m^a`` and ``time ~ N^b``.
 
@@ -35,6 +37,9 @@ DT = 1e-3
 TARGET = (20, 10_000)
 M_VALUES = (5, 10, 20, 40)
 N_VALUES = (2_500, 5_000, 10_000, 20_000)
+#: Steps of the sliding footings' rows (their weights take (N+1) (4 m)^2 numbers: 10^4 steps would
+#: hold 2 GB).
+SLIDING_N = (1_000, 2_000)
 
 
 def run_once(m: int, N: int) -> dict:
@@ -55,9 +60,11 @@ def run_once(m: int, N: int) -> dict:
             "max_uplift_m": float(sol.v.max()), "contact_changes": int(sol.stats.get("contact_changes", 0))}
 
 
-def run_two_footings(m: int, N: int) -> dict:
+def run_two_footings(m: int, N: int, sliding: bool = False) -> dict:
     """Two such towers, their 10 m footings 15 m apart (5 m of ground between them) on one
-    half-space: ``2 m`` coupled contacts (structure-soil-structure interaction)."""
+    half-space: ``2 m`` coupled contacts (structure-soil-structure interaction). ``sliding``: the
+    footings rest on the soil horizontally too (x-z Green's tensor, ``mu = 0.5``): ``4 m`` soil
+    unknowns (``c``, ``f``) and ``4 m`` slips."""
     import unilateral as ul
     from unilateral.loads import LoadHistory, synthetic_accelerogram
     from unilateral.structure import Frame2D
@@ -73,14 +80,21 @@ def run_two_footings(m: int, N: int) -> dict:
         fr.beam(f"column{k}", f"base{k}", f"top{k}", E=1.0, A=EA_RIGID, I=EI * (1 + k))
         fr.mass(f"top{k}", MASS)
         fr.foundation(f"F{k}", f"base{k}", width=10.0, length=10.0, patches=m,
-                      soil={"model": "halfspace", "Vs": SOIL_VS, "nu": SOIL_NU, "rho": SOIL_RHO})
+                      soil={"model": "halfspace", "Vs": SOIL_VS, "nu": SOIL_NU, "rho": SOIL_RHO},
+                      **(dict(horizontal="soil", mu=0.5, mass=MASS / 4, J=MASS) if sliding else {}))
     structure = fr.build()
     load = LoadHistory(structure.gravity(10.0), [structure.ground_motion(record, "ux")])
     sol = ul.solve(structure.to_model(), load, dt=DT, t_end=t_end, method="cq", rule="bdf2")
     wall = time.perf_counter() - start
     parts = {key: float(value) for key, value in sol.stats.get("time", {}).items()}
-    return {"m": 2 * m, "N": N, "wall_s": wall, "parts_s": parts, "success": bool(sol.success),
-            "max_uplift_m": float(sol.v.max()), "contact_changes": int(sol.stats.get("contact_changes", 0))}
+    return {"m": (4 if sliding else 2) * m, "N": N, "wall_s": wall, "parts_s": parts, "success": bool(sol.success),
+            "max_uplift_m": float(sol.v[:, :2 * m].max()),
+            "contact_changes": int(sol.stats.get("contact_changes", 0))}
+
+
+def run_sliding(m: int, N: int) -> dict:
+    """:func:`run_two_footings` with footings that slide."""
+    return run_two_footings(m, N, sliding=True)
 
 
 def median_run(m: int, N: int, repeat: int, once=run_once) -> dict:
@@ -121,6 +135,11 @@ def main(argv=None) -> int:
     two = median_run(TARGET[0], TARGET[1], repeat, once=run_two_footings)
     results["two_footings"] = two
     print(row(two), " <- two footings of 20 strips on one half-space (aim <= 60 s)")
+    results["sliding"] = []
+    for N in SLIDING_N[:1] if args.quick else SLIDING_N:
+        r = median_run(TARGET[0], N, repeat, once=run_sliding)
+        results["sliding"].append(r)
+        print(row(r), " <- the same footings sliding: 80 soil unknowns (x, z) and 80 slips")
     if not args.quick:
         for m in M_VALUES:
             r = target if (m, TARGET[1]) == TARGET else median_run(m, TARGET[1], repeat)

@@ -398,6 +398,55 @@ lcp_options = {{ max_iter = 1 }}
     assert retried.ran == 4 and retried.counts == result.counts
 
 
+def test_each_model_variant_is_built_once_per_process(tmp_path, monkeypatch):
+    """Analyses of one variant (other records, other scale factors) reuse its build: 2 variants x
+    2 records x 2 levels build 2 models (counted by the calls of build_model_spec), not 8."""
+    from unilateral import modelfile
+    from unilateral.batch.worker import clear_caches
+
+    records = record_files(2)
+    path = write_study(tmp_path, f"""
+[[models]]
+file = "tower.toml"
+[records]
+files = ["{records[0].as_posix()}", "{records[1].as_posix()}"]
+direction = "ux"
+[scaling]
+values = [0.5, 1.0]
+[[parameters]]
+key = "unilateral.soil3.k"
+values = [150e3, 200e3]
+[analysis]
+t_end = 0.5
+""")
+    study = load_study(path)                                    # builds every variant here: not counted
+    clear_caches()
+    built, build = [], modelfile.build_model_spec
+    monkeypatch.setattr(modelfile, "build_model_spec", lambda data, source: built.append(data) or build(data, source))
+    result = run_study(study, tmp_path / "out", synchronous=True, progress=False, figures=False)
+    assert result.counts["ok"] == 8
+    assert sorted(data["unilateral"][0]["k"] for data in built) == [150e3, 200e3]
+    caches = [json.loads(p.read_text())["cache"]["model"] for p in (tmp_path / "out" / "results").glob("*.json")]
+    assert sorted(caches) == ["hit"] * 6 + ["miss"] * 2
+
+
+def test_a_model_file_changed_after_the_study_was_read_fails_its_analyses(tmp_path):
+    path = write_study(tmp_path, f"""
+[[models]]
+file = "tower.toml"
+[records]
+files = ["{record_files(1)[0].as_posix()}"]
+direction = "ux"
+[analysis]
+t_end = 0.5
+""")
+    study = load_study(path)
+    (tmp_path / "tower.toml").write_text(tower(k3=1e5))
+    result = run_study(study, tmp_path / "out", synchronous=True, progress=False, figures=False)
+    assert list(result.table["status"].values) == ["error"]
+    assert "has changed since the study was read" in result.table["message"].values[0]
+
+
 def test_a_timed_out_analysis_is_recorded(tmp_path):
     path = write_study(tmp_path, f"""
 [[models]]

@@ -356,8 +356,11 @@ def test_a_study_influence_vector_is_checked_from_its_header(tmp_path):
     for name, values in (("r.mtx", np.ones((3, 1))), ("c.mtx", np.ones((3, 1)) * (1 + 1j)),
                          ("w.mtx", np.ones((4, 1)))):
         scipy.io.mmwrite(tmp_path / name, values)
-    assert np.allclose(_ground_vector(spec, {"influence": str(tmp_path / "r.mtx")}), [-1.0, -2.0, -3.0])
-    with pytest.raises(ValueError, match=r"c\.mtx.*complex matrix"):
-        _ground_vector(spec, {"influence": str(tmp_path / "c.mtx")})
-    with pytest.raises(ValueError, match=r"w\.mtx.*expected a vector of 3 entries"):
-        _ground_vector(spec, {"influence": str(tmp_path / "w.mtx")})
+    def vector(name):        # the client sends the file's bytes; the worker reads its own copy
+        return _ground_vector(spec, {"influence": str(tmp_path / name)}, (tmp_path / name).read_bytes())
+
+    assert np.allclose(vector("r.mtx"), [-1.0, -2.0, -3.0])
+    with pytest.raises(ValueError, match=r"\.mtx.*complex matrix"):
+        vector("c.mtx")
+    with pytest.raises(ValueError, match=r"\.mtx.*expected a vector of 3 entries"):
+        vector("w.mtx")

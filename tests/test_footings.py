@@ -60,7 +60,7 @@ def portal(soil, *, spacing=8.0, gap_link=True, yielding=True, width=2.0, patche
 def test_the_soil_is_a_constraint_family_with_dual_rows():
     law = step_law([Contact([0]), SoilContact([1, 2])], 3)
     assert law.P is not None and np.array_equal(np.diag(law.P), [1.0, -1.0, -1.0]) and not law.symmetric
-    with pytest.raises(ValueError, match="friction on such patches is not available"):
+    with pytest.raises(ValueError, match="horizontal='soil'"):
         step_law([Friction([0, 1], normal=[2, 2], mu=0.3), SoilContact([2])], 3)
 
 
@@ -307,7 +307,8 @@ def test_footings_example_writes_its_figure_and_results(tmp_path):
     assert result["success_all"]
     manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
     assert "footings.png" in json.dumps(manifest)
-    assert set(result["comparison"]) == {"one soil", "each footing on its own soil"}
+    assert set(result["comparison"]) == {"one soil", "each footing on its own soil", "one soil, sliding"}
+    assert result["comparison"]["one soil, sliding"]["unilateral"]["max_slip"] >= 0.0
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert summary["extra"]["comparison"] == result["comparison"]
     with xr.open_dataset(tmp_path / "out" / "results.nc") as ds:

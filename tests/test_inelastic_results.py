@@ -199,7 +199,8 @@ def _work(force, deformation):
 
 
 @pytest.mark.parametrize("kinds, expected", [
-    (["soil", "soil"], None),
+    (["soil", "soil"], {"unilateral": "with uplift", "bilateral": "without uplift"}),
+    ([], None),
     (["yield", "yield"], {"unilateral": "with yield", "bilateral": "elastic"}),
     (["friction", "friction"], {"unilateral": "with slip", "bilateral": "no slip"}),
     (["soil", "friction", "friction", "yield", "yield"],

@@ -198,7 +198,7 @@ def test_a_failed_unilateral_case_is_reported_and_written(tmp_path, pgs_one_swee
     assert bilateral["t_reached"] == pytest.approx(0.1)
     k = failed["steps_computed"]
     assert 0 < k < 100
-    assert f"unilateral case FAILED at t = {k * 1e-3:.4g} (step {k}): {failed['message']}" in result.output
+    assert f"unilateral (with uplift) case FAILED at t = {k * 1e-3:.4g} (step {k}): {failed['message']}" in result.output
     assert "what to try: a smaller time step (--dt), another LCP solver (--lcp bpp or lemke)" in result.output
     # the failed case up to where it stopped, the bilateral case whole
     ds = open_results(out / "results.nc")

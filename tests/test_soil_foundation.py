@@ -312,7 +312,7 @@ def test_bad_input_is_refused_with_clear_messages():
     soil = model.soil
     with pytest.raises(ValueError, match=r"T has shape \(4, 3\), expected \(5, any\)"):
         FoundationModel(M, K, T[:4], soil)
-    with pytest.raises(ValueError, match="soil has m = 2 contacts but T has 3 columns"):
+    with pytest.raises(ValueError, match="soil has m = 2 rows but T has 3 columns"):
         FoundationModel(M, K, T, SoilFlexibility.kelvin([1e5, 1e5]))
     with pytest.raises(TypeError, match="soil must be a SoilFlexibility"):
         FoundationModel(M, K, T, np.eye(3))

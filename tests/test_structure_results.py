@@ -264,3 +264,33 @@ def test_rayleigh_takes_either_coefficient():
     st = fr.build()
     np.testing.assert_allclose(st.C.toarray(), 0.5 * st.M.toarray())
     assert st.rayleigh == (0.5, 0.0)
+
+
+def test_a_support_of_a_master_node_carries_its_rigidly_linked_slaves():
+    """Column bases rigidly linked to one supported node (a footing's reference node): the support's
+    reaction is the force on the whole base (equilibrium with the applied load and the inertia),
+    not just the elements attached to the master itself."""
+    import unilateral as ul
+    from unilateral.structure import Frame2D
+    from unilateral.structure import forces as F
+
+    fr = Frame2D()
+    for n, x, y in ((0, 3.0, 0.0), (1, 0.0, 0.0), (2, 6.0, 0.0), (11, 0.0, 3.0), (12, 6.0, 3.0)):
+        fr.node(n, x, y)
+    fr.rigid_link(0, 1)
+    fr.rigid_link(0, 2)
+    fr.support(0, ux=True, uy=True, rz=True)
+    for name, i, j in (("c1", 1, 11), ("c2", 2, 12), ("b", 11, 12)):
+        fr.beam(name, i, j, E=3e7, A=0.1, I=1e-3)
+    fr.mass(11, 10.0)
+    fr.mass(12, 10.0)
+    fr.spring("s", 12, 1e3, direction="uy")
+    st = fr.build()
+    r = np.asarray(st.M @ st.influence("ux")).ravel()
+    sol = ul.solve(st.to_model(), lambda t: 5.0 * r * (t > 0), method="direct", dt=1e-3, t_end=0.3)
+    h = F.Histories.from_solution(st, sol, "bdf2")
+    support = F.reactions(st, h)["support"]
+    inertia = h.uddot @ r
+    applied = 5.0 * r.sum()
+    # the ground's force plus the applied load accelerates the masses
+    assert np.abs(support["0.ux"][1:] + applied - inertia[1:]).max() < 1e-8 * applied

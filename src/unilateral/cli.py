@@ -114,8 +114,8 @@ def example(name, method, rule, dt, t_end, lcp, out, formats):
     halfspace: the same tower on a rigid footing on the paper's soil, on cones and on the elastic
     half-space, under the pulse and a synthetic earthquake; adds halfspace.png (uplift, rocking and
     contact pressure side by side) to OUT (default ./halfspace). Its results.nc holds the
-    half-space under the earthquake only: `unilateral plot` redraws that run's figures, not
-    halfspace.png (run the example again for it).
+    half-space under the earthquake, and results_<soil>_<load>.nc every run: `unilateral plot`
+    redraws halfspace.png from them.
 
     footings: a two-bay frame on two footings on one soil (a soft layer over stiffer ground), with
     yielding beam hinges, under a synthetic earthquake; adds footings.png (uplift, footing forces
@@ -174,23 +174,34 @@ def check_model_file(path: Path) -> None:
 
 
 @main.command()
-@click.argument("results", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.argument("results", required=False, type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--model", "model_file", type=click.Path(exists=True, dir_okay=False, path_type=Path), default=None,
+              metavar="MODEL.toml", help="Draw the model figure (model.png) of a model file instead of RESULTS.")
 @click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Output directory (default: the folder of RESULTS).")
+              help="Output directory (default: the folder of RESULTS; with --model the current directory).")
 @click.option("--figures", "formats", default=None, callback=_figure_formats, metavar="FORMATS",
               help="Figure formats: png (default), pdf, svg, comma-separated, or none.")
-def plot(results, out, formats):
+def plot(results, model_file, out, formats):
     """Draw the figures of a results.nc written by `run` or `example` (the same files they drew).
 
     The figures are drawn into a hidden folder in OUT and moved in only when all are drawn, so a
     failure (a full disk) leaves OUT as it was; in a run's folder they join the files its
     manifest.json lists. A figure the file cannot give (a variable missing, an attribute that
     names nothing) is skipped with the reason and the others are drawn; the exit code is then 1.
+
+    With --model MODEL.toml (and no RESULTS): the model figure model.png of the file, without
+    solving anything: the nodes, elements, unilateral elements and footings with their names, and
+    the first mode shapes of the bilateral structure.
     """
     from .figures import FigureDataError
     from .io.atomic import WriteError
     from .io.results import ResultsFileError
 
+    if (results is None) == (model_file is None):
+        raise click.UsageError("give either RESULTS (a results.nc) or --model MODEL.toml")
+    if model_file is not None:
+        _plot_model(model_file, out or Path("."), formats)
+        return
     target = out or results.parent
     try:
         paths, skipped, note = _plot(results, target, formats)
@@ -206,6 +217,24 @@ def plot(results, out, formats):
         click.echo(line, err=True)
     if skipped:
         sys.exit(1)
+
+
+def _plot_model(model_file: Path, target: Path, formats) -> None:
+    """``unilateral plot --model``: check and read the model file, draw model.png into ``target``."""
+    from .io.atomic import WriteError
+
+    try:
+        check_model_file(model_file)
+        from .figures.model import model_file_drawing
+        from .figures.replot import replot_model
+
+        paths = replot_model(model_file_drawing(model_file), target, formats)
+    except (WriteError, OSError) as exc:
+        raise click.ClickException(f"cannot write the model figure to {target}: {exc}; {target} is unchanged") from None
+    except ValueError as exc:                   # ModelFileError: the file's problems, one per line
+        raise click.ClickException(str(exc)) from None
+    for path in paths:
+        click.echo(path)
 
 
 def _plot(results, target, formats):

@@ -18,6 +18,9 @@ tables end there, and in ``results.nc`` its values after that are NaN.
                            ``psi:soil2 [kN]``; ``[1]``: dimensionless)
 ``element_forces.csv``     end forces ``name:N_i [kN]`` ... ``name:M_j [kN m]`` per element (frames)
 ``base.csv``               base shear, base vertical force, overturning moment, drifts, energies
+``spectra.csv``            with a ground motion and spectra asked for (``spectra=``): the
+                           pseudo-acceleration spectrum of the ground motion and the floor
+                           spectra of the chosen nodes per case (:mod:`unilateral.analysis.spectra`)
 ``yield_and_slip.csv``     plastic deformation and force of each yield element, slip, tangential
                            and normal force of each friction element (frames that have them);
                            these three, like the displacements, for every case
@@ -25,7 +28,9 @@ tables end there, and in ``results.nc`` its values after that are NaN.
 ``summary.json``           the key figures (static state, peaks with their times, periods,
                            energy balance, LCP error, run time)
 figures                    :mod:`unilateral.figures.results`, drawn from the Dataset written
-                           to ``results.nc`` (``unilateral plot`` draws the same files)
+                           to ``results.nc`` (``unilateral plot`` draws the same files); with
+                           ``model_figure``, ``model.png`` of the structure and its modes
+                           (:mod:`unilateral.figures.model`; ``results.nc`` holds the drawing)
 =========================  ================================================================
 
 The Dataset is a :class:`unilateral.io.dataset.Dataset`, written by h5netcdf without xarray, and
@@ -74,7 +79,8 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", in
 
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
                   meta=None, labels=None, model=None, load=None, rule=None, formats=("png",),
-                  point=None, storeys=None, figure_process=None, extra_figures=None, summary_extra=None) -> dict:
+                  point=None, storeys=None, figure_process=None, extra_figures=None, summary_extra=None,
+                  spectra=None, model_figure=False) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     The files replace those of the previous run in ``out_dir`` as a set (see the module's doc).
@@ -106,6 +112,13 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
         ``extra_figures(folder, formats)`` draws figures of its own (not redrawn by ``unilateral
         plot``) into the staging folder and returns their paths: they join the set of files (and
         ``manifest.json``). Called only with ``formats``.
+    spectra : unilateral.analysis.spectra.SpectraSettings, optional
+        With a frame under a ground motion: the response spectra (``ground_spectrum`` and
+        ``floor_spectrum`` in ``results.nc``, ``spectra.csv``, ``spectra`` in ``summary.json``, the
+        figure ``spectra``). None, or no ground motion: none.
+    model_figure : bool
+        With a frame: the figure ``model`` (:mod:`unilateral.figures.model`), the structure with its
+        names and its first modes; ``results.nc`` keeps it in its attribute ``model_drawing``.
     """
     folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir)
     try:
@@ -114,7 +127,7 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
             result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
                                 meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
                                 point=point, storeys=storeys, figure_process=figure_process,
-                                summary_extra=summary_extra)
+                                summary_extra=summary_extra, spectra=spectra, model_figure=model_figure)
             if formats and extra_figures is not None:
                 result["figures"] += [str(p) for p in extra_figures(staging, formats)]
         except BaseException:
@@ -133,7 +146,7 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
 
 
 def _write_all(out, cases: dict, *, structure, units, figure, title, meta, labels, model, load, rule, formats,
-               point, storeys, figure_process, summary_extra=None) -> dict:
+               point, storeys, figure_process, summary_extra=None, spectra=None, model_figure=False) -> dict:
     """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
     labels = labels or {}
     computed = cases
@@ -146,7 +159,7 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                     figure_text=_strip_unit(figure.get("label") or f"{figure['dof']} of node {figure['node']}"))
     if title:
         meta["title"] = title
-    ds = cases_dataset(cases, units=units, attrs=meta)
+    ds = cases_dataset(cases, units=units, attrs=meta, footings=getattr(structure, "foundation", None))
     ds.attrs["case_labels"] = json.dumps({name: labels.get(name, name) for name in cases})
     extra_results = None
     if structure is None and model is not None:
@@ -159,6 +172,10 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                                                rule=rule or main.stats.get("rule", "bdf2"), point=point,
                                                storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
+    ds, response = _with_spectra(ds, structure, extra_results, spectra, dt=_time_step(main), units=units,
+                                 names=list(cases))
+    if model_figure and structure is not None:
+        ds.attrs["model_drawing"] = _model_drawing(structure, extra_results, units, title).to_json()
     if formats and figure_process is not None:
         figure_process.submit(figure_view(ds), out, formats)
     save_netcdf(ds, out / "results.nc")
@@ -167,11 +184,15 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
     if extra_results is not None:
         _save_result_tables(ds, out, main_name=main_name, rows={name: len(sol.t) for name, sol in computed.items()},
                             units=units)
+    if response is not None:
+        from .spectra import spectra_columns
+
+        write_text_atomic(out / "spectra.csv", _csv(spectra_columns(response, units)))
 
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
     extra |= summary_extra or {}
     if figure is not None and structure is not None:
-        histories = {labels.get(name, name): structure.node_displacement(sol, figure["node"], figure["dof"])
+        histories = {name: structure.node_displacement(sol, figure["node"], figure["dof"])
                      for name, sol in computed.items()}
         extra["figure"] = {
             "node": figure["node"], "dof": figure["dof"],
@@ -189,10 +210,15 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         result["case_labels"] = {name: labels.get(name, name) for name in computed}
     if extra_results is not None:
         result["results"] = to_jsonable(extra_results["peaks"])
-        warnings = energy_warnings({labels.get(name, name): p for name, p in result["results"].items()}, rule=rule or main.stats.get("rule", "bdf2"),
+        warnings = energy_warnings({case_name(name, labels): p for name, p in result["results"].items()},
+                                   rule=rule or main.stats.get("rule", "bdf2"),
                                    dt=main.stats.get("dt"))
         if warnings:
             result["warnings"] = warnings
+    if response is not None:
+        from .spectra import spectra_summary
+
+        result["spectra"] = spectra_summary(response)
     write_json_atomic(out / "summary.json", result)
     result["figures"] = []
     if formats and figure_process is not None:
@@ -202,6 +228,56 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
 
         result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]
     return result
+
+
+def _time_step(sol) -> float:
+    """The time step of a solution: its ``dt`` statistic, else its first step."""
+    dt = sol.stats.get("dt")
+    return float(dt) if dt else float(sol.t[1] - sol.t[0])
+
+
+def _with_spectra(ds, structure, extra_results, spectra, *, dt, units, names):
+    """``(ds, response)``: the Dataset with the response spectra of :func:`unilateral.analysis.spectra.run_spectra`
+    and those spectra; ``(ds, None)`` without ``spectra`` settings, structure results or a ground motion."""
+    if spectra is None or extra_results is None:
+        return ds, None
+    from .spectra import run_spectra
+
+    response = run_spectra(structure, extra_results, spectra, dt)
+    if response is None:
+        return ds, None
+    return _with_results(ds, _spectra_results(response, units), "case" in ds.dims, names), response
+
+
+def _spectra_results(response: dict, units) -> dict:
+    """The spectra of :func:`unilateral.analysis.spectra.run_spectra` as results for :func:`_with_results`:
+    ``ground_spectrum`` (period) and, with floor nodes, ``floor_spectrum`` (period, floor) per case."""
+    length, time = ((units or {}).get(k, "") for k in ("length", "time"))
+    unit = {"units": f"{length}/{time}^2"} if length and time else {}
+    attrs = {"damping": float(response["damping"]), "direction": response["direction"], **unit}
+    period = {"long_name": "period of the oscillators of the response spectra", **({"units": time} if time else {})}
+    out = {"coords": {"period": (("period",), response["periods"], period)}, "attrs": {},
+           "static": {"ground_spectrum": (("period",), response["ground"], {
+               "long_name": f"pseudo-acceleration response spectrum of the ground motion along {response['direction']}",
+               **attrs})},
+           "variables": {}}
+    if response["floors"]:
+        out["coords"]["floor"] = (("floor",), [str(node) for node in response["nodes"]],
+                                  {"long_name": "the node of each floor spectrum"})
+        out["variables"]["floor_spectrum"] = (("period", "floor"), response["floors"], {
+            "long_name": f"pseudo-acceleration response spectrum of the absolute acceleration of the node along "
+                         f"{response['direction']}", **attrs})
+    return out
+
+
+def _model_drawing(structure, extra_results, units, title):
+    """The :class:`~unilateral.figures.model.ModelDrawing` of a frame, with the modes of its results."""
+    from ..figures.model import model_drawing
+
+    static = (extra_results or {}).get("static", {})
+    shapes, periods = static.get("mode_shape"), static.get("mode_period")
+    return model_drawing(structure, shapes=None if shapes is None else shapes[1],
+                         periods=None if periods is None else periods[1], units=units, title=title)
 
 
 def figure_view(ds):
@@ -473,24 +549,47 @@ def report(result: dict) -> str:
     if fig:
         unit = units.get("length", "") if fig["dof"] != "rz" else "rad"
         lines = [f"{fig['dof']} of node {fig['node']} [{unit}]: static {fig['static']:.4g}"]
-        width = max(15, *(len(label) for label in fig["peak"]))
-        for label, peak in fig["peak"].items():
-            lines.append(f"  {label:>{width}}: max {peak:.4g}, min {fig['minimum'][label]:.4g}")
+        width = max(15, *(len(labels.get(name, name)) for name in fig["peak"]))
+        for name, peak in fig["peak"].items():
+            lines.append(f"  {labels.get(name, name):>{width}}: max {peak:.4g}, min {fig['minimum'][name]:.4g}")
         text += "\n\n" + "\n".join(lines)
     results = result.get("results") or {}
     if results:
         text += "\n\n" + "\n".join(_result_lines(results, units, labels))
+    if result.get("spectra"):
+        text += "\n" + _spectra_line(result["spectra"], units)
     for name, case in extra.get("cases", {}).items():
         if not case["success"]:
-            text += (f"\n{labels.get(name, name)} case FAILED at t = {case.get('t_reached', float('nan')):.4g} "
+            text += (f"\n{case_name(name, labels)} case FAILED at t = {case.get('t_reached', float('nan')):.4g} "
                      f"(step {case.get('steps_computed', '?')}): {case['message']}\n{FAILURE_HINT}")
     for warning in result.get("warnings", ()):
         text += f"\nWARNING: {warning}"
     return text
 
 
+def _spectra_line(spectra: dict, units: dict) -> str:
+    """``response spectra (5 % damping, ux): peak Sa 11 m/s^2 at T = 0.58 s (ground), ...`` of the
+    ``spectra`` of ``summary.json``: the ground and at most two floors."""
+    length, time = units.get("length", ""), units.get("time", "")
+    unit = f" {length}/{time}^2" if length and time else ""
+    peaks = [("ground", spectra["ground"])] + [(f"node {node}, {case}", peak)
+                                               for case, nodes in spectra.get("floors", {}).items()
+                                               for node, peak in nodes.items()]
+    shown = "; ".join(f"{p['Sa']:.4g}{unit} at T = {p['period']:.3g} {time} ({where})".replace(" )", ")")
+                      for where, p in peaks[:3])
+    more = f"; {len(peaks) - 3} more in spectra.csv" if len(peaks) > 3 else ""
+    return (f"response spectra ({100 * spectra['damping']:g} % damping, {spectra['direction']}): peak Sa "
+            f"{shown}{more}")
+
+
 #: A relative error of the energy balance above this is warned about (terminal and summary.json).
 ENERGY_WARNING = 0.02
+
+
+def case_name(name: str, labels: dict) -> str:
+    """A case on the terminal: its key (``unilateral``, ``bilateral``) and its legend label, if other."""
+    label = (labels or {}).get(name, name)
+    return name if label == name else f"{name} ({label})"
 
 
 def energy_warnings(results: dict, *, rule=None, dt=None) -> list[str]:

@@ -175,10 +175,13 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             histories = inelastic.histories(h, e)
             if foundation is not None:      # the footings' patches follow: their upward motion + gap
                 e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])
+                if foundation.sliding:      # shears and slip pairs: the footing's horizontal motion there
+                    x = h.u @ foundation.Tx(structure.dofs)
+                    e = np.hstack([e, x, np.repeat(x, 2, axis=1)])
             put("constraint_deformation", ("time", "constraint"), case, e,
                 ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
                  "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
-                 "plus the gap)"), L)
+                 "plus the gap; its shear and slips: its horizontal motion)"), L)
             for name, (dims, values, long_name, unit) in histories.items():
                 put(name, dims, case, values, long_name, unit)
         energy = None

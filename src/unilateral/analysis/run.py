@@ -57,12 +57,68 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
     settings = settings_of(a, **overrides)
     if point is None and spec.document.output.overturning_about is not None:
         point = tuple(spec.document.output.overturning_about)
+    spectra = spectra_settings(spec)
     return analyse(spec.model, spec.load, settings, Path(out) if out is not None else Path(path.stem),
                    structure=spec.structure, units=spec.units, figure=spec.figure,
                    title=a.get("title") or path.stem, meta={"model_file": str(path)},
                    cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
                    labels=case_labels(_kinds(spec)), formats=figures, progress=progress, point=point,
-                   storeys=storeys, figure_process=figure_process)
+                   storeys=storeys, figure_process=figure_process, spectra=spectra,
+                   model_figure=spec.structure is not None)
+
+
+def spectra_settings(spec):
+    """The response spectra asked for by the ``[output]`` of a model file (None for matrices).
+
+    The periods not given default to :data:`unilateral.analysis.spectra.DEFAULT_PERIODS` (in
+    seconds, converted to the model's time unit).
+
+    Parameters
+    ----------
+    spec : ModelSpec
+        :func:`unilateral.modelfile.load_model_file` of the file.
+
+    Returns
+    -------
+    unilateral.analysis.spectra.SpectraSettings or None
+
+    Raises
+    ------
+    unilateral.modelfile.ModelFileError
+        ``floor_spectra`` names a node that does not exist, twice, or in a matrix-level model;
+        the resolved shortest period is not below the longest.
+    """
+    from ..modelfile.errors import ModelFileError, compact_ids, did_you_mean, toml_value, value_problem
+    from ..modelfile.schema import TIME_UNITS
+    from .spectra import DEFAULT_PERIODS, SpectraSettings, period_grid
+
+    output = spec.document.output
+    if spec.structure is None:
+        if output.floor_spectra:
+            raise ModelFileError(spec.source, ["output.floor_spectra: needs a frame (a matrix-level model has no "
+                                               "nodes)"])
+        return None
+    ids = [node.id for node in spec.document.nodes]
+    problems = []
+    for k, node in enumerate(output.floor_spectra):
+        if node not in ids:
+            problems.append(value_problem(("output", "floor_spectra", k), node,
+                                          f"no node {toml_value(node)} (nodes are {compact_ids(ids)})")
+                            + did_you_mean(node, ids))
+        elif node in output.floor_spectra[:k]:
+            problems.append(value_problem(("output", "floor_spectra", k), node, "node given twice"))
+    seconds = TIME_UNITS[spec.document.units.time]
+    periods = output.spectra_periods
+    shortest = periods.min if periods.min is not None else DEFAULT_PERIODS[0] / seconds
+    longest = periods.max if periods.max is not None else DEFAULT_PERIODS[1] / seconds
+    if not shortest < longest:
+        problems.append(f"output.spectra_periods: min must be < max, got min={shortest:g} and max={longest:g} "
+                        f"(the default {'max' if periods.max is None else 'min'} is "
+                        f"{(longest if periods.max is None else shortest):g} {spec.document.units.time})")
+    if problems:
+        raise ModelFileError(spec.source, problems)
+    return SpectraSettings(periods=period_grid(shortest, longest, periods.count), damping=output.spectra_damping,
+                           nodes=tuple(output.floor_spectra))
 
 
 def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None, figure_process=None,
@@ -95,8 +151,8 @@ def run_example(name="liolios1990", out=None, *, figures=("png",), progress=None
                    title="Liolios (1990), Fig. 2: vertical displacement of node 3",
                    meta={"example": name, "model": "Liolios (1990) section 5, reconstruction in docs/theory.md"},
                    cases=("unilateral", "bilateral"), formats=figures, progress=progress,
-                   labels={"unilateral": "with uplift", "bilateral": "without uplift"},
-                   point=info["left_edge"], figure_process=figure_process)
+                   labels=case_labels(structure_kinds(structure)), point=info["left_edge"],
+                   figure_process=figure_process)
 
 
 #: What each kind of unknown does in the label of the case that lets it act.
@@ -116,16 +172,19 @@ def case_labels(kinds) -> dict | None:
     Returns
     -------
     dict or None
-        None for contacts only (the cases keep their names). With yield or friction the first case
-        is named by what acts (``"with yield, slip and uplift"``) and the second, which holds every
-        unknown at its initial state, ``"elastic"`` (yield only), ``"no slip"`` (friction only) or
+        None without unknowns. The first case is named by what acts (``"with uplift"``,
+        ``"with yield, slip and uplift"``; a plain contact is an uplift). The second holds every
+        unknown at its initial state: ``"without uplift"`` (contacts only, ``"without pounding"``
+        ...), ``"elastic"`` (yield only), ``"no slip"`` (friction only) or
         ``"linear (constraints held)"``.
     """
     kinds = set(kinds)
-    if not kinds & {"yield", "friction"}:
+    if not kinds:
         return None
-    actions = sorted({_ACTIONS.get(kind, "contact") for kind in kinds}, key=_ORDER.index)
+    actions = sorted({_ACTIONS.get(kind, "uplift") for kind in kinds}, key=_ORDER.index)
     first = actions[0] if len(actions) == 1 else f"{', '.join(actions[:-1])} and {actions[-1]}"
+    if not kinds & {"yield", "friction"}:
+        return {"unilateral": f"with {first}", "bilateral": f"without {first}"}
     held = {frozenset({"yield"}): "elastic", frozenset({"friction"}): "no slip"}.get(frozenset(kinds),
                                                                                      "linear (constraints held)")
     return {"unilateral": f"with {first}", "bilateral": held}
@@ -134,10 +193,18 @@ def case_labels(kinds) -> dict | None:
 def _kinds(spec) -> list[str]:
     """The kind of each unknown of a model file: the element's for a contact, else its family."""
     if spec.structure is not None:
-        footings = spec.structure.foundation
-        return ([e.kind if u.kind == "contact" else u.kind for e, u in spec.structure.constraints]
-                + ["foundation"] * (0 if footings is None else footings.m))
+        return structure_kinds(spec.structure)
     return list(getattr(getattr(spec.model, "law", None), "kinds", ()))
+
+
+def structure_kinds(structure) -> list[str]:
+    """The kind of each unknown of a frame: the element's for a contact, else its family; then the
+    footings' contacts (``"foundation"``) and, for footings that slide, their shears and slips
+    (``"friction"``)."""
+    footings = structure.foundation
+    soil = [] if footings is None else ["foundation"] * footings.m + ["friction"] * (3 * footings.m
+                                                                                   if footings.sliding else 0)
+    return [e.kind if u.kind == "contact" else u.kind for e, u in structure.constraints] + soil
 
 
 def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:
@@ -146,8 +213,13 @@ def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:
 
 
 def analyse(model, load, settings, out, *, structure, units, figure, title, meta, cases, labels,
-            formats=("png",), progress=None, point=None, storeys=None, figure_process=None) -> dict:
+            formats=("png",), progress=None, point=None, storeys=None, figure_process=None, spectra=None,
+            model_figure=False) -> dict:
     """Solve ``cases`` (``"unilateral"``, ``"bilateral"``) and write every output to ``out``.
+
+    With ``model_figure`` a frame (``structure``) also gets the model figure ``model.png``, and with
+    ``spectra`` (a :class:`~unilateral.analysis.spectra.SpectraSettings`) and a ground motion the
+    response spectra (:func:`write_outputs`).
 
     ``progress(done, total)`` is called with work units over the whole run: ``N`` per case (step
     by step where the march reports) and ``N`` for writing the outputs and figures.
@@ -183,7 +255,8 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
                 progress((k + 1) * N, total)
         result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
                                meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
-                               formats=formats, point=point, storeys=storeys, figure_process=figure_process)
+                               formats=formats, point=point, storeys=storeys, figure_process=figure_process,
+                               spectra=spectra, model_figure=model_figure)
     finally:
         folder.close()
     if progress is not None:

@@ -17,7 +17,7 @@ import click
               help="Output directory (default: the study file's name without .toml, in the current directory).")
 @click.option("--scheduler", default=None, metavar="ADDRESS",
               help="Address of a running Dask scheduler (e.g. tcp://host:8786) instead of a local cluster; "
-                   "its workers must see the model files, records and OUT at the same paths.")
+                   "its workers need no access to the study's files (they are sent through Dask).")
 @click.option("--workers", type=click.IntRange(min=1), default=None,
               help="Worker processes of the local cluster (default: one per core).")
 @click.option("--synchronous", is_flag=True, help="Run the analyses one by one in this process, without Dask "
@@ -30,9 +30,9 @@ import click
 def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures, fsync, quiet):
     """Run every analysis of the study file STUDY (records x intensities x parameters x models).
 
-    Each analysis writes its result to OUT/results/ as soon as it is done; running the same
-    command again skips what is done, so an interrupted study (Ctrl-C, a crash) continues where
-    it stopped. The table of peak quantities goes to OUT/study.nc and OUT/study.csv, the IDA and
+    The result of each analysis is written to OUT/results/ as soon as it is done (by this
+    process: the workers need no access to the files); running the same command again skips what
+    is done, so an interrupted study (Ctrl-C, a crash) continues where it stopped. The table of peak quantities goes to OUT/study.nc and OUT/study.csv, the IDA and
     fragility curves to OUT/ida.png and OUT/fragility.png. Exits with status 1 if an analysis
     failed, 130 if interrupted.
     """

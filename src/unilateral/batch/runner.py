@@ -2,11 +2,14 @@
 
 :func:`run_study` reads the study (or takes a :class:`~unilateral.batch.study.Study`), skips the
 analyses whose result is already in ``<out>/results/`` (a JSON file named by the hash of
-everything the result depends on), runs the others as Dask tasks — on a
+everything the result depends on), reads the model files and records of the others once
+(:mod:`unilateral.batch.inputs`), runs them as Dask tasks — on a
 :class:`~distributed.LocalCluster` with one single-threaded worker process per core, on an
 existing cluster (``scheduler``), or in this process one after the other (``synchronous``) —
-and writes the study table and its figures. Interrupting it (Ctrl-C) cancels the tasks, closes
-the cluster and keeps every result already written; running it again continues.
+and writes the study table and its figures. The workers read and write no file: the inputs are
+scattered to them, each task returns its result, and this process writes it, atomically, as it
+comes back (so it is the only writer of ``<out>``). Interrupting it (Ctrl-C) cancels the tasks,
+closes the cluster and keeps every result already written; running it again continues.
 """
 
 from __future__ import annotations
@@ -24,8 +27,9 @@ from pathlib import Path
 from ..io.atomic import write_json_atomic
 from .progress import FAILED, Progress
 from .study import Study, load_study, package_version
-from .table import read_result, write_table
-from .worker import result_path, run_analysis, write_result
+from .inputs import StudyInputs, study_inputs
+from .table import read_result, result_path, write_result, write_table
+from .worker import run_analysis
 
 ALLOWED_FAILURES = 3
 """Times a task may be on a worker that dies before it is given up (``KilledWorker``)."""
@@ -99,8 +103,9 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
         analyses), ``study.nc`` and ``study.csv`` (the table), ``ida.png``, ``fragility.png``,
         ``fragility.json``.
     scheduler : str, optional
-        Address of a running Dask scheduler (``tcp://host:8786``); its workers must see the
-        files (model files, records and ``out``) at the same paths.
+        Address of a running Dask scheduler (``tcp://host:8786``). Its workers need the package,
+        not the study's files: the model files and records are sent to them through Dask, and
+        the results come back to this process.
     workers : int, optional
         Worker processes of the local cluster (default: one per core).
     synchronous : bool
@@ -154,24 +159,15 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
             result_path(results, analysis.key).unlink(missing_ok=True)
         todo.append(analysis)
     bar = Progress(len(seen), earlier, earlier_failed, enabled=progress)
-    ran = 0
+    done = _Recorder(results, bar, fsync)
     interrupted = False
     try:
-        pending = []
-        for analysis in todo:
-            if analysis.error is not None:             # e.g. an unreadable record: fails without running
-                result = _failure(analysis, "error", analysis.error, run_id)
-                write_result(result_path(results, analysis.key), result, fsync=fsync)
-                bar.update(result)
-                ran += 1
-            else:
-                pending.append(analysis)
+        pending, inputs = _runnable(todo, run_id, done)
         if synchronous or not pending:
             for analysis in pending:
-                bar.update(run_analysis(dict(analysis.payload, fsync=fsync), str(results), run_id))
-                ran += 1
+                done(run_analysis(analysis.payload, *_inputs_of(analysis, inputs.variants, inputs.records), run_id))
         else:
-            ran += _run_dask(pending, results, run_id, (client, workers), bar, fsync)
+            _run_dask(pending, inputs, run_id, (client, workers), done)
             client = None                               # closed by _run_dask
     except KeyboardInterrupt:
         interrupted = True
@@ -181,7 +177,7 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
             _close(client, None)
     table = write_table(study, results, out)
     counts = {s: int((table["status"].values == s).sum()) for s in ("ok", "failed", "error", "timeout", "pending")}
-    outcome = StudyResult(study=study, out=out, table=table, counts=counts, ran=ran, skipped=earlier,
+    outcome = StudyResult(study=study, out=out, table=table, counts=counts, ran=done.count, skipped=earlier,
                           wall_time=time.perf_counter() - start, interrupted=interrupted)
     if interrupted:
         raise StudyInterrupted(outcome)
@@ -193,6 +189,55 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
 def _failure(analysis, status: str, message: str, run_id: str) -> dict:
     return {"key": analysis.key, "status": status, "message": message, "values": {}, "notes": [], "stats": {},
             "solve_time": math.nan, "task_time": math.nan, "run_id": run_id, "pid": os.getpid(), "worker": ""}
+
+
+class _Recorder:
+    """Writes the results of a run (this process is their only writer) and counts them.
+
+    Calling it with a result writes ``<results>/<key>.json`` atomically and updates the progress
+    bar; it returns whether the result asks for its worker to be restarted (a timeout).
+    """
+
+    def __init__(self, results: Path, bar: Progress, fsync: bool):
+        self.results, self.bar, self.fsync = results, bar, fsync
+        self.count = 0
+
+    def __call__(self, result: dict) -> bool:
+        restart = bool(result.pop("restart_worker", False))
+        write_result(result_path(self.results, result["key"]), result, fsync=self.fsync)
+        self.bar.update(result)
+        self.count += 1
+        return restart
+
+
+def _runnable(todo, run_id: str, done: _Recorder) -> tuple[list, StudyInputs]:
+    """Read the inputs of ``todo`` (:func:`~unilateral.batch.inputs.study_inputs`) and record as
+    errors the analyses that cannot run: ``Analysis.error`` (e.g. a record unreadable when the
+    study was read), or an input that cannot be read now (e.g. a model file changed since).
+
+    Returns
+    -------
+    (list of Analysis, StudyInputs)
+        The analyses to run and their inputs.
+    """
+    for analysis in todo:
+        if analysis.error is not None:
+            done(_failure(analysis, "error", analysis.error, run_id))
+    inputs = study_inputs([a for a in todo if a.error is None])
+    pending = []
+    for analysis in todo:
+        if analysis.error is None and analysis.key in inputs.errors:
+            done(_failure(analysis, "error", inputs.errors[analysis.key], run_id))
+        elif analysis.error is None:
+            pending.append(analysis)
+    return pending, inputs
+
+
+def _inputs_of(analysis, variants: dict, records: dict) -> tuple:
+    """``(variant source, record)`` of ``analysis`` from the tables ``variants`` and ``records``
+    (values or their Dask futures); the record is None for a study without records."""
+    record = analysis.payload["record"]
+    return variants[analysis.payload["variant"]], None if record is None else records[record]
 
 
 def _remove_stale_temporaries(results: Path) -> None:
@@ -273,9 +318,17 @@ def _ignore_interrupts():
     return signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _run_dask(todo, results: Path, run_id: str, cluster_spec, bar: Progress, fsync=False) -> int:
-    """Run ``todo`` on Dask: ``cluster_spec = (client, workers)``, a client of a scheduler already
-    reached, or None and the workers of a new LocalCluster."""
+def _run_dask(todo, inputs: StudyInputs, run_id: str, cluster_spec, done: _Recorder) -> None:
+    """Run ``todo`` on Dask and record their results as they come back.
+
+    ``cluster_spec = (client, workers)``: a client of a scheduler already reached, or None and the
+    workers of a new LocalCluster. Each task returns its result to this process, which writes it.
+    A worker restarted after a timeout gets the inputs again; a task cancelled because the inputs
+    it needed were lost meanwhile (the restarted worker held their only copy) is submitted again,
+    once per restart and up to ``ALLOWED_FAILURES`` times more (a cancellation by someone else).
+    """
+    from concurrent.futures import CancelledError
+
     from distributed import as_completed
 
     client, workers = cluster_spec
@@ -283,40 +336,27 @@ def _run_dask(todo, results: Path, run_id: str, cluster_spec, bar: Progress, fsy
     if client is None:
         client, cluster = start_cluster(workers)
     futures = {}
-    ran = 0
     try:
-        submitted = client.map(run_analysis, [dict(a.payload, fsync=fsync) for a in todo],
-                               [str(results)] * len(todo), [run_id] * len(todo),
-                               key=[f"unilateral-analysis-{a.key}" for a in todo], pure=False, retries=0)
-        futures = dict(zip(submitted, todo))
-        for future in as_completed(list(futures)):
+        tasks = _Tasks(client, inputs, run_id)
+        futures = dict(zip(tasks.submit(todo), todo))
+        resubmitted, restarts = dict.fromkeys((a.key for a in todo), 0), 0
+        queue = as_completed(list(futures), with_results=True, raise_errors=False)
+        for future, result in queue:
             analysis = futures.pop(future)
-            if future.status == "finished":
-                # The task wrote its result: read it here rather than fetch it from the worker (a
-                # round trip per analysis, and CPU that the workers share on one machine). Fetched
-                # only if this process cannot read it, or for a timeout (whether to restart the worker).
-                result = read_result(results, analysis.key)
-                if result is None or result["status"] == "timeout":
-                    result = future.result()
-            else:
-                try:
-                    exc = future.exception()
-                    message = f"{type(exc).__name__}: {exc}"
-                except BaseException as err:           # noqa: BLE001 - e.g. CancelledError
-                    message = f"{type(err).__name__}: {err}"
-                if "KilledWorker" in message:
-                    message = (f"the workers running it died {ALLOWED_FAILURES} times ({message}); "
-                               "too much memory, or a crash of compiled code?")
-                result = _failure(analysis, "error", message, run_id)
-                write_result(result_path(results, analysis.key), result, fsync=fsync)
-            if result.pop("restart_worker", False) and result.get("worker"):
-                try:                                    # stop the computation left running
-                    client.restart_workers([result["worker"]], timeout=60)
-                except Exception:                       # noqa: BLE001 - best effort
-                    pass
             future.release()
-            bar.update(result)
-            ran += 1
+            if isinstance(result, CancelledError) and resubmitted[analysis.key] < ALLOWED_FAILURES + restarts:
+                resubmitted[analysis.key] += 1
+                tasks.ensure()
+                again, = tasks.submit([analysis], attempt=resubmitted[analysis.key])
+                futures[again] = analysis
+                queue.add(again)
+                continue
+            if not isinstance(result, dict):           # the task raised: e.g. its workers died
+                result = _failure(analysis, "error", _task_error(result), run_id)
+            if done(result) and result.get("worker"):
+                _restart(client, result["worker"])
+                tasks.ensure()                          # the worker may have held the only copies
+                restarts += 1
     except KeyboardInterrupt:
         try:
             client.cancel(list(futures), force=True)
@@ -325,7 +365,86 @@ def _run_dask(todo, results: Path, run_id: str, cluster_spec, bar: Progress, fsy
         raise
     finally:
         _close(client, cluster)
-    return ran
+
+
+class _Tasks:
+    """Submits analyses as Dask tasks, their inputs scattered once to every worker.
+
+    The model sources and the records are scattered with ``broadcast``: each worker runs analyses
+    of any variant and record, and a copy survives the death of a worker. Their Dask keys name
+    the run, the content and the time they were scattered (``unilateral-variant-<digest>-<run>-<n>``),
+    so that inputs scattered again are never taken for lost ones, nor for another study's.
+
+    Parameters
+    ----------
+    client : distributed.Client;  inputs : StudyInputs;  run_id : str
+    """
+
+    def __init__(self, client, inputs: StudyInputs, run_id: str):
+        self.client, self.inputs, self.run_id = client, inputs, run_id
+        self.variants, self.records, self.generation = {}, {}, 0
+        self.ensure()
+
+    def scatter(self) -> None:
+        """Send the inputs to every worker, as new keys."""
+        tag = f"{self.run_id}-{self.generation}"
+        variants = {index: f"unilateral-variant-{source['digest'][:24]}-{tag}"
+                    for index, source in self.inputs.variants.items()}
+        records = {digest: f"unilateral-record-{digest[:24]}-{tag}" for digest in self.inputs.records}
+        data = {key: self.inputs.variants[index] for index, key in variants.items()}
+        data.update({key: self.inputs.records[digest] for digest, key in records.items()})
+        self.client.wait_for_workers(1)
+        scattered = self.client.scatter(data, broadcast=True, hash=False)
+        old = [*self.variants.values(), *self.records.values()]
+        self.variants = {index: scattered[key] for index, key in variants.items()}
+        self.records = {digest: scattered[key] for digest, key in records.items()}
+        self.generation += 1
+        for future in old:
+            future.release()
+
+    def ensure(self) -> None:
+        """Scatter the inputs (again) until the scheduler knows a copy of each: the first time,
+        and after a worker that held the only copy of one of them is gone."""
+        while not self._held():
+            self.scatter()
+
+    def _held(self) -> bool:
+        """Whether the inputs are scattered and the scheduler knows a copy of every one."""
+        from concurrent.futures import CancelledError
+
+        futures = [*self.variants.values(), *self.records.values()]
+        if not futures or any(f.status != "finished" for f in futures):
+            return False
+        try:
+            return all(self.client.who_has(futures).values())
+        except CancelledError:                          # lost since the statuses were read
+            return False
+
+    def submit(self, analyses, attempt: int = 0) -> list:
+        """The futures of ``analyses``; ``attempt`` > 0 names the tasks of a submission again (the
+        key of a cancelled task stays cancelled until the scheduler has forgotten it)."""
+        sources, motions = zip(*(_inputs_of(a, self.variants, self.records) for a in analyses))
+        suffix = f"-{attempt}" if attempt else ""
+        return self.client.map(run_analysis, [a.payload for a in analyses], sources, motions,
+                               [self.run_id] * len(analyses),
+                               key=[f"unilateral-analysis-{a.key}{suffix}" for a in analyses], pure=False, retries=0)
+
+
+def _task_error(exc) -> str:
+    """The message of a task that raised ``exc`` instead of returning a result."""
+    message = f"{type(exc).__name__}: {exc}"
+    if "KilledWorker" in message:
+        message = (f"the workers running it died {ALLOWED_FAILURES} times ({message}); "
+                   "too much memory, or a crash of compiled code?")
+    return message
+
+
+def _restart(client, worker: str) -> None:
+    """Restart ``worker`` to stop the computation a timed-out analysis left running (best effort)."""
+    try:
+        client.restart_workers([worker], timeout=60)
+    except Exception:                                   # noqa: BLE001 - best effort
+        pass
 
 
 def _close(client, cluster) -> None:

@@ -91,7 +91,7 @@ class Variant:
     overrides: list                   # [(key path, value), ...], applied in order
     parameters: dict                  # swept key path -> value
     digest: str                       # model file and the files it references
-    file_digest: str                  # the model file alone (checked by the workers)
+    file_digest: str                  # the model file alone (checked again when its analyses start)
     ground_motion: dict               # {"direction": ...} or {"influence": path, "digest": ...}
     settings: dict                    # dt, t_end, method, rule, lcp, initial
     T1: float = math.nan              # first period with every constraint bilateral [s]
@@ -613,23 +613,9 @@ def _ground_motion(doc: StudyFile, base: dict, folder: Path, model_path: Path, k
 
 def _referenced_digests(data, folder: Path) -> dict:
     """Hashes of the files a (changed) model file refers to: tables and matrices."""
-    found = {}
+    from .worker import file_references
 
-    def walk(node, in_matrices=False):
-        if isinstance(node, dict):
-            for key, value in node.items():
-                if isinstance(value, str) and (key == "file" or in_matrices):
-                    candidate = folder / value
-                    if candidate.is_file():
-                        found[value] = sha256_file(candidate)
-                else:
-                    walk(value, in_matrices or key == "matrices")
-        elif isinstance(node, list):
-            for value in node:
-                walk(value, in_matrices)
-
-    walk(data)
-    return found
+    return {name: sha256_file(folder / name) for name in file_references(data) if (folder / name).is_file()}
 
 
 # ---------------------------------------------------------------------- analyses
@@ -676,10 +662,8 @@ def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | Non
              "scale": scale, "settings": {k: v for k, v in settings.items() if k != "timeout"},
              "quantities": [q.model_dump() for q in doc.quantities]}
     key = sha256_json(ident)[:24]
-    payload = {"key": key, "model_path": str(variant.path), "model_digest": variant.file_digest,
-               "overrides": variant.overrides, "record": None if record is None else record.payload(),
-               "ground_motion": variant.ground_motion, "scale": scale, "settings": settings,
-               "quantities": [q.model_dump() for q in doc.quantities]}
+    payload = {"key": key, "variant": variant.index, "record": None if record is None else record.digest,
+               "scale": scale, "settings": settings, "quantities": [q.model_dump() for q in doc.quantities]}
     return Analysis(key=key, index=index, variant=variant, record=record, level=level, intensity=intensity,
                     scale=scale, record_intensity=record_im, settings=settings, payload=payload, error=error)
 

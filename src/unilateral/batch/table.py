@@ -13,11 +13,42 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io.atomic import atomic_path
+from ..io.atomic import atomic_path, to_jsonable, write_json_atomic
 from ..modelfile.errors import toml_value
-from .worker import result_path
 
 STATUSES = ("ok", "failed", "error", "timeout", "pending")
+
+
+def result_path(results: str | Path, key: str) -> Path:
+    """``<results>/<key>.json``: the file of the result of analysis ``key``."""
+    return Path(results) / f"{key}.json"
+
+
+def write_result(path: Path, result: dict, *, fsync: bool = False) -> None:
+    """Write a result atomically: a temporary file in the same folder, renamed over ``path``.
+
+    A process killed half-way leaves the previous state (no file, or the old one) and at most a
+    stale temporary file (removed by the next run). With ``fsync`` the file and the rename are
+    also flushed to disk (:func:`unilateral.io.atomic.write_json_atomic`), which survives a crash
+    of the operating system too but costs about 8 ms per result on an ordinary disk; without it a
+    crash of the machine can leave a truncated file, which the next run finds unreadable and runs
+    again, so nothing is lost either way.
+    """
+    import os
+    import secrets
+
+    if fsync:
+        write_json_atomic(path, result)
+        return
+    text = json.dumps(to_jsonable(result), indent=1) + "\n"
+    tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp{path.suffix}")
+    try:
+        with open(tmp, "x", encoding="utf-8") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
 
 
 def read_result(results: Path, key: str) -> dict | None:

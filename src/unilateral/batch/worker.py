@@ -1,11 +1,12 @@
-"""One analysis of a study, as run by a worker: build (cached), solve, collect the peaks, write.
+"""One analysis of a study, as run by a worker: build (cached), solve, collect the peaks.
 
 :func:`run_analysis` takes the payload of an :class:`~unilateral.batch.study.Analysis` (a small
-JSON-able dict) and writes the result ``<results>/<key>.json`` atomically, failures included.
-Models and records are cached per process (a Dask worker process runs many analyses): a model
-variant is built once per (file, modification time, size, changed values), a record read once per
-(file, modification time, size, options), so a worker reads each file once whatever the number
-of analyses that use it.
+JSON-able dict), the source of its model variant (:func:`unilateral.batch.inputs.variant_source`:
+the model text, the changed values, the files it refers to) and its record's samples, and returns
+the result, failures included; the process that runs the study writes it. A worker reads no file
+of the study, so a cluster needs no file system shared with that process. The built model
+variants are cached per process (a Dask worker process runs many analyses), keyed by the hash of
+their source: a worker builds each variant once, whatever the number of its analyses.
 """
 
 from __future__ import annotations
@@ -23,8 +24,8 @@ from pathlib import Path
 import numpy as np
 
 _MODEL_CACHE: dict = {}
-_RECORD_CACHE: dict = {}
-_CACHE_STATS = {"model_builds": 0, "record_reads": 0}
+_CACHE_STATS = {"model_builds": 0}
+_FILES: dict = {}
 NOTES = {
     "base_shear": "not available: the model is not a frame (no elements to take the ground forces from)",
     "energy_error": "not available: the model is not a frame (no elements to take the energies from)",
@@ -36,86 +37,118 @@ class AnalysisTimeout(Exception):
 
 
 def cache_stats() -> dict:
-    """How many model variants this process has built and records it has read."""
+    """How many model variants this process has built (``model_builds``), and its ``pid``."""
     return dict(_CACHE_STATS, pid=os.getpid())
 
 
 def clear_caches() -> None:
+    """Forget the model variants built by this process."""
     _MODEL_CACHE.clear()
-    _RECORD_CACHE.clear()
 
 
 # ---------------------------------------------------------------------- cached inputs
-def _file_stamp(path: str) -> tuple:
-    st = os.stat(path)
-    return (path, st.st_mtime_ns, st.st_size)
-
-
-def model_variant(payload: dict):
-    """``(spec, ground-motion vector or None, node y coordinates, FrameOperators or None)`` of the
-    payload's model variant (None: a matrix-level model)."""
-    import json
-
-    from ..modelfile import build_model_spec
+def variant_data(text: str, overrides) -> dict:
+    """The parsed model file ``text`` with the changed values ``[(key path, value), ...]`` applied in order."""
     from .keypath import set_key_path
-    from .study import sha256_file
 
-    path = payload["model_path"]
-    key = (_file_stamp(path), json.dumps(payload["overrides"], sort_keys=True, default=str),
-           json.dumps(payload["ground_motion"], sort_keys=True))
-    hit = _MODEL_CACHE.get(key)
+    data = tomllib.loads(text)
+    for key_path, value in overrides:
+        set_key_path(data, key_path, copy.deepcopy(value))
+    return data
+
+
+def file_references(data) -> list:
+    """The file names of a parsed model file: the ``file`` keys and the strings of ``[matrices]``."""
+    found = []
+
+    def walk(node, in_matrices=False):
+        if isinstance(node, dict):
+            for key, value in node.items():
+                if isinstance(value, str) and (key == "file" or in_matrices):
+                    found.append(value)
+                else:
+                    walk(value, in_matrices or key == "matrices")
+        elif isinstance(node, list):
+            for value in node:
+                walk(value, in_matrices)
+
+    walk(data)
+    return found
+
+
+def localize_files(data, files: dict) -> None:
+    """Point the file names of ``data`` that ``files`` holds (``{name: bytes}``) at copies of
+    theirs in a folder of this process (written once per content), in place."""
+    def local(name):
+        return str(_local_copy(name, files[name])) if name in files else name
+
+    def walk(node, in_matrices=False):
+        items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+        for key, value in list(items):
+            if isinstance(value, str) and (key == "file" or in_matrices):
+                node[key] = local(value)
+            else:
+                walk(value, in_matrices or key == "matrices")
+
+    walk(data)
+
+
+def _local_copy(name: str, content: bytes) -> Path:
+    """A file of this process' temporary folder holding ``content`` (named by its hash, suffix kept)."""
+    import hashlib
+    import tempfile
+
+    if "folder" not in _FILES:
+        _FILES["folder"] = tempfile.TemporaryDirectory(prefix="unilateral-batch-")     # removed at exit
+    path = Path(_FILES["folder"].name) / f"{hashlib.sha256(content).hexdigest()[:24]}{Path(name).suffix}"
+    if not path.exists():
+        path.write_bytes(content)
+    return path
+
+
+def model_variant(source: dict):
+    """``(spec, ground-motion vector or None, node y coordinates, FrameOperators or None)`` of a
+    model variant, built once per process (cached by ``source["digest"]``).
+
+    Parameters
+    ----------
+    source : dict
+        :func:`unilateral.batch.inputs.variant_source` of the variant.
+    """
+    from ..modelfile import build_model_spec
+
+    hit = _MODEL_CACHE.get(source["digest"])
     if hit is not None:
         return hit
-    if sha256_file(path) != payload["model_digest"]:
-        raise RuntimeError(f"the model file {path} has changed since the study was started; start it again")
-    data = tomllib.loads(Path(path).read_bytes().decode("utf-8-sig"))
-    for key_path, value in payload["overrides"]:
-        set_key_path(data, key_path, copy.deepcopy(value))
-    spec = build_model_spec(data, Path(path))
-    vector = _ground_vector(spec, payload["ground_motion"])
+    data = variant_data(source["text"], source["overrides"])
+    localize_files(data, source["files"])
+    spec = build_model_spec(data, Path(source["path"]))
+    vector = _ground_vector(spec, source["ground_motion"], source["influence"])
     ys = {node.id: node.y for node in spec.document.nodes}
     _CACHE_STATS["model_builds"] += 1
     frame = None if spec.structure is None else FrameOperators(spec.structure)
-    _MODEL_CACHE[key] = (spec, vector, ys, frame)
-    return _MODEL_CACHE[key]
+    _MODEL_CACHE[source["digest"]] = (spec, vector, ys, frame)
+    return _MODEL_CACHE[source["digest"]]
 
 
-def _ground_vector(spec, ground: dict):
-    """``-M r`` of the study's ground motion, as the model file builds it."""
+def _ground_vector(spec, ground: dict, influence: bytes | None):
+    """``-M r`` of the study's ground motion, as the model file builds it (``influence``: the
+    Matrix Market file of ``r`` of a matrix-level model)."""
     if not ground:
         return None
     model = spec.model
     if "direction" in ground:
         r = np.array([1.0 if dof == ground["direction"] else 0.0 for _, dof in spec.structure.dofs.free])
     else:
-        from pathlib import Path
-
         from ..modelfile.errors import Problems
         from ..modelfile.matrices import read_vector
 
-        path = Path(ground["influence"])
+        path = _local_copy(ground["influence"], influence)
         try:      # the header checked first (a real vector of n entries), as the model files' matrices
             r = read_vector(("ground", "influence"), path.name, path.parent, model.n)
         except Problems as exc:
             raise ValueError(str(exc)) from None
     return -np.asarray(model.M @ r).ravel()
-
-
-def study_record(payload: dict):
-    """The GroundMotion of a record payload, cached per process."""
-    import json
-
-    from .study import read_study_record
-
-    if payload["kind"] == "file":
-        key = (_file_stamp(payload["path"]), json.dumps(payload["options"], sort_keys=True))
-    else:
-        key = ("synthetic", json.dumps(payload["options"], sort_keys=True))
-    hit = _RECORD_CACHE.get(key)
-    if hit is None:
-        hit = _RECORD_CACHE[key] = read_study_record(payload)
-        _CACHE_STATS["record_reads"] += 1
-    return hit
 
 
 def analysis_load(spec, vector, record, scale: float):
@@ -125,7 +158,7 @@ def analysis_load(spec, vector, record, scale: float):
     analysis equals the model file run with that record, bit for bit.
     """
     from ..loads import LoadHistory, Tabulated, length_factor
-    from .study import TIME_UNITS
+    from ..modelfile.schema import TIME_UNITS
 
     if vector is None:
         return spec.load
@@ -298,47 +331,23 @@ def _dof_history(sol, spec, node, dof):
 
 
 # ---------------------------------------------------------------------- one analysis
-def result_path(results: str | Path, key: str) -> Path:
-    return Path(results) / f"{key}.json"
+def run_analysis(payload: dict, source: dict, record=None, run_id: str = "") -> dict:
+    """Run one analysis and return its result (the process that runs the study writes it).
 
+    Reads no file: the model variant is built from ``source`` (once per process) and the record
+    is given. Never raises for a problem of the analysis itself: an LCP failure
+    (``success=False``), an exception or a timeout is the result, with its message.
 
-def write_result(path: Path, result: dict, *, fsync: bool = False) -> None:
-    """Write a result atomically: a temporary file in the same folder, renamed over ``path``.
-
-    A process killed half-way leaves the previous state (no file, or the old one) and at most a
-    stale temporary file (removed by the next run). With ``fsync`` the file and the rename are
-    also flushed to disk (:func:`unilateral.io.atomic.write_json_atomic`), which survives a crash
-    of the operating system too but costs about 8 ms per result on an ordinary disk; without it a
-    crash of the machine can leave a truncated file, which the next run finds unreadable and runs
-    again, so nothing is lost either way.
-    """
-    import json
-    import secrets
-
-    if fsync:
-        from ..io.atomic import write_json_atomic
-
-        write_json_atomic(path, result)
-        return
-    from ..io.atomic import to_jsonable
-
-    text = json.dumps(to_jsonable(result), indent=1) + "\n"
-    tmp = path.with_name(f".{path.name}.{secrets.token_hex(4)}.tmp{path.suffix}")
-    try:
-        with open(tmp, "x", encoding="utf-8") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-
-
-def run_analysis(payload: dict, results: str, run_id: str = "") -> dict:
-    """Run one analysis and write its result atomically to ``<results>/<key>.json``.
-
-    Never raises for a problem of the analysis itself: an LCP failure (``success=False``), an
-    exception or a timeout is written as the result, with its message. A result that already
-    exists (a retried task whose first attempt finished) is returned as it is.
+    Parameters
+    ----------
+    payload : dict
+        ``Analysis.payload``: ``key``, ``scale``, ``settings``, ``quantities``.
+    source : dict
+        :func:`unilateral.batch.inputs.variant_source` of the analysis' model variant.
+    record : GroundMotion, optional
+        The record (None: the model's own loads).
+    run_id : str
+        The run that asked for it, recorded in the result.
 
     Returns
     -------
@@ -346,70 +355,61 @@ def run_analysis(payload: dict, results: str, run_id: str = "") -> dict:
         The result: ``key``, ``status`` (``"ok"``, ``"failed"``, ``"error"``, ``"timeout"``),
         ``message``, ``values`` (the peak quantities), ``notes``, ``stats`` (steps, method,
         max_lcp_error, contact_changes), ``solve_time``, ``quantities_time`` (collecting the
-        peaks), ``task_time`` (all but writing the file) in seconds, ``worker``, ``pid``, ``run_id``,
-        ``cache``.
+        peaks), ``task_time`` in seconds, ``worker``, ``host``, ``pid``, ``run_id``, ``cache``
+        (``{"model": "hit" or "miss"}``), and ``restart_worker`` (True) after a timeout.
     """
-    import json
-
     start = time.perf_counter()
-    path = result_path(results, payload["key"])
-    if path.exists():
-        try:
-            return dict(json.loads(path.read_text()), existing=True)
-        except (OSError, ValueError):
-            pass                                       # unreadable: run again and replace it
     result = {"key": payload["key"], "status": "ok", "message": "", "values": {}, "notes": [], "stats": {},
               "solve_time": math.nan, "run_id": run_id, "pid": os.getpid(), "host": socket.gethostname(),
               "worker": _worker_address()}
-    restart = False
     try:
-        builds, reads = _CACHE_STATS["model_builds"], _CACHE_STATS["record_reads"]
-        spec, vector, ys, operators = model_variant(payload)
-        record = None if payload["record"] is None else study_record(payload["record"])
-        result["cache"] = {"model": "miss" if _CACHE_STATS["model_builds"] > builds else "hit",
-                           "record": "miss" if _CACHE_STATS["record_reads"] > reads else "hit"}
-        load = analysis_load(spec, vector, record, payload["scale"])
-        settings = payload["settings"]
-        if not math.isfinite(settings["t_end"]):
-            raise ValueError("no end time (the record could not be read)")
-        t0 = time.perf_counter()
-        sol, cpu = _solve(spec.model, load, settings)
-        result["solve_time"] = time.perf_counter() - t0
-        result["solve_cpu_time"] = cpu
-        stats = sol.stats
-        result["stats"] = {"steps": int(len(sol.t) - 1), "method": str(stats.get("method", "")),
-                           "max_lcp_error": float(stats.get("max_lcp_error", math.nan)),
-                           "contact_changes": int(stats.get("contact_changes", -1))}
-        result["message"] = sol.message
-        if not sol.success:
-            result["status"] = "failed"
-        values = {}
-        t0 = time.perf_counter()
-        frame = (FrameResults(sol, operators, load, settings["rule"])
-                 if operators is not None and sol.u is not None and len(sol.t) > 1 else None)
-        for quantity in payload["quantities"]:
-            got, notes = collect(quantity, sol, spec, ys, frame)
-            values.update(got)
-            result["notes"] += notes
-        overflow = _non_finite(sol, values) if sol.success else ""
-        if overflow:
-            result.update(status="failed", message=overflow)
-        if result["status"] == "failed":               # peaks of a run that stopped half-way mislead
-            values = {name: math.nan for name in values}
-        result["values"] = values
-        result["quantities_time"] = time.perf_counter() - t0
+        builds = _CACHE_STATS["model_builds"]
+        spec, vector, ys, operators = model_variant(source)
+        result["cache"] = {"model": "miss" if _CACHE_STATS["model_builds"] > builds else "hit"}
+        _solve_and_collect(result, payload, spec, analysis_load(spec, vector, record, payload["scale"]),
+                           (ys, operators))
     except AnalysisTimeout as exc:
-        result.update(status="timeout", message=str(exc))
-        restart = True
+        result.update(status="timeout", message=str(exc), restart_worker=True)
     except Exception as exc:                           # noqa: BLE001 - recorded, the study goes on
         tb = traceback.extract_tb(exc.__traceback__)
         where = f" (at {Path(tb[-1].filename).name}:{tb[-1].lineno})" if tb else ""
         result.update(status="error", message=f"{type(exc).__name__}: {exc}{where}")
     result["task_time"] = time.perf_counter() - start
-    write_result(path, result, fsync=payload.get("fsync", False))
-    if restart:
-        result["restart_worker"] = True
     return result
+
+
+def _solve_and_collect(result: dict, payload: dict, spec, load, variant_extras) -> None:
+    """Solve the analysis and fill ``result`` (status, message, stats, peak values, times) in place."""
+    ys, operators = variant_extras
+    settings = payload["settings"]
+    if not math.isfinite(settings["t_end"]):
+        raise ValueError("no end time (the record could not be read)")
+    t0 = time.perf_counter()
+    sol, cpu = _solve(spec.model, load, settings)
+    result["solve_time"] = time.perf_counter() - t0
+    result["solve_cpu_time"] = cpu
+    stats = sol.stats
+    result["stats"] = {"steps": int(len(sol.t) - 1), "method": str(stats.get("method", "")),
+                       "max_lcp_error": float(stats.get("max_lcp_error", math.nan)),
+                       "contact_changes": int(stats.get("contact_changes", -1))}
+    result["message"] = sol.message
+    if not sol.success:
+        result["status"] = "failed"
+    values = {}
+    t0 = time.perf_counter()
+    frame = (FrameResults(sol, operators, load, settings["rule"])
+             if operators is not None and sol.u is not None and len(sol.t) > 1 else None)
+    for quantity in payload["quantities"]:
+        got, notes = collect(quantity, sol, spec, ys, frame)
+        values.update(got)
+        result["notes"] += notes
+    overflow = _non_finite(sol, values) if sol.success else ""
+    if overflow:
+        result.update(status="failed", message=overflow)
+    if result["status"] == "failed":                   # peaks of a run that stopped half-way mislead
+        values = {name: math.nan for name in values}
+    result["values"] = values
+    result["quantities_time"] = time.perf_counter() - t0
 
 
 def _non_finite(sol, values: dict) -> str:

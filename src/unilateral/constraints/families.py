@@ -3,15 +3,19 @@
 A model's ``m`` unknowns ``v`` (columns of ``F``, rows and columns of ``H``) are split into
 families. Each family names its unknowns (indices into ``0..m-1``) and says
 
-* its **law**: ``"holonomic"`` (the paper's contact: ``v >= 0, psi <= 0, psi^T v = 0``) or
+* its **law**: ``"holonomic"`` (the paper's contact: ``v >= 0, psi <= 0, psi^T v = 0``),
   ``"rate"`` (plasticity and friction: the unknown is a multiplier that only accumulates, and
-  complementarity holds for its increment, ``d lambda >= 0, phi <= 0, phi^T d lambda = 0``);
+  complementarity holds for its increment, ``d lambda >= 0, phi <= 0, phi^T d lambda = 0``) or
+  ``"free"`` (a force of either sign whose row is an equation, ``psi = 0``: the shear of a footing
+  patch that sticks to the soil or slides by the slips of its friction pair);
 * its **rows**: the constraint function of an unknown is, by default, its own ``psi`` (the
   associated law, ``psi = F^T u - H v - g``); friction replaces the ``psi`` of a slip by
   ``psi_slip + mu psi_normal`` (``T - mu N``): a non-associated law, a non-symmetric step LCP;
 * its **row sign**: :class:`SoilContact` rows (a soil in the Laplace domain, in the dual form:
   the unknown is the contact force, the row the opening) enter the LCP with ``P_ii = -1``;
-* its **kind** (``"contact"``, ``"yield"``, ``"friction"``), for reports and figures.
+* its **unknown coupling**: :class:`SoilFriction` rows take the normal force from the *unknown*
+  of a soil contact (``w = mu c -+ f``), not from its row;
+* its **kind** (``"contact"``, ``"yield"``, ``"friction"``, ``"shear"``), for reports and figures.
 
 Methods never look at families: they receive the :class:`~unilateral.constraints.law.StepLaw`
 that :func:`~unilateral.constraints.law.step_law` assembles from them.
@@ -55,6 +59,11 @@ class ConstraintFamily:
         """Entries ``(row, column, factor)`` added to the identity row map (none by default)."""
         return ()
 
+    def unknown_coupling(self):
+        """Entries ``(row, unknown, factor)``: the row's ``w`` gains ``factor`` times that unknown's
+        value (none by default; :class:`SoilFriction`)."""
+        return ()
+
     def pairs(self):
         """Pairs ``(i, j)`` of unknowns with opposite columns (the two faces of a two-sided
         surface): never both active, which the pivoting solvers respect (none by default)."""
@@ -94,6 +103,20 @@ class SoilContact(Contact):
 
     def row_coupling(self):
         return tuple((int(i), int(i), -2.0) for i in self.indices)
+
+
+class SoilShear(ConstraintFamily):
+    """The horizontal force of a footing patch on a soil given in the Laplace domain (dual form).
+
+    Its unknown ``f`` is the patch's horizontal force on the soil (either sign; the soil's force on
+    the footing is ``-f``); its row is the equation ``psi = slip - (x_footing - x_soil) = 0``: the
+    footing and the soil surface move together horizontally but for the slip of the patch (the
+    increments of a :class:`SoilFriction` pair). Each step's LCP eliminates these unknowns by the
+    Schur complement of their (definite) block of ``W0`` before pivoting.
+    """
+
+    law = "free"
+    kind = "shear"
 
 
 class Yield(ConstraintFamily):
@@ -174,3 +197,33 @@ class Friction(ConstraintFamily):
         if bad.size:
             raise ValueError(f"friction family {self.name!r} names normal contact {int(bad[0])}, but the model "
                              f"has m = {m} unknowns")
+
+
+class SoilFriction(Friction):
+    """Coulomb slip of footing patches on a soil given in the Laplace domain (dual form).
+
+    A slip pair ``(s+, s-)`` of a patch whose normal unknown is the compressive force ``c`` of a
+    :class:`SoilContact` and whose shear unknown ``f`` a :class:`SoilShear`: the pair's rows are
+    ``psi(s+-) = +-f`` and the law ``w = mu c -+ f >= 0``, complementary to the slip increments: the
+    patch slides only where ``|f| = mu c``, in the sense of ``f``. The normal force is the
+    soil contact's unknown (not its row, the opening): the coupling is to unknowns.
+
+    Parameters
+    ----------
+    indices : sequence of int, the slip multipliers in pairs (``s+``, ``s-``)
+    normal : sequence of int, per slip multiplier the index of its patch's soil contact
+    mu : float or sequence of float, per slip multiplier, >= 0
+    """
+
+    def __init__(self, indices, *, normal, mu, name=None):
+        super().__init__(indices, normal=normal, mu=mu, name=name)
+        if np.any(self.normal < 0):
+            raise ValueError("soil friction takes its normal force from a soil contact: give the index of "
+                             "one for every slip multiplier")
+
+    def row_coupling(self):
+        return ()
+
+    def unknown_coupling(self):
+        return tuple((int(i), int(n), float(mu)) for i, n, mu in zip(self.indices, self.normal, self.mu)
+                     if mu != 0.0)

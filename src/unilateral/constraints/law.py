@@ -11,6 +11,13 @@ one LCP per step with the same ``W0`` for every method (the constraint functions
 ``P = I`` but for friction rows, ``psi_slip + mu psi_normal``). The history and the recovery of
 ``u`` use ``v`` as for contact alone. ``Solution.psi`` holds the constraint functions ``P psi``
 (contact: the reaction; yield and friction: the yield function, ``<= 0``).
+
+Two generalisations serve footings that slide on a soil given in the Laplace domain (dual
+unknowns): an **unknown map** ``Q`` (friction whose normal force is an unknown ``c``, not a row),
+``w = (P W0 + Q) z + ...`` (``Q`` couples only to holonomic unknowns, so ``Q o = 0``); and **free**
+unknowns (the patches' shear forces ``f``, of either sign, whose rows are equations ``w = 0``),
+eliminated from each step's LCP by the Schur complement of their block
+(:class:`FreeCondensation`).
 """
 
 from __future__ import annotations
@@ -19,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..lcp.base import LCPResult
 from .families import ConstraintFamily, Contact, SoilContact
 
 #: Compiled marches: no rate unknowns and ``P = I``; rate unknowns only; rate unknowns and ``P``.
@@ -36,12 +44,20 @@ class StepLaw:
     kinds : tuple of m str, ``"contact"``, ``"yield"`` or ``"friction"``
     partner : (m,) int, the opposite face of a two-sided pair (-1: none); a pivoting solver never
         makes both active (their columns are opposite: the pair's block of ``W0`` is singular)
+    Q : (m, m) unknown map, or None: ``w`` gains ``Q v`` (friction on a soil contact's force)
+    free : (m,) bool, unknowns of either sign whose rows are equations (eliminated each step)
     """
 
     rate: np.ndarray
     P: np.ndarray | None
     kinds: tuple
     partner: np.ndarray
+    Q: np.ndarray | None = None
+    free: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.free is None:
+            object.__setattr__(self, "free", np.zeros(self.rate.size, dtype=bool))
 
     @property
     def m(self) -> int:
@@ -50,25 +66,40 @@ class StepLaw:
     @property
     def trivial(self) -> bool:
         """Only holonomic unknowns with their own rows: the paper's LCP as it is."""
-        return self.P is None and not self.rate.any()
+        return self.P is None and self.Q is None and not self.rate.any() and not self.free.any()
 
     @property
     def symmetric(self) -> bool:
         """The step LCP matrix is ``W0`` itself (symmetric)."""
-        return self.P is None
+        return self.P is None and self.Q is None
+
+    @property
+    def compiled_ok(self) -> bool:
+        """The compiled marches apply (no unknown map, no free unknowns)."""
+        return self.Q is None and not self.free.any()
 
     @property
     def code(self) -> int:
         """:data:`LAW_CONTACT`, :data:`LAW_RATE` or :data:`LAW_GENERAL` (compiled marches)."""
         return LAW_CONTACT if self.trivial else (LAW_RATE if self.P is None else LAW_GENERAL)
 
-    def rows(self, psi):
-        """The constraint functions ``P psi`` of associated values ``psi`` (..., m)."""
-        return psi if self.P is None else psi @ self.P.T
+    def rows(self, psi, v=None):
+        """The constraint functions ``P psi - Q v`` of associated values ``psi`` (..., m) and the
+        unknowns ``v`` (..., m) (``Q v`` left out when ``v`` is not given)."""
+        out = psi if self.P is None else psi @ self.P.T
+        return out if self.Q is None or v is None else out - v @ self.Q.T
 
     def matrix(self, W0) -> np.ndarray:
-        """The step LCP matrix ``P W0``."""
-        return W0 if self.P is None else self.P @ W0
+        """The step LCP matrix ``P W0 + Q``."""
+        out = W0 if self.P is None else self.P @ W0
+        return out if self.Q is None else out + self.Q
+
+    def step_solver(self, solver, M):
+        """What solves the step LCPs of matrix ``M`` (``matrix(W0)``): ``solver`` itself, or a
+        :class:`FreeCondensation` of it when the law has free unknowns. Either has
+        ``solve(M, q, active=...)`` returning an :class:`~unilateral.lcp.base.LCPResult` over all
+        ``m`` unknowns."""
+        return FreeCondensation(solver, M, self.free, self.partner) if self.free.any() else solver
 
     def offset(self, v_prev) -> np.ndarray:
         """``o`` (m,): the previous value of the rate unknowns, zero for holonomic ones."""
@@ -82,6 +113,9 @@ class StepLaw:
 
     def compiled(self):
         """``(code, rate (m,) float, P (m, m), partner (m,) int)`` for the compiled marches."""
+        if not self.compiled_ok:
+            raise ValueError("the compiled marches take no free unknowns and no unknown map (footings "
+                             "that slide on a soil); use engine='python'")
         P = np.eye(self.m) if self.P is None else np.ascontiguousarray(self.P)
         return self.code, self.rate.astype(float), P, self.partner
 
@@ -114,11 +148,13 @@ def step_law(families, m: int) -> StepLaw:
             raise ValueError(f"constraint unknown {i} belongs to two families (family {family.name!r})")
         owner[family.indices] = f
     rate = np.zeros(m, dtype=bool)
+    free = np.zeros(m, dtype=bool)
     kinds = ["contact"] * m
-    P = None
+    P = Q = None
     partner = np.full(m, -1, dtype=np.int64)
     for family in families:
         rate[family.indices] = family.law == "rate"
+        free[family.indices] = family.law == "free"
         for i in family.indices:
             kinds[i] = family.kind
         for i, j in family.pairs():
@@ -130,18 +166,124 @@ def step_law(families, m: int) -> StepLaw:
         for row, col, factor in family.row_coupling():
             if row != col and dual[col]:
                 raise ValueError(f"friction row {row} of family {family.name!r} takes its normal force from "
-                                 f"unknown {col}, a contact with a soil in the Laplace domain (its row is the "
-                                 "opening, not the force): friction on such patches is not available; give "
-                                 "the footing a slider or a friction element on a spring contact")
+                                 f"the row of unknown {col}, a contact with a soil in the Laplace domain (its row "
+                                 "is the opening, its unknown the force): let the footing slide on the soil with "
+                                 "horizontal='soil' and mu (SoilFriction), or use a friction element on a spring "
+                                 "contact")
             if rate[col]:
                 raise ValueError(f"friction row {row} of family {family.name!r} takes its normal force from "
                                  f"unknown {col}, which is not a contact")
             if P is None:
                 P = np.eye(m)
             P[row, col] += factor
-    return StepLaw(rate=rate, P=P, kinds=tuple(kinds), partner=partner)
+        for row, col, factor in family.unknown_coupling():
+            if not dual[col]:
+                raise ValueError(f"friction row {row} of family {family.name!r} takes its normal force from "
+                                 f"unknown {col}, which is not the force of a soil contact (SoilContact)")
+            if Q is None:
+                Q = np.zeros((m, m))
+            Q[row, col] += factor
+    return StepLaw(rate=rate, P=P, kinds=tuple(kinds), partner=partner, Q=Q, free=free)
 
 
 def default_families(m: int):
     """One contact family over every unknown."""
     return [Contact(np.arange(m))]
+
+
+class FreeCondensation:
+    """Step LCPs with free unknowns, solved by eliminating them first.
+
+    With ``F`` the free unknowns (rows ``w_F = 0``, values of either sign) and ``R`` the others,
+    ``M_FF z_F + M_FR z_R + q_F = 0`` gives ``z_F = -M_FF^-1 (q_F + M_FR z_R)``, and the LCP in
+    ``z_R`` has the Schur complement ``M_RR - M_RF M_FF^-1 M_FR`` (formed once: ``M`` is the same at
+    every step) and ``q_R - M_RF M_FF^-1 q_F``. ``M_FF`` must be invertible (a footing's shear block
+    is a negative definite flexibility).
+
+    The two faces of a slip pair have opposite columns: block principal pivoting (``lcp="bpp"``)
+    runs compiled with the pair rule of the compiled marches (never both faces active); another
+    solver that leaves both active (an open patch, whose slip is free) is asked again from the
+    basis that carries their net value on one face (the same ``w``, a regular basis).
+
+    Parameters
+    ----------
+    solver : LCPSolver
+    M : (m, m) the step LCP matrix
+    free : (m,) bool
+    partner : (m,) int, the opposite face of each pair member (-1: none)
+    """
+
+    def __init__(self, solver, M, free, partner):
+        self.solver = solver
+        self.F, self.R = np.flatnonzero(free), np.flatnonzero(~free)
+        position = np.full(free.size, -1)
+        position[self.R] = np.arange(self.R.size)
+        first = [i for i in self.R if partner[i] > i]
+        self.pairs = (position[first], position[partner[first]]) if first else None
+        self.partner = np.where(partner[self.R] >= 0, position[np.maximum(partner[self.R], 0)], -1)
+        M_FF = M[np.ix_(self.F, self.F)]
+        try:
+            inverse = np.linalg.inv(M_FF)
+        except np.linalg.LinAlgError:
+            raise ValueError("the block of W0 of the free unknowns (footing shear forces) is singular: "
+                             "the patches' horizontal flexibility must be definite") from None
+        self.back = -inverse @ M[np.ix_(self.F, self.R)]            # z_F = back z_R + gain q_F
+        self.gain = -inverse
+        self.M_RF = M[np.ix_(self.R, self.F)]
+        self.reduced = M[np.ix_(self.R, self.R)] + self.M_RF @ self.back
+        self.m = M.shape[0]
+
+    def solve(self, M, q, active=None) -> LCPResult:
+        """The step LCP ``(M, q)`` over all ``m`` unknowns (``M`` the matrix given at construction)."""
+        F, R = self.F, self.R
+        q_F = q[F]
+        q_R = q[R] + self.M_RF @ (self.gain @ q_F)
+        if active is not None:
+            active = active[R]
+            if self.pairs is not None:              # a warm start with one face of each pair at most
+                both = active[self.pairs[0]] & active[self.pairs[1]]
+                active[self.pairs[0][both]] = active[self.pairs[1][both]] = False
+        if getattr(self.solver, "name", "") == "bpp":
+            res = self._bpp(q_R, active)
+        else:
+            res = self.solver.solve(self.reduced, q_R, active=active)
+            if self.pairs is not None:
+                res = self._net_pairs(res, q_R)
+        v = np.zeros(self.m)
+        w = np.zeros(self.m)
+        act = np.ones(self.m, dtype=bool)
+        v[R], w[R], act[R] = res.v, res.w, res.active
+        v[F] = self.back @ res.v + self.gain @ q_F
+        return LCPResult(v=v, w=w, active=act, iterations=res.iterations, error=res.error, success=res.success,
+                         message=res.message)
+
+    def _net_pairs(self, res, q_R):
+        """``res``, or where a pair is active on both faces, the solution from the basis that carries
+        their net value on one face (opposite columns: the same ``w``)."""
+        plus, minus = self.pairs
+        both = (res.v[plus] > 0) & (res.v[minus] > 0)
+        if not both.any():
+            return res
+        net = res.v[plus] - res.v[minus]
+        active = res.v > 0
+        active[plus[both]], active[minus[both]] = net[both] > 0, net[both] < 0
+        again = self.solver.solve(self.reduced, q_R, active=active)
+        return again if again.success or not res.success else res
+
+    def _bpp(self, q_R, active) -> LCPResult:
+        """The compiled block principal pivoting of the marches, with the pair rule."""
+        from ..march import compiled
+
+        m = q_R.size
+        active = np.zeros(m, dtype=bool) if active is None else active.copy()
+        v, w, rhs, x = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
+        max_iter = self.solver.max_iter or 10 * m + 10
+        it = compiled.bpp(self.reduced, q_R, active, v, w, max_iter, np.empty(m, dtype=np.int64), np.empty((m, m)),
+                          rhs, x, False, self.partner)
+        error = float(compiled.lcp_error(v, w, q_R))
+        success = it >= 0 and error <= self.solver.tol
+        message = (f"BPP (compiled, slip pairs one face at a time): solved in {abs(it)} linear solves" if success
+                   else f"BPP (compiled, slip pairs one face at a time) failed after {abs(it)} linear solves, "
+                        f"LCP error {error:.3g} (tol {self.solver.tol:g}): the step LCP with friction is not a "
+                        "P-matrix here")
+        return LCPResult(v=v, w=w, active=active, iterations=abs(it), error=error, success=success, message=message)

@@ -43,6 +43,19 @@ _STYLE = {
 }
 
 
+def math_unit(unit: str) -> str:
+    """A unit in mathtext: ``"m"`` -> ``$\\mathrm{m}$``, ``"m/s^2"`` -> ``$\\mathrm{m/s^{2}}$``, ``"kN m"``
+    -> ``$\\mathrm{kN\\,m}$``. A unit of other characters than letters, digits, spaces and ``/^().*-``
+    (read from a file) is returned as plain text, its ``$`` escaped."""
+    import re
+
+    text = str(unit)
+    if not re.fullmatch(r"[A-Za-z0-9/^ ().*-]+", text):
+        return text.replace("$", r"\$")
+    body = re.sub(r"\^\(?(-?\d+)\)?", r"^{\1}", text).replace(" ", r"\,")
+    return f"$\\mathrm{{{body}}}$"
+
+
 def _styled(function):
     """Run ``function`` under the house style, restoring the caller's rcParams afterwards."""
     @functools.wraps(function)

@@ -21,6 +21,10 @@ file                     content
 ``base_forces``          base shear (or, with no horizontal force on the ground, the vertical
                          ground force) and overturning moment
 ``energy``               the energy balance and its relative error
+``spectra``              the pseudo-acceleration spectrum of the ground motion and the floor
+                         spectra of the chosen nodes, every case
+``model``                the structure with the names of its parts and its first mode shapes
+                         (:mod:`unilateral.figures.model`), from the attribute ``model_drawing``
 =======================  ======================================================================
 
 The contact figures (``constraints``, ``force_deformation``, ``gaps``) show the contacts only:
@@ -37,7 +41,7 @@ import numpy as np
 
 from ..io.summary import RATE_KINDS
 from . import FigureDataError
-from .plots import PAGE_WIDTH, _figure, _styled, envelope, save_figure
+from .plots import PAGE_WIDTH, _figure, _styled, envelope, math_unit, save_figure
 
 MAX_PANELS = 6
 #: Most panels of the hysteresis figure.
@@ -606,8 +610,68 @@ def energy_figure(ds):
     return fig
 
 
+@_styled
+def spectra_figure(ds):
+    """Pseudo-acceleration spectra: the ground motion's, and the floors' of every case.
+
+    The ground's in black; one colour per node, solid for the first case, dashed for the next.
+    Axis units in mathtext (the ``units`` of ``ground_spectrum`` and of the coordinate ``period``).
+    """
+    if "ground_spectrum" not in ds:
+        return None
+    ground = ds["ground_spectrum"]
+    periods = ds["period"].values
+    attrs = ground.attrs
+    unit, time = _text(attrs.get("units", ""), 40), _text(ds["period"].attrs.get("units") or _unit(ds, "time"), 40)
+    fig, ax = _figure((PAGE_WIDTH, 3.2), margins=(0.8, 0.2, 0.5, 0.35))
+    ax.plot(periods, ground.values, color="black", linewidth=1.4, label="ground (input)", zorder=3)
+    if "floor_spectrum" in ds:
+        labels = case_labels(ds)
+        floors = ds["floor_spectrum"]
+        cases = [str(c) for c in ds["case"].values] if "case" in floors.dims else [None]
+        for k, case in enumerate(cases):
+            values = floors.sel(case=case).values if case is not None else floors.values
+            for j, node in enumerate(floors["floor"].values):
+                label = f"node {_text(node, 40)}" + (f", {labels.get(case, case)}" if len(cases) > 1 else "")
+                ax.plot(periods, values[:, j], ("-", "--", "-.", ":")[k % 4], color=f"C{j % 10}", label=label)
+    ax.margins(x=0)
+    ax.set_ylim(bottom=0.0)
+    direction = {"ux": "horizontal", "uy": "vertical"}.get(str(attrs.get("direction", "")), "")
+    damping = attrs.get("damping")
+    ax.set(xlabel=f"period $T$ [{math_unit(time)}]" if time else "period $T$",
+           ylabel=f"$S_a$ [{math_unit(unit)}]" if unit else "$S_a$",
+           title=(f"Pseudo-acceleration response spectra, {direction} "
+                  f"({100 * float(damping):g} % damping)" if damping is not None else
+                  "Pseudo-acceleration response spectra").replace("  ", " "))
+    ax.legend(loc="upper right", ncol=2 if len(ax.lines) > 6 else 1)
+    return fig
+
+
+def structure_figure(ds):
+    """The model figure of the attribute ``model_drawing`` (a :class:`~unilateral.figures.model.ModelDrawing`
+    as JSON), or None without it.
+
+    Raises
+    ------
+    FigureDataError
+        The attribute is not the JSON of a drawing.
+    """
+    from .model import ModelDrawing, model_figure
+
+    if "model_drawing" not in ds.attrs:
+        return None
+    text = str(ds.attrs["model_drawing"])
+    try:
+        drawing = ModelDrawing.from_json(text)
+    except (ValueError, TypeError, KeyError, RecursionError) as exc:
+        raise FigureDataError(f"the attribute model_drawing = {_text(text, 60)!r} ({len(text)} characters) is not "
+                              f"a model drawing (JSON of unilateral.figures.model.ModelDrawing): {_text(exc, 120)}") from None
+    return model_figure(drawing)
+
+
 #: Every figure, by file name, in the order drawn.
 FIGURES = (("fig2", history_figure), ("constraints", constraints_figure),
            ("force_deformation", force_deformation_figure), ("gaps", gaps_figure),
            ("hysteresis", hysteresis_figure), ("ground_motion", ground_motion_figure),
-           ("base_forces", base_forces_figure), ("energy", energy_figure))
+           ("base_forces", base_forces_figure), ("energy", energy_figure), ("spectra", spectra_figure),
+           ("model", structure_figure))

@@ -212,16 +212,25 @@ class Dataset:
 
 
 def cases_dataset(data: Solution | dict[str, Solution], *, units: dict | None = None,
-                  attrs: dict | None = None) -> Dataset:
+                  attrs: dict | None = None, footings=None) -> Dataset:
     """:func:`unilateral.io.results.to_dataset` as a :class:`Dataset` (the same variables, coordinates
-    and attributes; ``cases_dataset(...).to_xarray()`` equals ``to_dataset(...)``)."""
+    and attributes, the patch extents of ``footings`` included; ``cases_dataset(...).to_xarray()``
+    equals ``to_dataset(...)``)."""
     if isinstance(data, dict):
-        return _combine({label: cases_dataset(sol, units=units, attrs=attrs) for label, sol in data.items()})
-    data_vars, coords, merged = dataset_parts(data, units, attrs)
+        return _combine({label: cases_dataset(sol, units=units, attrs=attrs, footings=footings)
+                         for label, sol in data.items()})
+    data_vars, coords, merged = dataset_parts(data, units, attrs, footings)
     for dim in ("constraint", "dof"):
         if dim in coords:
             coords[dim] = (dim, _labels(coords[dim]))
     return Dataset(data_vars, coords=coords, attrs=merged)
+
+
+def _equal(a: np.ndarray, b: np.ndarray) -> bool:
+    """Equal shapes and values, NaN equal to NaN (as xarray compares coordinates)."""
+    if a.dtype.kind == "f" and b.dtype.kind == "f":
+        return bool(np.array_equal(a, b, equal_nan=True))
+    return bool(np.array_equal(a, b))
 
 
 def _labels(names) -> np.ndarray:
@@ -238,7 +247,7 @@ def _combine(cases: dict[str, Dataset]) -> Dataset:
     for ds in rest:
         for name, var in first.coords.items():
             other = ds.coords.get(name)
-            if other is None or other.dims != var.dims or not np.array_equal(other.values, var.values):
+            if other is None or other.dims != var.dims or not _equal(other.values, var.values):
                 raise ValueError(f"the cases differ in the coordinate {name!r}: store them separately")
         if set(ds.data_vars) != set(first.data_vars):
             raise ValueError(f"the cases hold different variables ({sorted(ds.data_vars)} and "

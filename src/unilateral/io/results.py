@@ -9,6 +9,12 @@ coordinates hold the times and the names; variables ``u``, ``udot`` (time, dof) 
 exact round trip), the statistics flattened (``steps``, ``time_total``, ...) for netCDF tools, and
 the user's attributes, flattened alike.
 
+With ``footings`` (a frame's :class:`~unilateral.structure.foundation.Footings`), the contact
+patches of the footings get their extents as coordinates along ``constraint``
+(:func:`patch_coords`): ``footing`` (the footing's name), ``patch_node`` (the node its contact
+force acts on), ``patch_x`` (the patch centre's x), ``patch_width`` (along x) and ``patch_length``
+(out of plane); the frame's own constraints have ``""`` and NaN there.
+
 Several analyses on one time axis, e.g. ``{"unilateral": sol, "bilateral": bil}``, share one
 Dataset with a leading ``case`` dimension. Attributes equal in all cases stay attributes; those
 that differ (``success``, ``message``, ``stats``, timings, ...) become variables along ``case``, so
@@ -55,7 +61,7 @@ _VARIABLES = {
 
 
 def to_dataset(data: Solution | dict[str, Solution], *, units: dict | None = None,
-               attrs: dict | None = None) -> xr.Dataset:
+               attrs: dict | None = None, footings=None) -> xr.Dataset:
     """Return a solution, or several on one time axis, as an :class:`xarray.Dataset`.
 
     Parameters
@@ -69,6 +75,9 @@ def to_dataset(data: Solution | dict[str, Solution], *, units: dict | None = Non
     attrs : dict, optional
         Further attributes, e.g. model metadata; nested dicts are flattened to ``outer_inner``.
         An attribute may repeat a statistic (``method``, ``rule``) but not contradict it.
+    footings : Footings, optional
+        The footings of a frame (``structure.foundation``): adds the extents of their contact
+        patches along ``constraint`` (:func:`patch_coords`).
 
     Returns
     -------
@@ -77,14 +86,17 @@ def to_dataset(data: Solution | dict[str, Solution], *, units: dict | None = Non
     import xarray as xr
 
     if isinstance(data, dict):
-        return _combine({label: to_dataset(sol, units=units, attrs=attrs) for label, sol in data.items()})
-    data_vars, coords, merged = dataset_parts(data, units, attrs)
+        return _combine({label: to_dataset(sol, units=units, attrs=attrs, footings=footings)
+                         for label, sol in data.items()})
+    data_vars, coords, merged = dataset_parts(data, units, attrs, footings)
     return xr.Dataset(data_vars, coords=coords, attrs=merged)
 
 
-def dataset_parts(data: Solution, units: dict | None, attrs: dict | None) -> tuple[dict, dict, dict]:
+def dataset_parts(data: Solution, units: dict | None, attrs: dict | None,
+                  footings=None) -> tuple[dict, dict, dict]:
     """The variables, coordinates and attributes of one Solution's Dataset (:func:`to_dataset`, and
-    :func:`unilateral.io.dataset.cases_dataset` without xarray); ``constraint`` and ``dof`` as lists."""
+    :func:`unilateral.io.dataset.cases_dataset` without xarray); ``constraint`` and ``dof`` as lists,
+    the patch extents of ``footings`` (:func:`patch_coords`) as arrays."""
     if not isinstance(data, Solution):
         raise TypeError(f"data must be a Solution or a dict of Solutions, got {type(data).__name__}")
     units = units or {}
@@ -97,6 +109,8 @@ def dataset_parts(data: Solution, units: dict | None, attrs: dict | None) -> tup
               "constraint": list(data.constraint_names)}
     if "u" in data_vars or "udot" in data_vars:
         coords["dof"] = list(data.dof_names)
+    if footings is not None:
+        coords |= patch_coords(footings, len(data.constraint_names), units)
     meta = {"source": f"unilateral {__version__}", "success": data.success, "message": data.message,
             "stats": json.dumps(to_jsonable(data.stats))}
     merged = _flatten(meta) | _flatten(data.stats)
@@ -105,6 +119,66 @@ def dataset_parts(data: Solution, units: dict | None, attrs: dict | None) -> tup
             raise ValueError(f"attrs[{key!r}] = {value!r} contradicts the solution's {key} = {merged[key]!r}")
         merged[key] = value
     return data_vars, coords, merged
+
+
+#: The patch extents along ``constraint``: name -> (long_name, physical quantity or None for a name).
+PATCH_COORDS = {
+    "footing": ("footing the contact patch belongs to (empty: not a footing's patch)", None),
+    "patch_node": ("node the patch's contact force acts on (a rigid footing's node, a flexible footing's "
+                   "node of the patch)", None),
+    "patch_x": ("x of the contact patch's centre", "length"),
+    "patch_width": ("width of the contact patch along x", "length"),
+    "patch_length": ("length of the contact patch out of plane", "length"),
+}
+
+
+def patch_coords(footings, m: int, units: dict | None = None) -> dict:
+    """The extents of the footings' contact patches as coordinates along ``constraint``.
+
+    Parameters
+    ----------
+    footings : Footings
+        ``structure.foundation`` of a frame: ``footings`` (each with ``name``, ``m``,
+        ``contact_nodes()`` and ``patches``, whose ``centres`` and ``sizes`` are ``(x, y)`` and
+        ``(width, length)``) and
+        ``first``, the number of the frame's own constraints, which precede the patches.
+    m : int
+        The number of constraint unknowns of the solution (the frame's and the patches').
+    units : dict, optional
+        Sets the ``units`` attribute of the lengths.
+
+    Returns
+    -------
+    dict
+        ``footing``, ``patch_node`` (str), ``patch_x``, ``patch_width``, ``patch_length`` (float), each
+        ``("constraint", values, attrs)``: the patch of each footing contact, ``""`` and NaN for
+        the frame's own constraints and for the shears and slips of footings that slide (which
+        follow the contacts; ``constraint_x`` places them). A rigid footing's patch widths sum to
+        its width.
+
+    Raises
+    ------
+    ValueError
+        The footings' patches do not end the ``m`` constraints.
+    """
+    first, patches = int(footings.first), sum(f.m for f in footings.footings)
+    if first + patches * (4 if getattr(footings, "sliding", False) else 1) != m:
+        raise ValueError(f"the footings have {patches} patches after {first} constraints of the frame, but the "
+                         f"solution has {m} constraints: give the footings of the structure solved")
+    name, node = np.full(m, "", dtype=object), np.full(m, "", dtype=object)
+    x, width, length = (np.full(m, np.nan) for _ in range(3))
+    start = first
+    for footing in footings.footings:
+        part = slice(start, start + footing.m)
+        name[part] = str(footing.name)
+        node[part] = [str(n) for n in footing.contact_nodes()]
+        x[part] = footing.patches.centres[:, 0]
+        width[part], length[part] = footing.patches.sizes[:, 0], footing.patches.sizes[:, 1]
+        start += footing.m
+    values = {"footing": np.asarray(name.tolist()), "patch_node": np.asarray(node.tolist()), "patch_x": x,
+              "patch_width": width, "patch_length": length}
+    return {key: ("constraint", values[key], _var_attrs(long_name, units or {}, quantity))
+            for key, (long_name, quantity) in PATCH_COORDS.items()}
 
 
 def from_dataset(ds: xr.Dataset) -> Solution:
@@ -365,7 +439,7 @@ def _csv_text(columns: dict[str, np.ndarray]) -> str:
     return buffer.getvalue()
 
 
-def _var_attrs(long_name: str, units: dict, quantity: str) -> dict:
+def _var_attrs(long_name: str, units: dict, quantity: str | None) -> dict:
     if quantity == "velocity":
         unit = f"{units['length']}/{units['time']}" if "length" in units and "time" in units else None
     else:

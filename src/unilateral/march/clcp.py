@@ -44,17 +44,18 @@ def march_cq(W0, history, psi_affine, v_b, solver, *, dt, bilateral=False, callb
     v = np.empty((N + 1, m))
     psi = np.empty((N + 1, m))
     v[0] = v_b
-    psi[0] = law.rows(psi_affine[0])
-    log = StepLog(m, np.zeros(m, dtype=bool) if law.rate.any() else v_b > 0)
+    psi[0] = law.rows(psi_affine[0], v_b)
+    log = StepLog(m, (v_b > 0) & ~law.rate)      # the warm start: the holonomic unknowns that are active
     if bilateral:
         v[:] = v_b
-        return v, law.rows(psi_affine), log
+        return v, law.rows(psi_affine, v), log
     base = W0 @ v_b
     WL = law.matrix(W0)
+    step = law.step_solver(solver, WL)
     for k in range(1, N + 1):
         o = law.offset(v[k - 1])
         q = law.vector(W0, history.value(k) - psi_affine[k] - base, o)
-        res = solver.solve(WL, q, active=log.active)
+        res = step.solve(WL, q, active=log.active)
         if not log.record(k, k * dt, res):
             return v[:k], psi[:k], log
         v[k] = res.v + o

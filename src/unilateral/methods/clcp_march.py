@@ -43,8 +43,9 @@ def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto",
     engine = V.choice(f"{option}['engine']", engine, ENGINES)
     run.stats["history"] = history
     solver = run.solver
-    if use_compiled(engine, history == "naive" and compiled_applies(run), run, option=option,
-                    needs="history='naive' and lcp='bpp'", steps=N):
+    compiled_ok = history == "naive" and compiled_applies(run) and (law is None or law.compiled_ok)
+    if use_compiled(engine, compiled_ok, run, option=option,
+                    needs="history='naive' and lcp='bpp' (and no footings that slide)", steps=N):
         run.stats["engine"] = "compiled"
         return march_cq_compiled("naive", (W, psi_affine), v_b, dt=disc.dt, tol=solver.tol,
                                  max_iter=solver.max_iter or 10 * W.shape[1] + 10, callback=run.callback,

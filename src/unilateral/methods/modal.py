@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import functools
 
+import numpy as np
+
 from .. import _validate as V
 from ..kernels import PoleResidueKernel
 from ..march.clcp import march_cq, march_cq_compiled
@@ -91,7 +93,7 @@ class Modal(Method):
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
 
     def _solve_foundation(self, model, load, initial, disc, run, engine):
-        from ..soil.foundation_solve import foundation_base_state, solve_foundation
+        from ..soil.foundation_solve import foundation_base_state, primal_columns, solve_foundation
 
         if self.config.get("modes") is not None:
             raise ValueError("modal_options['modes'] does not apply to a FoundationModel (every pole is used)")
@@ -106,6 +108,10 @@ class Modal(Method):
                     initial = {"u0": given.u, "udot0": given.udot, "v0": given.v}
                 sol = self.solve(model.kelvin_model(), load, initial, disc, run)
                 sol.stats["formulation"] = "primal CLCP in the openings (the paper's Kelvin soil elements)"
+                if model.sliding:           # the columns of the dual form: contacts, shears, slips
+                    sol.v, sol.psi = primal_columns(model, sol.v, sol.psi)
+                    sol.psiL = primal_columns(model, np.zeros_like(sol.psiL), sol.psiL)[1]
+                    sol.constraint_names = list(model.constraint_names)
                 return sol
             raise FoundationPolesRefused(str(exc)) from None
         run.stats["modal"] = {key: value for key, value in kernel.info.items()

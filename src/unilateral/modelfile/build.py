@@ -447,6 +447,12 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
     if f.nodes is not None and (f.mass or f.J):
         problems.append(value_problem((*at, "mass" if f.mass else "J"), f.mass or f.J, "only for a rigid footing "
                                       "(give a flexible footing's masses to its nodes in [[masses]])"))
+    if f.horizontal == "soil" and f.mu is None:
+        problems.append(f"{key_path((*at, 'mu'))}: missing key (horizontal = \"soil\" needs the friction "
+                        "coefficient of the footing on the soil, a number >= 0)")
+    if f.horizontal != "soil" and f.mu is not None:
+        problems.append(value_problem((*at, "mu"), f.mu, f'only for horizontal = "soil" (now '
+                                      f'{toml_value(f.horizontal)}): remove it, or let the footing slide'))
     soil, where = f.soil, (*at, "soil")
     m = len(f.nodes) if f.nodes is not None else (f.patches or 3)
     if soil.model != "layered" and (soil.layers is not None or soil.base != "halfspace"):
@@ -472,7 +478,14 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
         if soil.k is None:
             problems.append(f"{key_path((*where, 'k'))}: missing key (model = \"winkler-kelvin\" needs the spring "
                             "of each patch [F/L], one number or a list of one per patch)")
-        for key in ("k", "c"):
+        if f.horizontal == "soil" and soil.kx is None:
+            problems.append(f"{key_path((*where, 'kx'))}: missing key (a footing with horizontal = \"soil\" on "
+                            "model = \"winkler-kelvin\" needs the horizontal spring of each patch [F/L])")
+        if f.horizontal != "soil" and (soil.kx is not None or soil.cx != 0.0):
+            key = "kx" if soil.kx is not None else "cx"
+            problems.append(value_problem((*where, key), getattr(soil, key), 'only for horizontal = "soil" (a '
+                                          "footing that slides): remove it"))
+        for key in ("k", "c", "kx", "cx"):
             value = getattr(soil, key)
             if isinstance(value, list) and len(value) != m:
                 problems.append(value_problem((*where, key), value, f"give one number or a list of {m} numbers "
@@ -485,7 +498,7 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
     for key in ("nu", "rho"):
         if getattr(soil, key) is None:
             problems.append(f"{key_path((*where, key))}: missing key (model = {toml_value(soil.model)} needs it)")
-    for key in ("k", "c"):
+    for key in ("k", "c", "kx", "cx"):
         value = getattr(soil, key)
         if value is not None and value != 0.0:
             problems.append(value_problem((*where, key), value, f'only for model = "winkler-kelvin" (model = '
@@ -555,7 +568,7 @@ def _build_structure(document: ModelFile) -> Structure:
         with _at(key_path(at)):
             fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=soil, patches=f.patches,
                           nodes=f.nodes, horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
-                          J=f.J * to_mass)
+                          J=f.J * to_mass, mu=f.mu)
     rayleigh = document.damping.rayleigh if document.damping is not None else None
     if rayleigh is not None:
         with _at("damping.rayleigh"):

@@ -536,6 +536,21 @@ class Figure(Table):
     label: str | None = None
 
 
+class SpectraPeriods(Table):
+    """The periods of the response spectra [time], evenly spaced on a logarithmic scale."""
+
+    min: Positive | None = Field(None, description="Shortest period [time] (default: 0.02 s).")
+    max: Positive | None = Field(None, description="Longest period [time] (default: 4 s).")
+    count: Annotated[int, Field(ge=2, le=2000)] = Field(100, description="Number of periods.")
+
+    @model_validator(mode="after")
+    def _increasing(self):
+        if self.min is not None and self.max is not None and not self.min < self.max:
+            raise PydanticCustomError("periods", "min must be < max, got min={lo} and max={hi}",
+                                      {"lo": self.min, "hi": self.max})
+        return self
+
+
 class Output(Table):
     """[output]: what to draw."""
 
@@ -543,6 +558,12 @@ class Output(Table):
     overturning_about: Annotated[list[float], Field(min_length=2, max_length=2)] | None = Field(None, description=(
         "Frames: the point [x, y] the overturning moment is taken about (default: the centre of the base, "
         "the mean x of the ground-connected nodes at the lowest level)."))
+    floor_spectra: list[NodeId] = Field([], description=(
+        "Frames with a ground motion: the nodes whose floor response spectra (of their absolute acceleration "
+        "along the ground motion) are written to spectra.csv and spectra.png."))
+    spectra_damping: Annotated[float, Field(ge=0, lt=1)] = Field(0.05, description=(
+        "Damping ratio of the response spectra."))
+    spectra_periods: SpectraPeriods = SpectraPeriods()
 
 
 class Matrices(Table):
@@ -579,6 +600,10 @@ class FoundationSoil(Table):
         "winkler-kelvin: spring of each patch [F/L], one number or one per patch."))
     c: NonNegative | list[NonNegative] = Field(0.0, description=(
         "winkler-kelvin: dashpot of each patch [F T/L], one number or one per patch."))
+    kx: Positive | list[Positive] | None = Field(None, description=(
+        "winkler-kelvin with horizontal = \"soil\": horizontal spring of each patch [F/L]."))
+    cx: NonNegative | list[NonNegative] = Field(0.0, description=(
+        "winkler-kelvin with horizontal = \"soil\": horizontal dashpot of each patch [F T/L]."))
     layers: list[SiteLayer] | None = Field(None, description=(
         "layered: the layers from the surface down (thickness, G or Vs, nu, rho, damping); the half-space "
         "under them is G or Vs, nu, rho, damping of this table."))
@@ -601,9 +626,12 @@ class Foundation(Table):
     length: Positive = Field(description="Length out of plane [L].")
     patches: Annotated[int, Field(ge=1, le=400)] | None = Field(None, description=(
         "Rigid footing: number of strips across the width (default 3)."))
-    horizontal: Literal["support", "cone", "none"] = Field("support", title="horizontal restraint", description=(
+    horizontal: Literal["support", "cone", "none", "soil"] = Field("support", title="horizontal restraint", description=(
         "support: ux of node supported; cone: Wolf's horizontal cone as a bilateral spring and dashpot at "
-        "node; none: restrained otherwise."))
+        "node; none: restrained otherwise; soil: each patch's horizontal force through the soil, limited by "
+        "Coulomb friction mu (the footing slides; every footing then takes soil)."))
+    mu: NonNegative | None = Field(None, description=(
+        "horizontal = \"soil\": the friction coefficient of the footing on the soil."))
     gap: float = Field(0.0, description="Opening at u = 0 with the soil unloaded [L]; negative: a penetration.")
     mass: NonNegative = Field(0.0, description="Rigid footing: its own mass on ux, uy of node [M].")
     J: NonNegative = Field(0.0, description="Rigid footing: its rotary inertia on rz of node [M L^2].")

@@ -32,6 +32,9 @@ __all__ = ["FoundationKernel", "FoundationModel", "SoilFlexibility", "SoilPoles"
 
 #: Structures with at most this many DOFs are evaluated by batched dense solves.
 _DENSE_BATCH_MAX_N = 64
+#: Points on the circle per soil weight (:meth:`SoilFlexibility.cq_weights`): each is an evaluation
+#: of the soil's kernel, the costly part of a half-space's weights.
+SOIL_FFT_POINTS = 4
 #: Structures with at most this many DOFs are checked for massless zero-stiffness modes.
 _CHECK_MAX_N = 2000
 
@@ -259,7 +262,9 @@ class SoilFlexibility:
         displacements under a force that has stopped are static once the Rayleigh wave has crossed
         the foundation (Pekeris), so the weights beyond a few travel times across the foundation are
         round-off. Only ``W_0 .. W_J`` are then computed, by the FFT on a circle with
-        ``L = 8 (J + 1)`` points instead of ``8 (N + 1)``, and ``W_j = 0`` beyond: ``J`` starts at
+        ``L = 4 (J + 1)`` points instead of ``8 (N + 1)`` (half the soil evaluations of
+        ``8 (J + 1)``; the weights agree with the full FFT to about 1e-8 of the largest, far below
+        the soil kernel's own 1e-6), and ``W_j = 0`` beyond: ``J`` starts at
         ``memory / dt`` (``memory``, s: a hint of the constructor, e.g. three Rayleigh-wave travel
         times across the half-space's patches) plus 64 steps, and is accepted only if the last
         eighth of the computed weights is below ``1e-8`` of the largest weight (their round-off floor
@@ -292,7 +297,7 @@ class SoilFlexibility:
             memory = getattr(self, "memory", None)
             J = N if memory is None else min(N, int(np.ceil(float(memory) / dt)) + 64)
             while True:
-                W = real(cq_weights(kernel, J, dt, rule))
+                W = real(cq_weights(kernel, J, dt, rule, L=SOIL_FFT_POINTS * (J + 1)))
                 if J == N:
                     cache[key] = (W, False)
                     break
@@ -338,20 +343,23 @@ class SoilFlexibility:
 
     # ------------------------------------------------------------------ constructors
     @classmethod
-    def halfspace(cls, halfspace, patches, *, kmax_factor=1.0) -> SoilFlexibility:
+    def halfspace(cls, halfspace, patches, *, kmax_factor=1.0, components="z") -> SoilFlexibility:
         """The rigorous flexibility of rectangular patches on a :class:`~unilateral.soil.HalfSpace`
         or a :class:`~unilateral.soil.Layered` soil.
 
-        ``Phi = halfspace.surface_flexibility(patches, s)`` (each distinct pair geometry computed
-        once). One contact per patch, in the order of ``patches``; the contact force of a patch is
-        its uniform pressure times its area. Not rational: ``method="cq"``.
+        ``Phi = halfspace.surface_flexibility(patches, s, components=components)`` (each distinct
+        pair geometry computed once). ``"z"``: one contact per patch, in the order of ``patches``;
+        the contact force of a patch is its uniform pressure times its area. ``"xz"``: the x rows of
+        the patches, then their z rows (footings that slide, :class:`FoundationModel` with ``Tx``).
+        Not rational: ``method="cq"``.
         """
+        components = V.choice("components", components, ("z", "xz"))
         from .halfspace import HalfSpace
         from .layered import Layered
         from .patches import RectangularPatches
 
         if isinstance(halfspace, Layered):
-            return cls._layered(halfspace, patches, kmax_factor)
+            return cls._layered(halfspace, patches, kmax_factor, components)
         if not isinstance(halfspace, HalfSpace):
             raise TypeError(f"halfspace must be a unilateral.soil.HalfSpace or Layered, got {V.describe(halfspace)}")
         if not isinstance(patches, RectangularPatches):
@@ -359,9 +367,10 @@ class SoilFlexibility:
         if np.any(patches.sizes <= 0):
             raise ValueError("patches must have positive sides (a point contact has an infinite "
                              "self-flexibility on a half-space)")
-        func = lambda s: halfspace.surface_flexibility(patches, s, kmax_factor=kmax_factor)
-        soil = cls(func, patches.m, description=f"half-space G={halfspace.G:g}, nu={halfspace.nu:g}, "
-                                                 f"rho={halfspace.rho:g}, {patches.m} patches")
+        func = lambda s: halfspace.surface_flexibility(patches, s, kmax_factor=kmax_factor, components=components)
+        soil = cls(func, len(components) * patches.m,
+                   description=f"half-space G={halfspace.G:g}, nu={halfspace.nu:g}, rho={halfspace.rho:g}, "
+                               f"{patches.m} patches" + (", x and z" if components == "xz" else ""))
         if halfspace.damping == 0.0 or halfspace.damping_model == "kelvin_voigt":
             # three Rayleigh-wave travel times across the patches (the weights' truncation hint)
             lo = patches.centres - 0.5 * patches.sizes
@@ -415,15 +424,33 @@ class SoilFlexibility:
         out.memory = None if any(x is None for x in memories) else max(memories)
         return out
 
+    def permuted(self, order) -> SoilFlexibility:
+        """The same soil with its rows and columns in the order ``order`` (m,) (a permutation):
+        ``Phi'(s) = Phi(s)[order][:, order]``, with its pole-residue, Kelvin and diagonal forms."""
+        order = np.asarray(order)
+        if np.sort(order).tolist() != list(range(self.m)):
+            raise ValueError(f"order must be a permutation of 0..{self.m - 1}, got {order.tolist()}")
+        ix = np.ix_(order, order)
+        poles = None if self.poles is None else SoilPoles(self.poles.poles, self.poles.B[:, order],
+                                                          self.poles.Cf[:, order], self.poles.P0[ix])
+        kelvin = None if self.kelvin is None else (self.kelvin[0][order], self.kelvin[1][order])
+        diagonal = None if self._diagonal is None else (lambda s: self._diagonal(s)[:, order])
+        out = SoilFlexibility(lambda s: self.evaluate(s)[:, order][:, :, order], self.m,
+                              static=lambda: self.static()[ix], poles=poles, kelvin=kelvin, diagonal=diagonal,
+                              description=self.description)
+        out.memory = self.memory
+        return out
+
     @classmethod
-    def _layered(cls, layered, patches, kmax_factor) -> SoilFlexibility:
+    def _layered(cls, layered, patches, kmax_factor, components) -> SoilFlexibility:
         """:meth:`halfspace` for a :class:`~unilateral.soil.Layered` soil."""
         from .patches import RectangularPatches
 
         if not isinstance(patches, RectangularPatches) or np.any(patches.sizes <= 0):
             raise ValueError("patches must be RectangularPatches with positive sides")
-        func = lambda s: layered.surface_flexibility(patches, s, kmax_factor=kmax_factor)
-        soil = cls(func, patches.m, description=f"{layered!r}, {patches.m} patches")
+        func = lambda s: layered.surface_flexibility(patches, s, kmax_factor=kmax_factor, components=components)
+        soil = cls(func, len(components) * patches.m, description=f"{layered!r}, {patches.m} patches"
+                   + (", x and z" if components == "xz" else ""))
         materials = layered.materials + ([] if layered.halfspace is None else [layered.halfspace])
         if all(x.damping == 0.0 or x.damping_model == "kelvin_voigt" for x in materials):
             # the truncation hint: three Rayleigh-wave travel times of the slowest material across the
@@ -645,6 +672,11 @@ class FoundationModel:
         Opening at ``u = 0`` with the soil unloaded (default 0; negative: a penetration).
     dof_names : sequence of n str, optional
     contact_names : sequence of m str, optional
+    Tx : (n, m) array_like or sparse, optional
+        Horizontal displacement of the foundation at each contact patch, ``x_f = Tx^T u``: the
+        footings slide (``soil`` then has ``2 m`` rows, x then z).
+    mu : float or (m,) array_like, optional
+        Coulomb friction coefficient of each patch on the soil (with ``Tx``; >= 0).
 
     Attributes
     ----------
@@ -660,6 +692,20 @@ class FoundationModel:
     :class:`~unilateral.constraints.SoilContact` family) after them, and one CLCP couples them
     (``docs/theory.md``, section 12).
 
+    **Footings that slide** (``Tx`` and ``mu`` given): the soil is the horizontal and vertical
+    flexibility of the patches, ``Phi(s)`` (2 m_s, 2 m_s) ordered as
+    :meth:`HalfSpace.surface_flexibility <unilateral.soil.HalfSpace.surface_flexibility>` with
+    ``components="xz"`` (the x components of the patches, then z; z down, forces on the soil). Each
+    patch then has, after the ``m_s`` contacts, a horizontal force ``f_j`` on the soil
+    (:class:`~unilateral.constraints.SoilShear`: either sign; the soil's force on the footing is
+    ``-f_j``) and a slip pair (:class:`~unilateral.constraints.SoilFriction`): the footing moves
+    with the soil surface horizontally but for the slip, and slips only where ``|f_j| = mu_j c_j``.
+    An open patch carries no shear (``|f| <= mu c = 0``), so a footing can rock, lift and slide at
+    once. Unknowns: the model's, ``c`` (m_s), ``f`` (m_s), ``s+, s-`` (pairs, 2 m_s): ``m = m_p +
+    4 m_s``. The solution's columns: contacts ``v`` opening, ``psi = -c``; shears ``v`` the patch's
+    net slip ``s+ - s-`` (length), ``psi`` the soil's horizontal force on the footing ``-f``;
+    slips ``v`` the cumulative slips ``s+-``, ``psi`` the friction functions ``+-f - mu c <= 0``.
+
     Notes
     -----
     Units: any consistent set (e.g. kN, m, s: then ``Phi`` is in m/kN).
@@ -669,7 +715,7 @@ class FoundationModel:
     ``gap >= 0``); ``{"u0": ..., "udot0": ...}`` - given values, soil unloaded (``T^T u0 + gap >= 0``).
     """
 
-    def __init__(self, M, K, T, soil, *, C=None, gap=None, dof_names=None, contact_names=None):
+    def __init__(self, M, K, T, soil, *, C=None, gap=None, dof_names=None, contact_names=None, Tx=None, mu=None):
         self.K = V.as_matrix("K", K, (None, None))
         n = self.K.shape[0]
         if self.K.shape != (n, n) or n == 0:
@@ -687,19 +733,30 @@ class FoundationModel:
         if not isinstance(soil, SoilFlexibility):
             raise TypeError("soil must be a SoilFlexibility (SoilFlexibility.halfspace, .cones, .impedances, "
                             f".kelvin, .rational or .callable), got {V.describe(soil)}")
-        if soil.m != m:
-            raise ValueError(f"soil has m = {soil.m} contacts but T has {m} columns (one per contact); "
-                             "give T of shape (n, soil.m)")
+        self.Tx = None if Tx is None else V.as_matrix("Tx", Tx, (n, m))
+        if (Tx is None) != (mu is None):
+            raise ValueError("Tx and mu go together (footings that slide on the soil): give both or neither")
+        rows = m if Tx is None else 2 * m
+        if soil.m != rows:
+            raise ValueError(f"soil has m = {soil.m} rows but T has {m} columns (one per contact): give a soil of "
+                             f"{rows} rows" + ("" if Tx is None else " (x then z components of each patch, "
+                                                                    "components='xz')"))
+        self.mu = None if mu is None else V.as_vector("mu", mu, m)
+        if self.mu is not None and (np.any(~np.isfinite(self.mu)) or np.any(self.mu < 0)):
+            raise ValueError(f"mu must be finite and >= 0 (friction coefficients), got {self.mu.tolist()}")
         self.soil = soil
         self.gap = V.as_vector("gap", 0.0 if gap is None else gap, m)
         self.dof_names = _names("dof_names", dof_names, n, "u")
-        self.constraint_names = _names("contact_names", contact_names, m, "c")
+        names = _names("contact_names", contact_names, m, "c")
+        if self.sliding:
+            names = names + [f"{x}.shear" for x in names] + [f"{x}.slip{sign}" for x in names for sign in "+-"]
+        self.constraint_names = names
         #: The structure's own unilateral constraints (a Model), or None (:meth:`on`).
         self.structure = None
         self._check_rigid_modes()
 
     @classmethod
-    def on(cls, structure: Model, T, soil, *, gap=None, contact_names=None) -> FoundationModel:
+    def on(cls, structure: Model, T, soil, *, gap=None, contact_names=None, Tx=None, mu=None) -> FoundationModel:
         """A :class:`~unilateral.model.Model` with constraints of its own, resting on the soil.
 
         The model's ``M, K, C`` are the structure without the soil; its constraints (any
@@ -711,7 +768,7 @@ class FoundationModel:
         ----------
         structure : Model
             With constant ``g`` and imposed-strain load ``q_imposed``.
-        T, soil, gap, contact_names : as for the constructor (``m_s`` contacts).
+        T, soil, gap, contact_names, Tx, mu : as for the constructor (``m_s`` contacts).
         """
         if not isinstance(structure, Model):
             raise TypeError(f"structure must be a unilateral.Model, got {V.describe(structure)}")
@@ -722,7 +779,7 @@ class FoundationModel:
         if contact_names is None:
             contact_names = [f"soil{j}" for j in range(ms)]
         out = cls(structure.M, structure.K, T, soil, C=structure.C, gap=gap, dof_names=structure.dof_names,
-                  contact_names=contact_names)
+                  contact_names=contact_names, Tx=Tx, mu=mu)
         twice = set(structure.constraint_names) & set(out.constraint_names)
         if twice:
             raise ValueError(f"contact_names: {sorted(twice)[:3]} are also names of the structure's constraints; "
@@ -750,31 +807,63 @@ class FoundationModel:
 
     @property
     def m(self) -> int:
-        """Number of constraints: the structure's and the soil contacts."""
-        return self.mp + self.ms
+        """Number of constraints: the structure's and the soil contacts (with their shears and slips)."""
+        return self.mp + (4 if self.sliding else 1) * self.ms
+
+    @property
+    def sliding(self) -> bool:
+        """The footings slide: horizontal soil forces limited by friction (``Tx``, ``mu``)."""
+        return self.Tx is not None
 
     @property
     def mixed(self) -> bool:
-        """The structure has constraints of its own: the CLCP mixes the primal and the dual form."""
-        return self.structure is not None
+        """The structure has constraints of its own, or the footings slide: the CLCP mixes the primal
+        and the dual form (:meth:`weights`)."""
+        return self.structure is not None or self.sliding
 
     @property
     def contact_names(self) -> list:
         """The names of the soil contacts."""
-        return self.constraint_names[self.mp:]
+        return self.constraint_names[self.mp:self.mp + self.ms]
+
+    @property
+    def contacts(self) -> np.ndarray:
+        """Indices (m_s,) of the soil contacts' unknowns ``c`` among the model's."""
+        return self.mp + np.arange(self.ms)
+
+    @property
+    def shears(self) -> np.ndarray:
+        """Indices (m_s,) of the patches' horizontal forces ``f`` (empty unless :attr:`sliding`)."""
+        return self.mp + self.ms + np.arange(self.ms if self.sliding else 0)
+
+    @property
+    def slips(self) -> np.ndarray:
+        """Indices (2 m_s,) of the slip pairs ``(s+, s-)`` patch by patch (empty unless :attr:`sliding`)."""
+        return self.mp + 2 * self.ms + np.arange(2 * self.ms if self.sliding else 0)
+
+    @property
+    def soil_rows(self) -> np.ndarray:
+        """The unknowns (soil.m,) that the rows of ``Phi`` act on: ``c``; sliding: ``f`` then ``c``."""
+        return np.concatenate([self.shears, self.contacts])
 
     @property
     def law(self):
         """The step law: the structure's families and the soil contacts (dual rows).
 
         A plain foundation model: contacts only (its kernel ``Lambda_D`` is positive definite).
+        Footings that slide add the shears (free) and the slip pairs (friction on the contacts' forces).
         """
-        from ..constraints import SoilContact, contact_law, step_law
+        from ..constraints import SoilContact, SoilFriction, SoilShear, contact_law, step_law
 
         if not self.mixed:
             return contact_law(self.ms)
-        return step_law(list(self.structure.families) + [SoilContact(np.arange(self.mp, self.m), name="soil")],
-                        self.m)
+        families = [] if self.structure is None else list(self.structure.families)
+        families.append(SoilContact(self.contacts, name="soil"))
+        if self.sliding:
+            families += [SoilShear(self.shears, name="soil shear"),
+                         SoilFriction(self.slips, normal=np.repeat(self.contacts, 2), mu=np.repeat(self.mu, 2),
+                                      name="soil friction")]
+        return step_law(families, self.m)
 
     @property
     def sparse(self) -> bool:
@@ -850,7 +939,10 @@ class FoundationModel:
         ``Lambda(s) = H_a - F_a^T D(s)^-1 F_a - diag(0, Phi(s))`` with ``F_a = [F, T]``,
         ``H_a = diag(H, 0)``: rows of the structure's constraints ``psi``, rows of the soil contacts
         ``+opening`` (the :class:`~unilateral.constraints.SoilContact` row map makes them the LCP's
-        ``w``; ``docs/theory.md``, section 12).
+        ``w``; ``docs/theory.md``, section 12). Footings that slide: ``F_a = [F, T, -Tx, 0]``, the
+        x-z soil block on the rows of ``f`` and ``c``, and the constant coupling of each shear to its
+        slips (``Lambda_{f s+-} = Lambda_{s+- f} = -+1``: the shear row holds the slip, the slip rows
+        the force ``+-f``).
         """
         from ..rules import get_rule
 
@@ -871,7 +963,12 @@ class FoundationModel:
         if not self.mixed:
             return W + soil
         W = -W
-        W[:, self.mp:, self.mp:] -= soil
+        rows = self.soil_rows
+        W[:, rows[:, None], rows[None, :]] -= soil
+        if self.sliding:            # the shear row holds the slip: psi_f = slip - (x_f - x_soil)
+            f, plus, minus = self.shears, self.slips[0::2], self.slips[1::2]
+            W[0, f, plus] = W[0, plus, f] = -1.0
+            W[0, f, minus] = W[0, minus, f] = 1.0
         return W
 
     def _swept_weights(self, free, rule, dt, N, basis) -> np.ndarray:
@@ -897,11 +994,13 @@ class FoundationModel:
         right singular vectors of ``T`` of its ``r`` nonzero singular values, the response to
         ``e_j`` is that to ``V V^T e_j``. A rigid footing (``r = 2``: ``uy``, ``rz``) on hundreds
         of patches then takes two sweeps instead of one per patch. The identity (one sweep per
-        contact) when ``r`` is not below ``m / 4``, where the saving would not pay, and for a mixed
-        model (the structure's constraints have ``H``).
+        contact) when ``r`` is not below ``m / 4``, where the saving would not pay. A mixed model:
+        the unknowns whose columns load the structure or carry ``H`` (slips do neither).
         """
         if self.mixed:
-            return np.eye(self.m)
+            free = self.stepping_model()
+            used = np.asarray(abs(free.F).sum(axis=0)).ravel() + np.abs(free.H).sum(axis=0) > 0
+            return np.eye(self.m)[:, used]
         T = dense(self.T)
         _, sv, vt = np.linalg.svd(T, full_matrices=False)
         r = int(np.sum(sv > sv.max(initial=0.0) * max(T.shape) * np.finfo(float).eps))
@@ -914,7 +1013,10 @@ class FoundationModel:
         With ``S0 = Phi(0)^-1`` the soil is a set of springs in series with the contacts:
         ``K + T S0 T^T``, ``F = T S0``, ``H = S0``, ``g = -S0 gap``, imposed load ``-T S0 gap``;
         its static state is the static state of this model (``psi = -c``). A mixed model's own
-        constraints come first, as they are.
+        constraints come first, as they are. Footings that slide: the springs act on
+        ``B = [-Tx, T]`` and the unknowns ``E [o; s+; s-] = [-(s+ - s-); o]`` (openings, then slip
+        pairs with :class:`~unilateral.constraints.Friction` on the openings' reactions):
+        ``K + B S0 B^T``, ``F = B S0 E``, ``H = E^T S0 E``; the slip rows' ``psi`` are ``+-f``.
         """
         S0 = np.linalg.inv(self.soil.static())
         S0 = 0.5 * (S0 + S0.T)
@@ -934,38 +1036,56 @@ class FoundationModel:
 
     def _spring_model(self, S, Cs) -> Model:
         """The structure with springs ``S`` (and dashpots ``Cs``) in series with the soil contacts."""
-        from ..constraints import Contact, default_families
+        from ..constraints import Contact, Friction, default_families
 
-        T = dense(self.T) if self.n <= _CHECK_MAX_N else sp.csr_matrix(self.T)
+        ms = self.ms
+        big = self.n > _CHECK_MAX_N
+        T = dense(self.T) if not big else sp.csr_matrix(self.T)
+        gap = self.gap
+        if self.sliding:
+            Tx = dense(self.Tx) if not big else sp.csr_matrix(self.Tx)
+            T = np.hstack([-Tx, T]) if not big else sp.hstack([-Tx, T]).tocsr()
+            E = np.zeros((2 * ms, 3 * ms))
+            E[ms + np.arange(ms), np.arange(ms)] = 1.0
+            E[np.arange(ms), ms + 2 * np.arange(ms)] = -1.0
+            E[np.arange(ms), ms + 2 * np.arange(ms) + 1] = 1.0
+            gap = np.concatenate([np.zeros(ms), gap])
+        else:
+            E = np.eye(ms)
         TS = T @ S
         add = lambda A, B: (A + B) if not sp.issparse(A) else (A + sp.csr_matrix(B))
         K = add(self.K, TS @ T.T)
         C, F_v, H_v = self.C, None, None
         if Cs is not None:
             C = add(self.damping(), T @ Cs @ T.T)
-            F_v, H_v = T @ Cs, Cs
-        q_imp = self.q_imposed(0.0) - np.asarray(TS @ self.gap).ravel()
-        F, H, g, families = TS, S, -(S @ self.gap), None
+            F_v, H_v = T @ Cs @ E, E.T @ Cs @ E
+        q_imp = self.q_imposed(0.0) - np.asarray(TS @ gap).ravel()
+        F, H, g = TS @ E, E.T @ S @ E, -(E.T @ S @ gap)
+        mp = self.mp
+        soil_families = [Contact(np.arange(mp, mp + ms), name="soil")]
+        if self.sliding:
+            soil_families.append(Friction(mp + ms + np.arange(2 * ms), normal=np.repeat(mp + np.arange(ms), 2),
+                                          mu=np.repeat(self.mu, 2), name="soil friction"))
+        names = self.constraint_names[:mp + ms] + self.constraint_names[mp + 2 * ms:]
+        families = soil_families if mp or self.sliding else default_families(ms)
         base = self.structure
         if base is not None:
-            mp, ms = self.mp, self.ms
+            k = E.shape[1]
             stack = (lambda A, B: sp.hstack([sp.csr_matrix(A), sp.csr_matrix(B)]).tocsr()) \
-                if (sp.issparse(base.F) or sp.issparse(TS)) else (lambda A, B: np.hstack([A, B]))
-            F = stack(base.F, TS)
-            H = block_diag(dense(base.H), S)
+                if (sp.issparse(base.F) or sp.issparse(F)) else (lambda A, B: np.hstack([A, B]))
+            F = stack(base.F, F)
+            H = block_diag(dense(base.H), H)
             g = np.concatenate([base.g(0.0), g])
             if base.viscous or Cs is not None:
-                zeros_v = np.zeros((self.n, ms)) if Cs is None else F_v
-                F_v = stack(np.zeros((self.n, mp)) if base.F_v is None else dense(base.F_v), zeros_v)
+                F_v = stack(np.zeros((self.n, mp)) if base.F_v is None else dense(base.F_v),
+                            np.zeros((self.n, k)) if Cs is None else F_v)
                 H_v = block_diag(np.zeros((mp, mp)) if base.H_v is None else dense(base.H_v),
-                                 np.zeros((ms, ms)) if Cs is None else Cs)
-            families = list(base.families) + [Contact(np.arange(mp, mp + ms), name="soil")]
-        else:
-            families = default_families(self.ms)
+                                 np.zeros((k, k)) if Cs is None else H_v)
+            families = list(base.families) + soil_families
         try:
             return Model(self.M, K, F, H, C=C, g=g, F_v=F_v, H_v=H_v,
                          q_imposed=q_imp if np.any(q_imp) else None,
-                         dof_names=self.dof_names, constraint_names=self.constraint_names, families=families)
+                         dof_names=self.dof_names, constraint_names=names, families=families)
         except ValueError as exc:
             raise ValueError(f"the structure on the soil's static springs is not stable ({exc}): "
                              "K + T Phi(0)^-1 T^T must be positive definite; support the structure or "
@@ -1053,14 +1173,20 @@ class _FreeStructure:
         self.M, self.K, self.C = model.M, model.K, model.C
         self.n, self.m = model.n, model.m
         self._model = model
-        base, ms = model.structure, model.ms
-        self.F, self.H, self.F_v, self.H_v = model.T, np.zeros((ms, ms)), None, None
+        base = model.structure
+        T = model.T
+        if model.sliding:           # columns of c, f (-Tx: f acts on the soil) and the slips (none)
+            Tx = model.Tx
+            parts = [T, -Tx, sp.csr_matrix((model.n, 2 * model.ms))]
+            T = sp.hstack(parts).tocsr() if sp.issparse(T) or sp.issparse(Tx) else np.hstack([dense(p) for p in parts])
+        ms = T.shape[1]
+        self.F, self.H, self.F_v, self.H_v = T, np.zeros((ms, ms)), None, None
         if base is not None:
             mp = base.m
-            sparse = sp.issparse(base.F) or sp.issparse(model.T)
+            sparse = sp.issparse(base.F) or sp.issparse(T)
             stack = (lambda A, B: sp.hstack([sp.csr_matrix(A), sp.csr_matrix(B)]).tocsr()) if sparse \
                 else (lambda A, B: np.hstack([dense(A), dense(B)]))
-            self.F = stack(base.F, model.T)
+            self.F = stack(base.F, T)
             self.H = block_diag(dense(base.H), np.zeros((ms, ms)))
             if base.viscous:
                 self.F_v = stack(np.zeros((self.n, mp)) if base.F_v is None else base.F_v, np.zeros((self.n, ms)))

@@ -25,7 +25,7 @@ from ..march.stepper import StructureStepper
 from ..methods.common import failed_at_start, finish, step_loads
 from ..linalg import transpose_times
 
-__all__ = ["foundation_base_state", "hold_openings", "solve_foundation"]
+__all__ = ["foundation_base_state", "hold_openings", "primal_columns", "solve_foundation"]
 
 
 def foundation_base_state(model, q_static, initial, solver) -> InitialState:
@@ -35,8 +35,9 @@ def foundation_base_state(model, q_static, initial, solver) -> InitialState:
     flexibility (:meth:`FoundationModel.static_model`). ``"rest"``: ``u = 0``, soil unloaded
     (``gap >= 0``; a mixed model's own constraints at ``v = 0`` need ``g >= 0``). A dict of ``u0``,
     ``udot0`` (plain models): given values with the soil unloaded (``T^T u0 + gap >= 0``).
-    The rows are the model's: a mixed model's own constraints (``v``, ``psi`` of the paper), then
-    the soil contacts.
+    The rows are those of :meth:`FoundationModel.static_model`: a mixed model's own constraints
+    (``v``, ``psi`` of the paper), the soil contacts, and for footings that slide their slip pairs
+    (``v`` the slips, ``psi = +-f``).
     """
     if isinstance(initial, str) and V.choice("initial", initial, ("static", "rest")) == "static":
         primal = model.static_model()
@@ -62,50 +63,74 @@ def foundation_base_state(model, q_static, initial, solver) -> InitialState:
         raise ValueError(f"the initial state penetrates the unloaded soil at contact {model.contact_names[i]!r}: "
                          f"opening T^T u0 + gap = {v0[i]:.6g} < 0; start from initial='static', or give u0 "
                          "with the foundation on or above the soil")
-    psi = np.zeros(model.m)
-    if model.mixed:
+    slips = np.zeros(2 * model.ms if model.sliding else 0)
+    psi = np.zeros(model.mp + model.ms + slips.size)
+    if model.structure is not None:
         psi[: model.mp] = -model.structure.g(0.0)
         if np.any(psi > 0):
             i = int(np.argmax(psi))
             raise ValueError(f"initial='rest': constraint {model.constraint_names[i]!r} is violated at u = 0 "
                              f"(g = {-psi[i]:.6g} < 0); start from initial='static'")
-    return InitialState(v=np.concatenate([np.zeros(model.mp), np.maximum(v0, 0.0)]), psi=psi, u=u0, udot=udot0)
+    return InitialState(v=np.concatenate([np.zeros(model.mp), np.maximum(v0, 0.0), slips]), psi=psi, u=u0,
+                        udot=udot0)
 
 
-def hold_openings(W0, history, psi_affine, z_b, mp=0, *, callback=None):
-    """Contact forces that hold every opening at its initial value: the bilateral CLCP.
+def primal_columns(model, v, psi):
+    """The solution's columns of a foundation model from those of its primal form (..., m_p + m_s
+    [+ 2 m_s]): the model's own, then per contact ``v`` opening and ``psi = -c``; footings that slide
+    then the shears (``v`` net slip ``s+ - s-``, ``psi = -f``, the soil's horizontal force on the
+    footing) and the slips (``v`` the slips, ``psi = +-f - mu c``) (:class:`FoundationModel`).
 
-    With the structure's own constraints (the first ``mp`` rows; their unknowns held at their base
-    values) and the soil contacts after them, solves the soil rows of
-    ``psi_affine_n - sum_j W_j (z_{n-j} - z_b) = psi_affine_0`` step by step; ``history`` sums
-    ``sum_{j>=1} W_j dz_{n-j}`` (stored weights or pole recursions). ``W0``'s soil block is
+    ``psi`` of the slips may be their associated values ``+-f`` or the friction functions: ``f``
+    is half their difference either way.
+    """
+    mp, ms = model.mp, model.ms
+    if not model.sliding:
+        return v, psi
+    c = -psi[..., mp:mp + ms]
+    f = 0.5 * (psi[..., mp + ms::2] - psi[..., mp + ms + 1::2])
+    slips = v[..., mp + ms:]
+    friction = np.stack([f - model.mu * c, -f - model.mu * c], axis=-1).reshape(slips.shape)
+    return (np.concatenate([v[..., :mp + ms], slips[..., 0::2] - slips[..., 1::2], slips], axis=-1),
+            np.concatenate([psi[..., :mp + ms], -f, friction], axis=-1))
+
+
+def hold_openings(W0, history, psi_affine, z_b, held, *, callback=None):
+    """Soil forces that hold every opening (and every patch's shear) at its initial value: the
+    bilateral CLCP.
+
+    The unknowns ``held`` (the soil contacts' forces, and the shears of footings that slide) move to
+    hold their rows of ``psi_affine_n - sum_j W_j (z_{n-j} - z_b) = psi_affine_0`` step by step; the
+    others (the structure's own constraints, the slips) stay at their base values. ``history`` sums
+    ``sum_{j>=1} W_j dz_{n-j}`` (stored weights or pole recursions). ``W0``'s block of ``held`` is
     definite (positive for a plain model, negative in a mixed one).
 
     Returns
     -------
-    c : (N+1, m_s) the contact forces
-    psi : (N+1, mp) the structure's constraint functions with every contact held
+    z : (N+1, len(held)) the held unknowns
+    psi : (N+1, m - len(held)) the other rows with every contact held
     """
     N, m = psi_affine.shape[0] - 1, psi_affine.shape[1]
-    Wss = W0[mp:, mp:]
-    sign = 1.0 if mp == 0 else -1.0
+    held = np.asarray(held)
+    rest = np.setdiff1d(np.arange(m), held)
+    Wss = W0[np.ix_(held, held)]
+    sign = 1.0 if Wss.trace() > 0 else -1.0
     # the inverse of the (small) definite block, once: a product per step instead of a solve
-    inverse = sign * sla.cho_solve(sla.cho_factor(sign * 0.5 * (Wss + Wss.T)), np.eye(m - mp))
-    coupling = W0[:mp, mp:]
+    inverse = sign * sla.cho_solve(sla.cho_factor(sign * 0.5 * (Wss + Wss.T)), np.eye(held.size))
+    coupling = W0[np.ix_(rest, held)]
     dz = np.zeros(m)
-    c = np.empty((N + 1, m - mp))
-    psi = np.empty((N + 1, mp))
-    c[0], psi[0] = z_b[mp:], psi_affine[0, :mp]
+    z = np.empty((N + 1, held.size))
+    psi = np.empty((N + 1, rest.size))
+    z[0], psi[0] = z_b[held], psi_affine[0, rest]
     for k in range(1, N + 1):
         h = history.value(k)
-        dz[mp:] = inverse @ (psi_affine[k, mp:] - psi_affine[0, mp:] - h[mp:])
+        dz[held] = inverse @ (psi_affine[k, held] - psi_affine[0, held] - h[held])
         history.push(k, dz)
-        c[k] = z_b[mp:] + dz[mp:]
-        if mp:
-            psi[k] = psi_affine[k, :mp] - h[:mp] - coupling @ dz[mp:]
+        z[k] = z_b[held] + dz[held]
+        psi[k] = psi_affine[k, rest] - h[rest] - coupling @ dz[held]
         if callback is not None:
             callback(k, N)
-    return c, psi
+    return z, psi
 
 
 def solve_foundation(model, load, initial, disc, run, *, operators):
@@ -137,10 +162,16 @@ def solve_foundation(model, load, initial, disc, run, *, operators):
                                 "mixed CLCP: the structure's constraints in the paper's form, the soil contacts "
                                 "in the contact forces (docs/theory.md, section 12)")
     run.timer.lap("initial")
-    mp = model.mp
-    # unknowns z: the structure's v, then the contact forces c; rows: the structure's psi, the openings
-    z_b = np.concatenate([init.v[:mp], -init.psi[mp:]])
-    row_b = np.concatenate([init.psi[:mp], init.v[mp:]])
+    mp, ms = model.mp, model.ms
+    # unknowns z: the structure's v, the contact forces c (sliding: the shears f, the slips); rows: the
+    # structure's psi, the openings (sliding: the shear equations, 0 at the base, and +-f)
+    c_b, opening_b = -init.psi[mp:mp + ms], init.v[mp:mp + ms]
+    z_b = np.concatenate([init.v[:mp], c_b])
+    row_b = np.concatenate([init.psi[:mp], opening_b])
+    if model.sliding:
+        f_b, slip_b = init.psi[mp + ms::2], init.v[mp + ms:]
+        z_b = np.concatenate([z_b, f_b, slip_b])
+        row_b = np.concatenate([row_b, np.zeros(ms), init.psi[mp + ms:]])
     u_b = init.u
     N, m = disc.N, model.m
     free = model.stepping_model()
@@ -158,22 +189,39 @@ def solve_foundation(model, load, initial, disc, run, *, operators):
     run.timer.lap("bilateral")
     W0, new_history, march = operators()
     run.timer.lap("weights")
-    held, psi_held = hold_openings(W0, new_history(), psi_affine, z_b, mp)
-    psiL = np.hstack([psi_held, -held])
+    soil = model.soil_rows
+    rest = np.setdiff1d(np.arange(m), soil)
+    held, psi_held = hold_openings(W0, new_history(), psi_affine, z_b, soil)
+    z_held = np.tile(z_b, (N + 1, 1))
+    z_held[:, soil] = held
+    rows_held = np.tile(-row_b, (N + 1, 1))      # -opening: the held rows are the march's -w
+    rows_held[:, rest] = psi_held
+    psiL = _columns(model, z_held, rows_held)[1]
     run.timer.lap("held")
     if run.bilateral:
-        z = np.hstack([np.tile(z_b[:mp], (N + 1, 1)), held])
-        rows = np.hstack([psi_held, np.tile(-row_b[mp:], (N + 1, 1))])
-        log = StepLog(m, np.concatenate([z_b[:mp] > 0, held[0] > 0]))
+        z, rows = z_held, rows_held
+        log = StepLog(m, z_b > 0)
     else:
         z, rows, log = march(psi_affine, z_b)
-    c = z[:, mp:]
-    # the LCP's w of a contact: round-off (+-1e-20) where it carries a force; exactly 0 there, as the
-    # primal form's v (a contact is open where v > 0)
-    opening = np.where(c > 0, 0.0, -rows[:, mp:])
     run.timer.lap("steps")
     K = z.shape[0] - 1
     du, dud, _, _, _ = sweep_direct(stepper(), K, z_b, row_b, z - z_b)
     run.timer.lap("recover")
-    return finish(model, run, log, t=disc.t[: K + 1], v=np.hstack([z[:, :mp], opening]),
-                  psi=np.hstack([rows[:, :mp], -c]), psiL=psiL[: K + 1], u=u_b + du, udot=dud)
+    v, psi = _columns(model, z, rows)
+    return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, psiL=psiL[: K + 1], u=u_b + du, udot=dud)
+
+
+def _columns(model, z, rows):
+    """The solution's columns (:func:`primal_columns`) from the march's unknowns ``z`` and rows
+    ``rows`` (``-w``: the structure's ``psi``, ``-opening``, 0 for shears, friction functions)."""
+    mp, ms = model.mp, model.ms
+    c = z[:, mp:mp + ms]
+    # the LCP's w of a contact: round-off (+-1e-20) where it carries a force; exactly 0 there, as the
+    # primal form's v (a contact is open where v > 0)
+    opening = np.where(c > 0, 0.0, -rows[:, mp:mp + ms])
+    v = np.hstack([z[:, :mp], opening])
+    psi = np.hstack([rows[:, :mp], -c])
+    if model.sliding:
+        v = np.hstack([v, z[:, mp + 2 * ms:]])
+        psi = np.hstack([psi, np.repeat(z[:, mp + ms:mp + 2 * ms], 2, axis=1) * np.tile([1.0, -1.0], ms)])
+    return primal_columns(model, v, psi)

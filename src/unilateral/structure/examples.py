@@ -235,7 +235,7 @@ FOOTINGS_SITE = {"model": "layered", "layers": [{"thickness": 4.0, "Vs": 120.0, 
                  "Vs": 300.0, "nu": 0.3, "rho": 2.0}
 
 
-def two_bay_on_footings(*, soil=None, record=None, pga=4.0, duration=6.0):
+def two_bay_on_footings(*, soil=None, record=None, pga=4.0, duration=6.0, mu=None):
     """A two-storey, two-bay frame on two footings on one soil, under a ground motion (kN, m, s).
 
     Bays 6 m, storeys 3.5 m; columns 400 x 400 mm, beams 300 x 500 mm, E = 30 GPa; floor masses
@@ -246,13 +246,16 @@ def two_bay_on_footings(*, soil=None, record=None, pga=4.0, duration=6.0):
     right column on footing ``"B"`` (3 m wide, 8 t, node 3); 3.5 m of ground between them. Both
     rest on the same soil (default :data:`FOOTINGS_SITE`: a 4 m layer with Vs = 120 m/s over a
     half-space with Vs = 300 m/s), 8 and 3 strips: the footings interact through the ground.
-    Horizontally each footing is held at its node (no sliding). Gravity (g = 9.81 m/s^2) and a
-    horizontal ground motion ``-M r a_g``.
+    Horizontally each footing is held at its node (no sliding), or with ``mu`` rests on the soil
+    and slides (``horizontal="soil"``). Gravity (g = 9.81 m/s^2) and a horizontal ground motion
+    ``-M r a_g``.
 
     Parameters
     ----------
     soil : dict, optional
         The soil of both footings (:class:`~unilateral.structure.foundation.SoilSpec` fields).
+    mu : float, optional
+        The footings' friction coefficient on the soil: they slide (default: held horizontally).
     record : GroundMotion or time function, optional
         Ground acceleration (m/s^2); default the synthetic record of
         :func:`unilateral.loads.synthetic_accelerogram` (``duration`` s, PGA ``pga`` m/s^2,
@@ -288,8 +291,9 @@ def two_bay_on_footings(*, soil=None, record=None, pga=4.0, duration=6.0):
             fr.mass(10 * level + k + 1, m)
     fr.rayleigh(a0=1.3)                   # mass-proportional: 5 % at the first period, 0.48 s
     spec = dict(FOOTINGS_SITE if soil is None else soil)
-    fr.foundation("A", 10, width=8.0, length=3.0, patches=8, soil=spec, mass=20.0, J=20.0 * 8.0 ** 2 / 12)
-    fr.foundation("B", 3, width=3.0, length=3.0, patches=3, soil=spec, mass=8.0, J=8.0 * 3.0 ** 2 / 12)
+    slide = {} if mu is None else dict(horizontal="soil", mu=mu)
+    fr.foundation("A", 10, width=8.0, length=3.0, patches=8, soil=spec, mass=20.0, J=20.0 * 8.0 ** 2 / 12, **slide)
+    fr.foundation("B", 3, width=3.0, length=3.0, patches=3, soil=spec, mass=8.0, J=8.0 * 3.0 ** 2 / 12, **slide)
     structure = fr.build()
     a_g = record if record is not None else synthetic_accelerogram(duration, 0.01, pga, seed=7, f_g=3.0)
     load = LoadHistory(structure.gravity(9.81), [structure.ground_motion(a_g, "ux")])

@@ -373,6 +373,24 @@ def nodal_forces(structure, h: Histories) -> np.ndarray:
     return out
 
 
+def _onto_masters(structure, forces) -> np.ndarray:
+    """Nodal forces (N+1, 3 n_nodes) with those of rigidly linked (slave) nodes added onto their
+    master's rows: a support of the master carries them (``T_link^T f`` of
+    ``u_s = u_m + rz_m x (x_s - x_m)``)."""
+    dofs, coords = structure.dofs, structure.coords
+    if not dofs.masters:
+        return forces
+    out = forces.copy()
+    for slave, master in dofs.masters.items():
+        s, m = dofs.full_index(slave, "ux"), dofs.full_index(master, "ux")
+        dx, dy = np.asarray(coords[slave], dtype=float) - np.asarray(coords[master], dtype=float)
+        fx, fy, mz = forces[:, s], forces[:, s + 1], forces[:, s + 2]
+        out[:, m] += fx
+        out[:, m + 1] += fy
+        out[:, m + 2] += mz - dy * fx + dx * fy
+    return out
+
+
 def _ground_elements(structure):
     """Elements with one end on the ground: directional elements on a single node."""
     return [e for e in list(structure.elements) + list(structure.dashpots)
@@ -390,7 +408,7 @@ def reactions(structure, h: Histories) -> dict:
     node (the ground reaction through soil, springs and dashpots to the ground);
     ``at`` : dict label -> node of each reaction (for moments).
     """
-    forces = nodal_forces(structure, h)
+    forces = _onto_masters(structure, nodal_forces(structure, h))
     dofs = structure.dofs
     support, at = {}, {}
     for node in dofs.nodes:

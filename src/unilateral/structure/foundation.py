@@ -7,8 +7,10 @@ flexibility of the patches (``docs/theory.md``, section 12). Two footings:
 * **rigid** (``node`` only): the reference ``node`` carries ``uy`` and ``rz``; ``patches`` strips
   across the ``width`` (the frame's x), each as long as the footing (``length``, out of plane), at
   ``x_j`` from the node: ``T[:, j] = e_uy + x_j e_rz``;
-* **flexible** (``nodes=[...]``): one patch per node of a footing beam, its tributary width, centred
-  on the node; ``T[:, j] = e_uy`` of node ``j``.
+* **flexible** (``nodes=[...]``): one patch per node of a footing beam, centred on the node, twice
+  as wide as the nearer end of its tributary strip (default ``width``: the span of the nodes plus
+  one mean spacing, so that equally spaced nodes get equal patches that cover the footing);
+  ``T[:, j] = e_uy`` of node ``j``.
 
 The soil (``soil=``): a :class:`~unilateral.soil.SoilFlexibility` of the patches, a
 :class:`SoilSpec`, or a dict of its fields: ``model`` ``"halfspace"`` (the rigorous (visco)elastic
@@ -30,7 +32,14 @@ tractions), so the footing needs a horizontal restraint of its own: ``"support"`
 of the reference node supported, as in the paper's example), ``"cone"`` (a bilateral horizontal
 spring ``K = 8 G r0 / (2 - nu)`` and dashpot ``C = rho Vs pi r0^2`` of Wolf's horizontal cone of the
 disc of equal area, attached to the reference node: the footing is assumed not to slide, also when
-it lifts off partly) or ``"none"`` (the frame restrains it otherwise).
+it lifts off partly) or ``"none"`` (the frame restrains it otherwise), or ``"soil"``: the footing rests on the soil
+horizontally too and **slides** - each patch carries a horizontal force through the soil's
+horizontal and vertical flexibility (on a half-space or a layered soil the x-z Green's tensor with
+the coupling of a compressible solid; Wolf's horizontal cone spread over the patches by area for
+``"cones"``; springs ``kx`` and dashpots ``cx`` per patch for ``"winkler-kelvin"``), limited by
+Coulomb friction ``|f| <= mu c`` (``mu=`` of the footing): an open patch carries none, so the footing
+rocks, lifts and slides at once (:class:`~unilateral.soil.FoundationModel` with ``Tx``, ``mu``).
+Every footing of a frame then takes ``horizontal="soil"``.
 
 Units: any consistent set; with kN, m, s: ``G`` in kPa, ``rho`` in t/m^3, ``k`` in kN/m,
 ``c`` in kN s/m.
@@ -49,7 +58,7 @@ __all__ = ["HORIZONTAL", "SOIL_MODELS", "Footings", "Foundation", "SoilSpec", "s
 SOIL_MODELS = ("halfspace", "layered", "cones", "winkler-kelvin")
 #: Soils whose patches interact through the ground (one flexibility for every footing on them).
 COUPLED_SOILS = ("halfspace", "layered")
-HORIZONTAL = ("support", "cone", "none")
+HORIZONTAL = ("support", "cone", "none", "soil")
 
 
 @dataclass(frozen=True)
@@ -75,6 +84,9 @@ class SoilSpec:
         ``"winkler-kelvin"``: the spring of each patch (one number: the same for every patch).
     c : float or sequence of m floats, force time/length
         ``"winkler-kelvin"``: the dashpot of each patch (default 0).
+    kx, cx : float or sequence of m floats
+        ``"winkler-kelvin"`` with ``horizontal="soil"``: the horizontal spring (force/length) and
+        dashpot (force time/length) of each patch.
     layers : sequence of dict, optional
         ``"layered"``: the layers from the surface down, each ``thickness``, ``G`` or ``Vs``,
         ``nu``, ``rho``, ``damping``; the half-space under them is ``G`` or ``Vs``, ``nu``, ``rho``,
@@ -91,6 +103,8 @@ class SoilSpec:
     damping: float = 0.0
     k: object = None
     c: object = 0.0
+    kx: object = None
+    cx: object = 0.0
     layers: object = None
     base: str = "halfspace"
 
@@ -128,17 +142,19 @@ class SoilSpec:
         return float(self.nu)
 
 
-def soil_flexibility(soil, patches, where="soil"):
+def soil_flexibility(soil, patches, where="soil", components="z"):
     """The :class:`~unilateral.soil.SoilFlexibility` of ``patches`` for ``soil``.
 
     Parameters
     ----------
     soil : SoilFlexibility, SoilSpec or dict
-        A SoilFlexibility must have one contact per patch.
+        A SoilFlexibility must have one contact per patch (``components="xz"``: two, x then z).
     patches : RectangularPatches
         ``m`` patches (contact order).
     where : str
         The name used in error messages.
+    components : {"z", "xz"}
+        Vertical only, or the x rows of the patches then their z rows (footings that slide).
 
     Returns
     -------
@@ -147,10 +163,12 @@ def soil_flexibility(soil, patches, where="soil"):
     """
     from ..soil.foundation_model import SoilFlexibility
 
+    rows = len(components) * patches.m
     if isinstance(soil, SoilFlexibility):
-        if soil.m != patches.m:
-            raise ValueError(f"{where}: the SoilFlexibility has m = {soil.m} contacts but the footing has "
-                             f"{patches.m} patches; build it for these patches")
+        if soil.m != rows:
+            raise ValueError(f"{where}: the SoilFlexibility has m = {soil.m} rows but the footing has "
+                             f"{patches.m} patches" + (" and slides (x then z rows: 2 per patch)" if rows > patches.m
+                                                       else "") + "; build it for these patches")
         return soil, None
     spec = soil if isinstance(soil, SoilSpec) else SoilSpec.from_dict(soil, where)
     if spec.model not in SOIL_MODELS:
@@ -167,9 +185,19 @@ def soil_flexibility(soil, patches, where="soil"):
             raise ValueError(f"{where}: model='winkler-kelvin' needs k, the spring of each patch [force/length]")
         k = _per_patch(where, "k", spec.k, m, ">0")
         c = _per_patch(where, "c", spec.c, m, ">=0")
+        if components == "xz":
+            if spec.kx is None:
+                raise ValueError(f"{where}: a footing that slides on model='winkler-kelvin' needs kx, the horizontal "
+                                 "spring of each patch [force/length] (and cx, its dashpot)")
+            k = np.concatenate([_per_patch(where, "kx", spec.kx, m, ">0"), k])
+            c = np.concatenate([_per_patch(where, "cx", spec.cx, m, ">=0"), c])
+        elif spec.kx is not None or spec.cx not in (None, 0, 0.0):
+            raise ValueError(f"{where}: kx and cx are for a footing with horizontal='soil'; remove them")
         return SoilFlexibility.kelvin(k, c), spec
+    if spec.kx is not None or spec.cx not in (None, 0, 0.0):
+        raise ValueError(f"{where}: kx and cx are for model='winkler-kelvin'; remove them for model={spec.model!r}")
     if spec.model == "layered":
-        return SoilFlexibility.halfspace(layered_soil(spec, where), patches), spec
+        return SoilFlexibility.halfspace(layered_soil(spec, where), patches, components=components), spec
     if spec.layers is not None or spec.base != "halfspace":
         raise ValueError(f"{where}: layers and base are for model='layered'; remove them for model={spec.model!r}")
     if spec.k is not None or (spec.c not in (None, 0, 0.0)):
@@ -187,16 +215,20 @@ def soil_flexibility(soil, patches, where="soil"):
         from ..soil.cones import Cone, cone
 
         areas = patches.areas
-        whole = cone("vertical", G, nu, rho, float(np.sqrt(areas.sum() / np.pi)))
         share = areas / areas.sum()
-        flex = SoilFlexibility.impedances([Cone("vertical", whole.K * w, whole.C * w, whole.dM * w, 0.0,
-                                                whole.z0, whole.c) for w in share])
-        flex.description = (f"the footing's vertical cone (G={G:g}, nu={nu:g}, rho={rho:g}) over {m} patches "
-                            "by area")
+        r0 = float(np.sqrt(areas.sum() / np.pi))
+        motions = ("horizontal", "vertical") if components == "xz" else ("vertical",)
+        cones = []
+        for motion in motions:
+            whole = cone(motion, G, nu, rho, r0)
+            cones += [Cone(motion, whole.K * w, whole.C * w, whole.dM * w, 0.0, whole.z0, whole.c) for w in share]
+        flex = SoilFlexibility.impedances(cones)
+        flex.description = (f"the footing's {' and '.join(motions)} cones (G={G:g}, nu={nu:g}, rho={rho:g}) over "
+                            f"{m} patches by area")
         return flex, spec
     from ..soil.halfspace import HalfSpace
 
-    return SoilFlexibility.halfspace(HalfSpace(G, nu, rho, float(damping)), patches), spec
+    return SoilFlexibility.halfspace(HalfSpace(G, nu, rho, float(damping)), patches, components=components), spec
 
 
 def layered_soil(spec: SoilSpec, where="soil"):
@@ -254,6 +286,7 @@ class Foundation:
     gap : (m,) opening at ``u = 0`` with the soil unloaded
     contact_names : tuple of m str
     y : float, elevation of the footing (length)
+    mu : float or None, the friction coefficient on the soil (``horizontal="soil"``)
     """
 
     name: str
@@ -268,6 +301,7 @@ class Foundation:
     gap: np.ndarray
     contact_names: tuple
     y: float = 0.0
+    mu: float | None = None
 
     @property
     def m(self) -> int:
@@ -277,6 +311,11 @@ class Foundation:
     @property
     def rigid(self) -> bool:
         return self.nodes is None
+
+    @property
+    def sliding(self) -> bool:
+        """The footing rests on the soil horizontally and slides (``horizontal="soil"``)."""
+        return self.horizontal == "soil"
 
     def contact_nodes(self) -> list:
         """The node each contact force acts on (the reference node for a rigid footing)."""
@@ -290,35 +329,43 @@ class Foundation:
                     for x in self.patches.centres[:, 0]]
         return [[(node, "uy", 1.0)] for node in self.nodes]
 
+    def shear_rows(self) -> list[tuple]:
+        """Per contact: ``[(node, "ux", 1.0)]``, the footing's horizontal displacement at the patch (its
+        base, at the node's elevation)."""
+        return [[(node, "ux", 1.0)] for node in self.contact_nodes()]
+
     def T(self, dofs, coords) -> np.ndarray:
         """``T`` (n, m): upward displacement of the footing at each patch, ``z_f = T^T u``."""
-        out = np.zeros((dofs.n, self.m))
-        for j, terms in enumerate(self.moved_rows(coords)):
-            for node, dof, factor in terms:
-                if factor:
-                    out[:, j] += factor * dofs.T[dofs.full_index(node, dof)].toarray().ravel()
-        return out
+        return _rows_matrix(dofs, self.moved_rows(coords), self.m)
+
+    def Tx(self, dofs) -> np.ndarray:
+        """``Tx`` (n, m): horizontal displacement of the footing at each patch, ``x_f = Tx^T u``."""
+        return _rows_matrix(dofs, self.shear_rows(), self.m)
 
     def constraint_coords(self) -> dict:
-        """Coordinates along ``constraint`` for ``results.nc``: x, y of each patch, kind, gap."""
+        """Coordinates along ``constraint`` for ``results.nc``: x, y of each patch, kind, gap (of its
+        contact; a footing that slides: of its shears and slips too, with :meth:`Footings.constraint_coords`)."""
         return {"constraint_x": ("constraint", [float(x) for x in self.patches.centres[:, 0]]),
                 "constraint_y": ("constraint", [float(self.y)] * self.m),
                 "constraint_kind": ("constraint", ["foundation"] * self.m),
                 "constraint_gap": ("constraint", [float(g) for g in self.gap])}
 
     # ------------------------------------------------------------------ results of a solution
-    def ground_reactions(self, structure, c) -> tuple[dict, dict]:
+    def ground_reactions(self, structure, c, h=None) -> tuple[dict, dict]:
         """The soil's forces on the structure, per contact: ``(fx, fy, mz)`` (N+1, 3) and the node.
 
-        ``c`` (N+1, m) are the footing's compressive contact forces. Each acts upward at its patch
-        centre; it is reported at the node it acts on (``contact_nodes``) with the moment
-        ``(x_j - x_node) c_j`` of the offset, so that base forces and overturning moments about any
-        point come out right.
+        ``c`` (N+1, m) are the footing's compressive contact forces, ``h`` (N+1, m) the soil's
+        horizontal forces on the footing (a footing that slides; else none). Each acts at its patch
+        centre, at the footing's base; it is reported at the node it acts on (``contact_nodes``) with
+        the moment ``(x_j - x_node) c_j`` of the offset, so that base forces and overturning
+        moments about any point come out right.
         """
         forces, at = {}, {}
         for j, node in enumerate(self.contact_nodes()):
             f = np.zeros((c.shape[0], 3))
             f[:, 1] = c[:, j]
+            if h is not None:
+                f[:, 0] = h[:, j]
             f[:, 2] = (float(self.patches.centres[j, 0]) - float(structure.coords[node][0])) * c[:, j]
             forces[self.contact_names[j]] = f
             at[self.contact_names[j]] = node
@@ -343,6 +390,12 @@ class Footings:
     def __init__(self, footings, first=0):
         self.footings = tuple(footings)
         self.first = int(first)
+        self.sliding = self.footings[0].sliding
+        if any(f.sliding != self.sliding for f in self.footings):
+            raise ValueError(f"foundations {', '.join(repr(f.name) for f in self.footings)}: footings that slide "
+                             "(horizontal='soil') and footings held otherwise cannot be mixed in one frame; give "
+                             "every footing horizontal='soil', or none")
+        self.mu = np.concatenate([np.full(f.m, f.mu if f.sliding else 0.0) for f in self.footings])
         self.soil = _group_soil(self.footings)
         self.patches = _concat_patches([f.patches for f in self.footings])
         self.gap = np.concatenate([f.gap for f in self.footings])
@@ -370,30 +423,71 @@ class Footings:
         """``T`` (n, m) of all patches."""
         return np.hstack([f.T(dofs, coords) for f in self.footings])
 
+    def Tx(self, dofs) -> np.ndarray:
+        """``Tx`` (n, m) of all patches (footings that slide)."""
+        return np.hstack([f.Tx(dofs) for f in self.footings])
+
     def constraint_coords(self) -> dict:
-        """x, y, kind and gap of each patch along ``constraint`` (after the frame's own constraints)."""
+        """x, y, kind and gap of each patch along ``constraint`` (after the frame's own constraints); a
+        footing that slides: its contacts, then its shears (kind ``"foundation_shear"``) and its
+        slip pairs (``"foundation_slip"``), each at its patch."""
         parts = [f.constraint_coords() for f in self.footings]
-        return {key: ("constraint", [x for p in parts for x in p[key][1]]) for key in parts[0]}
+        out = {key: [x for p in parts for x in p[key][1]] for key in parts[0]}
+        if self.sliding:
+            x, y, gap = out["constraint_x"], out["constraint_y"], out["constraint_gap"]
+            out = {"constraint_x": x + x + [a for a in x for _ in "+-"],
+                   "constraint_y": y + y + [a for a in y for _ in "+-"],
+                   "constraint_kind": out["constraint_kind"] + ["foundation_shear"] * self.m
+                   + ["foundation_slip"] * (2 * self.m),
+                   "constraint_gap": gap + [0.0] * (3 * self.m)}
+        return {key: ("constraint", value) for key, value in out.items()}
 
     def contact_forces(self, sol) -> np.ndarray:
         """Compressive contact forces ``c = -psi`` (N+1, m) of a solution (force)."""
-        return -np.asarray(sol.psi, dtype=float)[:, self.first:]
+        return -np.asarray(sol.psi, dtype=float)[:, self.first:self.first + self.m]
+
+    def shear_forces(self, sol) -> np.ndarray | None:
+        """The soil's horizontal forces on the footings (N+1, m) (force, +x), or None if they do not slide."""
+        if not self.sliding:
+            return None
+        return np.asarray(sol.psi, dtype=float)[:, self.first + self.m:self.first + 2 * self.m]
+
+    def slips(self, sol) -> np.ndarray | None:
+        """The net slip ``s+ - s-`` (N+1, m) of each patch on the soil (length, +x), or None."""
+        if not self.sliding:
+            return None
+        return np.asarray(sol.v, dtype=float)[:, self.first + self.m:self.first + 2 * self.m]
 
     def contact_load(self, structure, sol) -> np.ndarray:
-        """``T c`` (N+1, n): the load of the contact forces on the structure."""
-        return self.contact_forces(sol) @ self.T(structure.dofs, structure.coords).T
+        """``T c + Tx h`` (N+1, n): the load of the soil's forces on the structure."""
+        out = self.contact_forces(sol) @ self.T(structure.dofs, structure.coords).T
+        if self.sliding:
+            out = out + self.shear_forces(sol) @ self.Tx(structure.dofs).T
+        return out
 
     def ground_reactions(self, structure, sol) -> tuple[dict, dict]:
         """The soil's forces on the structure per contact, as :meth:`Foundation.ground_reactions`."""
         c = self.contact_forces(sol)
+        h = self.shear_forces(sol)
         forces, at = {}, {}
         start = 0
         for f in self.footings:
-            got, where = f.ground_reactions(structure, c[:, start:start + f.m])
+            got, where = f.ground_reactions(structure, c[:, start:start + f.m],
+                                            None if h is None else h[:, start:start + f.m])
             forces |= got
             at |= where
             start += f.m
         return forces, at
+
+
+def _rows_matrix(dofs, rows, m) -> np.ndarray:
+    """(n, m): column ``j`` is ``sum factor * e(node, dof)`` over ``rows[j]``."""
+    out = np.zeros((dofs.n, m))
+    for j, terms in enumerate(rows):
+        for node, dof, factor in terms:
+            if factor:
+                out[:, j] += factor * dofs.T[dofs.full_index(node, dof)].toarray().ravel()
+    return out
 
 
 def _concat_patches(parts):
@@ -420,8 +514,14 @@ def _group_soil(footings):
             raise ValueError(f"foundations {names}: footings on one soil medium lie on its surface, at one "
                              f"elevation; got y = {sorted({f.y for f in footings})}")
         return soil_flexibility(specs[0], _concat_patches([f.patches for f in footings]),
-                                f"foundation {footings[0].name!r}: soil")[0]
-    return SoilFlexibility.block_diagonal([f.soil for f in footings])
+                                f"foundation {footings[0].name!r}: soil", "xz" if footings[0].sliding else "z")[0]
+    soil = SoilFlexibility.block_diagonal([f.soil for f in footings])
+    if not footings[0].sliding:
+        return soil
+    # each footing's rows are its x then its z rows: all x rows first, then all z rows
+    starts = np.cumsum([0] + [2 * f.m for f in footings])
+    order = [a + j for a, f in zip(starts, footings) for j in range(f.m)]
+    return soil.permuted(order + [a + f.m + j for a, f in zip(starts, footings) for j in range(f.m)])
 
 
 def _material(spec):
@@ -485,7 +585,8 @@ def add_soil_energy(energy: dict, contact_load: np.ndarray, u: np.ndarray) -> di
     return out
 
 
-def build_foundation(*, name, node, nodes, width, length, soil, patches, horizontal, gap, coords) -> Foundation:
+def build_foundation(*, name, node, nodes, width, length, soil, patches, horizontal, gap, coords,
+                     mu=None) -> Foundation:
     """Check the arguments of :meth:`Frame2D.foundation` and make the :class:`Foundation`."""
     from ..soil.patches import RectangularPatches, strips
 
@@ -494,6 +595,15 @@ def build_foundation(*, name, node, nodes, width, length, soil, patches, horizon
     horizontal = horizontal if isinstance(horizontal, str) else repr(horizontal)
     if horizontal not in HORIZONTAL:
         raise ValueError(f"{where}: horizontal={horizontal!r} is not valid; valid: {', '.join(map(repr, HORIZONTAL))}")
+    if horizontal == "soil":
+        if isinstance(mu, bool) or not isinstance(mu, numbers.Real) or not (np.isfinite(mu) and mu >= 0):
+            raise ValueError(f"{where}: horizontal='soil' needs mu, the friction coefficient of the footing on the "
+                             f"soil (a finite number >= 0; a large one for a footing that does not slide), got "
+                             f"mu={mu!r}")
+        mu = float(mu)
+    elif mu is not None:
+        raise ValueError(f"{where}: mu={mu!r} is for a footing that slides on the soil; give horizontal='soil' "
+                         f"(now {horizontal!r}) or remove mu")
     if nodes is None:
         width = _positive(where, "width", width)
         if isinstance(patches, bool) or not isinstance(patches, numbers.Integral) or not 1 <= patches <= 400:
@@ -525,10 +635,11 @@ def build_foundation(*, name, node, nodes, width, length, soil, patches, horizon
         nodes = [nodes[i] for i in order]
         x = xy[order, 0]
         span = x[-1] - x[0]
-        width = span if width is None else _positive(where, "width", width)
+        # default: one node spacing beyond the span, so that equally spaced nodes get equal patches
+        width = span * len(nodes) / (len(nodes) - 1) if width is None else _positive(where, "width", width)
         if width < span * (1 - 1e-12):
             raise ValueError(f"{where}: width={width!r} is smaller than the span of the nodes ({span:g}); give "
-                             "width >= the span, or omit it (the span)")
+                             "a width larger than the span, or omit it (the span plus one mean node spacing)")
         centre = 0.5 * (x[0] + x[-1])
         edges = np.concatenate([[centre - 0.5 * width], 0.5 * (x[1:] + x[:-1]), [centre + 0.5 * width]])
         lo, hi = edges[:-1], edges[1:]
@@ -542,13 +653,13 @@ def build_foundation(*, name, node, nodes, width, length, soil, patches, horizon
         names = tuple(f"{name}.{n}" for n in nodes)
         contact_nodes = tuple(nodes)
         y0 = xy[0, 1]
-    flex, spec = soil_flexibility(soil, pts, f"{where}: soil")
+    flex, spec = soil_flexibility(soil, pts, f"{where}: soil", "xz" if horizontal == "soil" else "z")
     gap_arr = np.broadcast_to(np.asarray(gap, dtype=float), (pts.m,)).copy() if np.ndim(gap) == 0 else \
         np.asarray(gap, dtype=float)
     if gap_arr.shape != (pts.m,) or not np.all(np.isfinite(gap_arr)):
         raise ValueError(f"{where}: gap={gap!r} must be a finite number or one number per patch ({pts.m})")
     fnd = Foundation(name=name, node=node, nodes=contact_nodes, width=float(width), length=length, patches=pts,
-                     soil=flex, spec=spec, horizontal=horizontal, gap=gap_arr, contact_names=names, y=float(y0))
+                     soil=flex, spec=spec, horizontal=horizontal, gap=gap_arr, contact_names=names, y=float(y0), mu=mu)
     return fnd
 
 
@@ -576,10 +687,12 @@ def to_foundation_model(structure, model=None):
 
     fnd = structure.foundation
     T = fnd.T(structure.dofs, structure.coords)
+    slide = dict(Tx=fnd.Tx(structure.dofs), mu=fnd.mu) if fnd.sliding else {}
     if model is not None:
         if structure.n > 2000:
             T = sp.csr_matrix(T)
-        return FoundationModel.on(model, T, fnd.soil, gap=fnd.gap, contact_names=list(fnd.contact_names))
+            slide = {key: sp.csr_matrix(value) if key == "Tx" else value for key, value in slide.items()}
+        return FoundationModel.on(model, T, fnd.soil, gap=fnd.gap, contact_names=list(fnd.contact_names), **slide)
     nat = structure.natural
     if np.any(nat.theta(0.0)):
         raise ValueError("the frame has imposed strains (axial_strain, curvature) and a foundation on a soil "
@@ -592,8 +705,9 @@ def to_foundation_model(structure, model=None):
         C = None if C is None else C.toarray()
     else:
         T = sp.csr_matrix(T)
+        slide = {key: sp.csr_matrix(value) if key == "Tx" else value for key, value in slide.items()}
     return FoundationModel(M, K, T, fnd.soil, C=C, gap=fnd.gap, dof_names=structure.dofs.names,
-                           contact_names=list(fnd.contact_names))
+                           contact_names=list(fnd.contact_names), **slide)
 
 
 def _positive(where, arg, value) -> float:

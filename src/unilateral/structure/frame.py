@@ -422,7 +422,7 @@ class Frame2D:
 
     # ------------------------------------------------------------------ foundation on a soil medium
     def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
-                   horizontal="support", gap=0.0, mass=0.0, J=0.0) -> None:
+                   horizontal="support", gap=0.0, mass=0.0, J=0.0, mu=None) -> None:
         """A footing resting on a soil medium (half-space, cones or Winkler-Kelvin) through
         unilateral contacts; :meth:`Structure.to_model` then gives a
         :class:`~unilateral.soil.FoundationModel` (``docs/theory.md``, section 12).
@@ -435,8 +435,9 @@ class Frame2D:
         Rigid footing (``nodes=None``): ``node`` carries the footing's ``uy`` and ``rz``;
         ``patches`` strips (default 3) across ``width`` (the frame's x, centred on ``node``), each
         ``length`` long out of plane. Flexible footing: one patch per node of ``nodes`` (the nodes of
-        a footing beam at one elevation), centred on it, its tributary width; the end patches reach
-        the edges at ``centre +- width/2`` (default ``width``: the span of the nodes).
+        a footing beam at one elevation), centred on it, twice as wide as the nearer end of its
+        tributary strip within ``centre +- width/2`` (default ``width``: the span of the nodes plus
+        one mean node spacing: equally spaced nodes then get equal patches covering the footing).
 
         Parameters
         ----------
@@ -454,9 +455,14 @@ class Frame2D:
             Number of strips of a rigid footing (default 3).
         nodes : sequence of node ids, optional
             A flexible footing's contact nodes.
-        horizontal : {"support", "cone", "none"}
+        horizontal : {"support", "cone", "none", "soil"}
             The footing's horizontal restraint: ``ux`` of ``node`` supported (default), Wolf's
-            horizontal cone as a bilateral spring and dashpot at ``node`` (no sliding), or nothing.
+            horizontal cone as a bilateral spring and dashpot at ``node`` (no sliding), nothing, or
+            the soil itself: each patch's horizontal force through the soil's horizontal flexibility,
+            limited by Coulomb friction ``mu`` - the footing slides (every footing of the frame then
+            takes ``"soil"``; see :mod:`unilateral.structure.foundation`).
+        mu : float >= 0, optional
+            With ``horizontal="soil"``: the friction coefficient of the footing on the soil.
         gap : float or (m,) array, length
             Opening at ``u = 0`` with the soil unloaded (negative: a penetration).
         mass, J : float >= 0, mass and mass length^2
@@ -475,7 +481,7 @@ class Frame2D:
             self._node(where, f"nodes[{k}]", other)
         fnd = build_foundation(name=name, node=node, nodes=nodes, width=width, length=length, soil=soil,
                                patches=3 if patches is None and nodes is None else patches,
-                               horizontal=horizontal, gap=gap, coords=self._coords)
+                               horizontal=horizontal, gap=gap, coords=self._coords, mu=mu)
         used = {n for f in self._foundations for n in f.contact_nodes()}
         if used & set(fnd.contact_nodes()):
             raise ValueError(f"{where}: node(s) {sorted(used & set(fnd.contact_nodes()), key=repr)} already rest on "
@@ -487,9 +493,10 @@ class Frame2D:
         for contact in fnd.contact_nodes():
             if contact in self._links:
                 continue
-            if (contact, "uy") in self._restrained:
-                raise ValueError(f"{where}: uy of node {contact!r} is supported: the footing could not move "
-                                 "on the soil; remove that support")
+            for dof in ("uy", "ux") if fnd.sliding else ("uy",):
+                if (contact, dof) in self._restrained:
+                    raise ValueError(f"{where}: {dof} of node {contact!r} is supported: the footing could not move "
+                                     "on the soil; remove that support")
         if fnd.horizontal == "support":
             self.support(node, ux=True, uy=False)
         elif fnd.horizontal == "cone":
@@ -540,7 +547,7 @@ class Frame2D:
         K = (G @ E @ G.T).tocsr()
         on_soil = set()
         for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
-            for terms in footing.moved_rows(self._coords):
+            for terms in footing.moved_rows(self._coords) + (footing.shear_rows() if footing.sliding else []):
                 on_soil |= {(node, dof) for node, dof, _ in terms}
         _check_stiffness(K, dofs, exempt=on_soil)
         C = self._damping(dofs, M, K)
