@@ -75,7 +75,7 @@ def test_static_state_of_a_large_model_solves_in_blocks_without_a_dense_n_by_m(m
 
     monkeypatch.setattr(Factorization, "solve", counting)
     monkeypatch.setattr(initial, "SOLVE_BLOCK_ENTRIES", 5 * model.n)
-    blocked = initial.static_state(model, q0, solver)
+    blocked = initial.static_state(structure.to_model(), q0, solver)     # a new model: not the kept state
     assert max(widths) == 5 < model.m
     assert np.allclose(blocked.u, reference.u, rtol=0, atol=1e-12 * np.abs(reference.u).max())
     assert np.array_equal(blocked.v > 0, reference.v > 0)

@@ -74,8 +74,24 @@ def static_state(model, q0, solver) -> InitialState:
 
     A model with penalty-stiff elements (known from its natural form) is solved in coordinates that
     separate the stiff strains (:mod:`unilateral.methods.stiff`): the assembled ``K`` would keep the
-    soft stiffness only to ``eps`` times the stiffness ratio.
+    soft stiffness only to ``eps`` times the stiffness ratio. The state is kept on the model per
+    ``q0`` and solver settings (:func:`unilateral.model.remembered`): a batch's analyses of one model variant
+    solve it once; each call returns its own copy.
     """
+    from dataclasses import replace
+
+    from .model import remembered
+
+    q0 = np.asarray(q0, dtype=float)
+    key = ("static", q0.tobytes(), getattr(solver, "name", type(solver).__name__), getattr(solver, "tol", None),
+           getattr(solver, "max_iter", None))
+    state = remembered(model, key, lambda: _static_state(model, q0, solver))
+    return replace(state, **{name: None if getattr(state, name) is None else getattr(state, name).copy()
+                             for name in ("v", "psi", "u", "udot")})
+
+
+def _static_state(model, q0, solver) -> InitialState:
+    """:func:`static_state`, computed."""
     from .methods.stiff import StiffCoordinates     # lazily: methods imports this module
 
     stiff = StiffCoordinates.of(model)

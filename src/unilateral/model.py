@@ -406,3 +406,24 @@ def _check_diagonal_nonnegative(name, A, *, strict=False):
             f"{name} must have a {need} diagonal ({name} is a stiffness/mass-type matrix); "
             f"{name}[{i}, {i}] = {float(d[i])!r}"
         )
+
+
+#: Set-up entries kept per model by :func:`remembered` (the oldest goes first).
+SETUP_KEEP = 8
+
+
+def remembered(model, key, build):
+    """``build()``, or the value it gave for ``key`` on this ``model`` before (exceptions are not kept).
+
+    Set-up kept on a model between solves: a batch solves one model variant under many records and
+    scale factors (an IDA), and its static state under gravity and the poles of its kernel are the
+    same every time. They are kept on the model object (a model is treated as immutable once built,
+    as a soil keeps its weights), at most :data:`SETUP_KEEP` entries per model.
+    """
+    cache = model.__dict__.setdefault("_setup_cache", {})
+    if key not in cache:
+        value = build()
+        if len(cache) >= SETUP_KEEP:
+            cache.pop(next(iter(cache)))
+        cache[key] = value
+    return cache[key]

@@ -143,5 +143,16 @@ def _check_memory(method, model, disc) -> None:
         raise MemoryError(
             f"t_end/dt = {disc.N} steps with method={method.name!r} would need about {need / 2**30:.3g} GiB "
             f"({what}), more than {MEMORY_FRACTION:.0%} of this machine's {total / 2**30:.3g} GiB: "
-            "increase dt, shorten t_end"
-            + (" or use method='modal' or 'direct' (no stored weights)" if method.name == "cq" else ""))
+            "increase dt, shorten t_end" + _memory_hint(method, model))
+
+
+def _memory_hint(method, model) -> str:
+    """What else lowers the memory of ``method`` on ``model``: the methods without stored weights,
+    where they apply; fewer patches for a soil that only ``cq`` takes."""
+    if method.name != "cq":
+        return ""
+    soil = getattr(model, "soil", None)
+    if soil is not None and not (soil.is_rational or soil.kelvin is not None):
+        return (f", or cut the footings into fewer patches (the weights grow as the square of the "
+                f"{model.m} soil unknowns; this soil is solved by method='cq' only)")
+    return " or use method='modal' or 'direct' (no stored weights)"

@@ -54,13 +54,14 @@ def outer_edges(ds, footings) -> dict:
 
 
 def draw_comparison(datasets, path_without_suffix, formats=("png",)) -> list:
-    """The figure ``footings``: outer-edge uplift, footing forces and roof drift, one soil against own soils.
+    """The figure ``footings``: outer-edge uplift, footing forces, roof drift and slip, one soil against own
+    soils and sliding.
 
     Parameters
     ----------
     datasets : iterable of Dataset
-        The two runs' Datasets (:func:`~unilateral.analysis.halfspace_example.run_dataset`, or the
-        run files read back), each with the attribute ``soil`` (:data:`ONE`, :data:`OWN`).
+        The three runs' Datasets (:func:`~unilateral.analysis.halfspace_example.run_dataset`, or the
+        run files read back), each with the attribute ``soil`` (:data:`ONE`, :data:`OWN`, :data:`SLIDE`).
     path_without_suffix : path
         ``out/footings`` gives ``out/footings.png``.
     formats : sequence of str

@@ -43,8 +43,8 @@ class CQ(Method):
     def memory_estimate(self, model, disc) -> dict:
         out = super().memory_estimate(model, disc)
         out[f"the CQ weights (3 copies of (N+1) m^2, m = {model.m})"] = 24.0 * (disc.N + 1) * model.m ** 2
-        # the FFT that computes them holds L = 8 (N+1) complex values per entry, twice; an uncoupled
-        # soil has m entries (its diagonal), not m^2
+        # the FFT that computes them holds L = 8 (N+1) complex values per entry, twice (a soil's:
+        # SOIL_FFT_POINTS (J+1), J <= N); an uncoupled soil has m entries (its diagonal), not m^2
         diagonal = getattr(getattr(model, "soil", None), "is_diagonal", False)
         entries = "m" if diagonal else "m^2"
         out[f"the FFT of the weights (2 x 8 (N+1) {entries} complex)"] = (

@@ -7,6 +7,7 @@ import functools
 import numpy as np
 
 from .. import _validate as V
+from ..model import remembered
 from ..kernels import PoleResidueKernel
 from ..march.clcp import march_cq, march_cq_compiled
 from ..model import Model
@@ -66,7 +67,8 @@ class Modal(Method):
         engine = self._engine()
         run.stats["n"] = model.n
         try:
-            kernel = PoleResidueKernel.from_model(model, modes=self.config.get("modes"))
+            modes = self.config.get("modes")
+            kernel = remembered(model, ("poles", repr(modes)), lambda: PoleResidueKernel.from_model(model, modes=modes))
         except ValueError as exc:
             if "modes must be" in str(exc):
                 raise

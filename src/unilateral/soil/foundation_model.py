@@ -34,7 +34,7 @@ __all__ = ["FoundationKernel", "FoundationModel", "SoilFlexibility", "SoilPoles"
 _DENSE_BATCH_MAX_N = 64
 #: Points on the circle per soil weight (:meth:`SoilFlexibility.cq_weights`): each is an evaluation
 #: of the soil's kernel, the costly part of a half-space's weights.
-SOIL_FFT_POINTS = 4
+SOIL_FFT_POINTS = 6
 #: Structures with at most this many DOFs are checked for massless zero-stiffness modes.
 _CHECK_MAX_N = 2000
 
@@ -262,9 +262,9 @@ class SoilFlexibility:
         displacements under a force that has stopped are static once the Rayleigh wave has crossed
         the foundation (Pekeris), so the weights beyond a few travel times across the foundation are
         round-off. Only ``W_0 .. W_J`` are then computed, by the FFT on a circle with
-        ``L = 4 (J + 1)`` points instead of ``8 (N + 1)`` (half the soil evaluations of
-        ``8 (J + 1)``; the weights agree with the full FFT to about 1e-8 of the largest, far below
-        the soil kernel's own 1e-6), and ``W_j = 0`` beyond: ``J`` starts at
+        ``L = 6 (J + 1)`` points instead of ``8 (N + 1)`` (the weights agree with the full FFT to
+        about 1e-8 of the largest, far below the soil kernel's own 1e-6; with ``4 (J + 1)`` their
+        round-off would fail the tail test below and ``J`` grow), and ``W_j = 0`` beyond: ``J`` starts at
         ``memory / dt`` (``memory``, s: a hint of the constructor, e.g. three Rayleigh-wave travel
         times across the half-space's patches) plus 64 steps, and is accepted only if the last
         eighth of the computed weights is below ``1e-8`` of the largest weight (their round-off floor

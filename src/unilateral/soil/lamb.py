@@ -125,27 +125,6 @@ def pair_extent(keys) -> np.ndarray:
     return np.hypot(dx + 0.5 * (ar + as_), dy + 0.5 * (br + bs))
 
 
-def _factor(kc, d, a1, a2):
-    """``sinc(kc a1/2) sinc(kc a2/2) cos(kc d)`` for complex ``kc`` (sinc(0) = 1; sizes may be 0)."""
-    out = np.cos(kc * d)
-    for a in (a1, a2):
-        if a > 0:
-            z = 0.5 * a * kc
-            out = out * (np.sin(z) / z)
-    return out
-
-
-def _factors(kc, keys):
-    """``_factor`` of every key (U, 3) ``(d, a1, a2)``, stacked on a last axis: (..., U).
-
-    The sinc products depend on the sizes only: each distinct ``(a1, a2)`` is evaluated once and
-    only ``cos(kc d)`` per key (strips of one width share one pair of sincs).
-    """
-    sizes, group = np.unique(keys[:, 1:], axis=0, return_inverse=True)
-    sincs = [_factor(kc, 0.0, a1, a2) for a1, a2 in sizes]
-    return np.stack([np.cos(kc * d) * sincs[g] for (d, _, _), g in zip(keys, group.ravel())], axis=-1)
-
-
 def _angular_groups(k, Rmax):
     """Groups of wavenumbers with the number of angular nodes each needs: ``(indices, n)``.
 
@@ -168,35 +147,332 @@ def _angular_groups(k, Rmax):
         start = stop
 
 
-def angular(k, keys, chunk_entries: int = 2_000_000) -> np.ndarray:
-    """Angular factors ``H_p(k)`` (nk, P) for pair keys (P, 6) ``|dx|, |dy|, a_r, b_r, a_s, b_s``.
+def _progression(values, delta, kabs):
+    """``(m, r, on)``: ``values = values[0] + m delta + r`` and whether ``|r| kabs <= 1e-6``."""
+    m = np.rint((values - values[0]) / delta).astype(np.int64)
+    r = values - (values[0] + m * delta)
+    return m, r, np.abs(r) * kabs <= 1e-6
 
-    The integrand factorises into an x-factor ``(|dx|, a_r, a_s)`` and a y-factor ``(|dy|, b_r, b_s)``;
-    each distinct factor is evaluated once (on a grid there are ~sqrt(P) of each) and the pairs are
-    formed by a batched product over the angles. Nodes never sit at ``k_x = 0`` or ``k_y = 0``
-    (midpoint angles), so the sincs are evaluated directly.
+
+def _axis_plan(keys, kabs):
+    """How :func:`_axis_factors` evaluates the distinct axis factors ``(d, a1, a2)`` (U, 3), ``d >= 0``.
+
+    Every factor needs ``exp(+-i k_x v)`` at its offset ``v = d`` and, for the sincs, at the half
+    sides ``v = a/2 > 0``: these values, sorted and distinct, are written ``v = v0 + m delta + r``.
+    Where ``|r| kabs <= 1e-6`` (``kabs`` the largest ``|k|``; exact multiples have ``r = 0``) the
+    exponentials are powers of ``exp(+-i k_x delta)`` times ``exp(+-i k_x v0)`` and, for ``r != 0``,
+    ``exp(+-i k_x r)`` to second order (error below ``1e-19``); the other values are evaluated directly.
+    ``delta`` is the smallest or the most frequent gap between distinct offsets or between distinct
+    values (gaps rounded to 1e-12), whichever costs fewer direct evaluations and steps (a progression
+    of more than ``4 V + 16`` steps is not used).
+
+    Returns
+    -------
+    tuple
+        ``(values, m, r, order, ngrid, v0, delta, key_value, group, side_value, half)``: ``values``,
+        ``r`` (V,) float; ``m`` (V,) int; ``order`` (V,) int, the ``ngrid`` values on the progression by
+        increasing ``m``, then the others; ``key_value`` (U,) int, the value of each key's offset;
+        ``group`` (U,) int, the row of the key's sides in ``half`` (G, 2) (half sides) and
+        ``side_value`` (G, 2) int (-1 for a zero side).
     """
-    k = np.asarray(k)
+    U = keys.shape[0]
+    d = keys[:, 0]
+    sizes, group = np.unique(keys[:, 1:], axis=0, return_inverse=True)
+    half = np.ascontiguousarray(0.5 * sizes)
+    values, inverse = np.unique(np.concatenate([d, half[half > 0]]), return_inverse=True)
+    side_value = np.full(half.shape, -1, dtype=np.int64)
+    side_value[half > 0] = inverse[U:]
+    best = None
+    for distinct in (np.unique(d), values):
+        if distinct.size < 2:
+            continue
+        gaps, counts = np.unique(np.round(np.diff(distinct), 12), return_counts=True)
+        for delta in {float(gaps[0]), float(gaps[np.argmax(counts)])}:
+            if delta <= 0.0:
+                continue
+            m, r, on = _progression(values, delta, kabs)
+            if m[on].max() > 4 * values.size + 16:
+                on[:] = False
+            cost = 30 * np.count_nonzero(~on) + int(m[on].max(initial=0))
+            if best is None or cost < best[0]:
+                best = (cost, delta, m, r, on)
+    if best is None:
+        best = (0, 1.0) + _progression(values, 1.0, kabs)
+    _, delta, m, r, on = best
+    m[~on] = -1
+    r[~on] = 0.0
+    grid = np.flatnonzero(on)
+    order = np.concatenate([grid[np.argsort(m[grid], kind="stable")], np.flatnonzero(~on)])
+    return (values, m, r, order.astype(np.int64), int(grid.size), float(values[0]), delta,
+            inverse[:U].astype(np.int64), group.ravel().astype(np.int64), side_value, half)
+
+
+# --- compiled angular sums -----------------------------------------------------------------------
+# Plain functions here, compiled by :func:`_compiled` on first use (numba is imported then, as the
+# rest of the package does), with numba's disk cache. One wavenumber at a time, in blocks of
+# ``_BLOCK`` angles, :func:`_axis_factors` evaluates the x and y factors of the distinct keys and
+# :func:`_angular_loop` accumulates their weighted products over the angles for every
+# (x key, y key) combination, then picks the pairs: the sums of the batched products of
+# ``X(k cos theta)`` and ``Y(k sin theta)`` over the same nodes as before, without the
+# (wavenumbers x angles x keys) temporaries.
+
+#: Angles per block of the compiled loop.
+_BLOCK = 128
+#: Powers of ``exp(+-i k_x delta)`` are re-evaluated directly every ``_ANCHOR`` steps (round-off of
+#: the repeated products stays below ``_ANCHOR`` ulps of ``exp(|Im k_x| v) <= e^3``).
+_ANCHOR = 128
+#: Sinc ``sin(z)/z`` by its Taylor series (to ``z^14``, error < 1e-19) for ``|z|^2 < _SMALL``, else
+#: from ``exp(+-i z)``.
+_SMALL = 0.25
+
+
+def _phase(kxr, kxi, v):
+    """``exp(i k_x v)`` and ``exp(-i k_x v)`` as ``(re, im, re, im)`` for ``k_x = kxr + i kxi``."""
+    if v == 0.0:
+        return 1.0, 0.0, 1.0, 0.0
+    e = np.exp(-kxi * v)
+    c = np.cos(kxr * v)
+    s = np.sin(kxr * v)
+    return e * c, e * s, c / e, -s / e
+
+
+def _axis_factors(kr, ki, proj, b, plan, want, wk, ph, sinc, out):
+    """Axis factors of the keys of ``plan`` (:func:`_axis_plan`) at ``k_x = k proj[j]``, ``j < b``.
+
+    ``out[0, :, u, j]`` (re, im) = sinc product times ``cos(k_x d_u)`` if ``want[0]``; ``out[1]``
+    the same with ``sin(k_x d_u)`` if ``want[1]``. Work space: ``wk`` (6, >= b), ``ph`` (4, V, >= b)
+    (``exp(+-i k_x v)`` of the values) and ``sinc`` (2, G, >= b) float.
+    """
+    values, m, r, order, ngrid, v0, delta, key_value, group, side_value, half = plan
+    kxr, kxi, Wr, Wi, Vr, Vi = wk[0], wk[1], wk[2], wk[3], wk[4], wk[5]
+    Pr, Pi, Qr, Qi = ph[0], ph[1], ph[2], ph[3]
+    for j in range(b):
+        kxr[j] = kr * proj[j]
+        kxi[j] = ki * proj[j]
+    mcur = 0
+    prev = -1
+    for t in range(order.size):
+        v = order[t]
+        if t >= ngrid:                                   # off the progression: direct
+            for j in range(b):
+                Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = _phase(kxr[j], kxi[j], values[v])
+            continue
+        if t == 0:
+            for j in range(b):
+                Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = _phase(kxr[j], kxi[j], v0)
+        else:
+            for j in range(b):
+                Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = Pr[prev, j], Pi[prev, j], Qr[prev, j], Qi[prev, j]
+        while mcur < m[v]:
+            if mcur == 0:
+                for j in range(b):
+                    Wr[j], Wi[j], Vr[j], Vi[j] = _phase(kxr[j], kxi[j], delta)
+            mcur += 1
+            if mcur % _ANCHOR == 0:
+                vm = v0 + mcur * delta
+                for j in range(b):
+                    Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = _phase(kxr[j], kxi[j], vm)
+            else:
+                for j in range(b):
+                    pr = Pr[v, j] * Wr[j] - Pi[v, j] * Wi[j]
+                    Pi[v, j] = Pr[v, j] * Wi[j] + Pi[v, j] * Wr[j]
+                    Pr[v, j] = pr
+                    qr = Qr[v, j] * Vr[j] - Qi[v, j] * Vi[j]
+                    Qi[v, j] = Qr[v, j] * Vi[j] + Qi[v, j] * Vr[j]
+                    Qr[v, j] = qr
+        prev = v
+    for t in range(ngrid):                               # times exp(+-i z), z = k_x r, to 2nd order
+        v = order[t]
+        rv = r[v]
+        if rv == 0.0:
+            continue
+        for j in range(b):
+            zr = kxr[j] * rv
+            zi = kxi[j] * rv
+            hr = 0.5 * (zr * zr - zi * zi)
+            hi = zr * zi
+            ar, ai = 1.0 - zi - hr, zr - hi
+            br, bi = 1.0 + zi - hr, -zr - hi
+            er, ei, fr, fi = Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j]
+            Pr[v, j], Pi[v, j] = er * ar - ei * ai, er * ai + ei * ar
+            Qr[v, j], Qi[v, j] = fr * br - fi * bi, fr * bi + fi * br
+    for g in range(half.shape[0]):
+        for j in range(b):
+            sr, si = 1.0, 0.0
+            for side in range(2):
+                v = side_value[g, side]
+                if v < 0:
+                    continue
+                zr = half[g, side] * kxr[j]
+                zi = half[g, side] * kxi[j]
+                z2r = zr * zr - zi * zi
+                z2i = 2.0 * zr * zi
+                if z2r * z2r + z2i * z2i < _SMALL * _SMALL:      # 1 - z^2/3! + z^4/5! - ... + z^14/15!
+                    fr, fi = 1.0, 0.0
+                    for n in range(15, 1, -2):
+                        cr = -(fr * z2r - fi * z2i) / (n * (n - 1))
+                        fi = -(fr * z2i + fi * z2r) / (n * (n - 1))
+                        fr = 1.0 + cr
+                else:                                           # (e^{iz} - e^{-iz})/(2 i z)
+                    nr = 0.5 * (Pi[v, j] - Qi[v, j])
+                    ni = 0.5 * (Qr[v, j] - Pr[v, j])
+                    den = zr * zr + zi * zi
+                    fr = (nr * zr + ni * zi) / den
+                    fi = (ni * zr - nr * zi) / den
+                sr, si = sr * fr - si * fi, sr * fi + si * fr
+            sinc[0, g, j] = sr
+            sinc[1, g, j] = si
+    even, odd = want[0], want[1]
+    for u in range(key_value.size):
+        v = key_value[u]
+        g = group[u]
+        for j in range(b):
+            er, ei, fr, fi = Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j]
+            sr, si = sinc[0, g, j], sinc[1, g, j]
+            if even:                                    # cos = (e + f)/2
+                cr, ci = 0.5 * (er + fr), 0.5 * (ei + fi)
+                out[0, 0, u, j] = cr * sr - ci * si
+                out[0, 1, u, j] = cr * si + ci * sr
+            if odd:                                     # sin = (e - f)/(2 i)
+                cr, ci = 0.5 * (ei - fi), 0.5 * (fr - er)
+                out[1, 0, u, j] = cr * sr - ci * si
+                out[1, 1, u, j] = cr * si + ci * sr
+
+
+def _angular_loop(k, nodes, korder, spec, ix, iy, xplan, yplan, out):
+    """``out[q, i, p] = (2 pi/n_i) sum_j w_q(theta_j) X_p(k_i cos theta_j) Y_p(k_i sin theta_j)``.
+
+    ``theta_j = (j + 1/2) pi/(2 n_i)``, ``j < n_i = nodes[i]``, the wavenumbers taken in the order
+    ``korder`` (by ``n_i``: the angles are evaluated once per ``n``); ``spec[q] = (weight, x odd,
+    y odd)`` as in :data:`ANGULAR_SPECS`; pair ``p`` has the x key ``ix[p]`` of ``xplan`` and the
+    y key ``iy[p]`` of ``yplan``.
+    """
+    nq = spec.shape[0]
+    Ux, Uy = xplan[7].size, yplan[7].size
+    wantx = np.zeros(2, dtype=np.bool_)
+    wanty = np.zeros(2, dtype=np.bool_)
+    for q in range(nq):
+        wantx[spec[q, 1]] = True
+        wanty[spec[q, 2]] = True
+    B = _BLOCK
+    wt, ywr, ywi = np.empty(B), np.empty(B), np.empty(B)
+    wk = np.empty((6, B))
+    phx = np.empty((4, xplan[0].size, B))
+    phy = np.empty((4, yplan[0].size, B))
+    sx = np.empty((2, xplan[10].shape[0], B))
+    sy = np.empty((2, yplan[10].shape[0], B))
+    FX = np.zeros((2, 2, Ux, B))
+    FY = np.zeros((2, 2, Uy, B))
+    acc = np.empty((nq, 2, Ux, Uy))
+    cos_all = np.empty(nodes.max())
+    sin_all = np.empty(nodes.max())
+    n_prev = 0
+    for i in korder:
+        n = nodes[i]
+        kr, ki = k[i].real, k[i].imag
+        acc[:] = 0.0
+        if n != n_prev:
+            step = 0.5 * np.pi / n
+            for j in range(n):
+                th = (j + 0.5) * step
+                cos_all[j] = np.cos(th)
+                sin_all[j] = np.sin(th)
+            n_prev = n
+        for j0 in range(0, n, B):
+            b = min(B, n - j0)
+            cth = cos_all[j0:j0 + b]
+            sth = sin_all[j0:j0 + b]
+            _axis_factors(kr, ki, cth, b, xplan, wantx, wk, phx, sx, FX)
+            _axis_factors(kr, ki, sth, b, yplan, wanty, wk, phy, sy, FY)
+            for q in range(nq):
+                code, xo, yo = spec[q, 0], spec[q, 1], spec[q, 2]
+                for j in range(b):
+                    c, s = cth[j], sth[j]
+                    if code == 0:
+                        wt[j] = 1.0
+                    elif code == 1:
+                        wt[j] = c * c
+                    elif code == 2:
+                        wt[j] = c * s
+                    elif code == 3:
+                        wt[j] = c
+                    else:
+                        wt[j] = s
+                for v in range(Uy):
+                    yr, yi = FY[yo, 0, v], FY[yo, 1, v]
+                    for j in range(b):
+                        ywr[j] = wt[j] * yr[j]
+                        ywi[j] = wt[j] * yi[j]
+                    for u in range(Ux):
+                        xr, xi = FX[xo, 0, u], FX[xo, 1, u]
+                        sr = 0.0
+                        si = 0.0
+                        for j in range(b):
+                            sr += xr[j] * ywr[j] - xi[j] * ywi[j]
+                            si += xr[j] * ywi[j] + xi[j] * ywr[j]
+                        acc[q, 0, u, v] += sr
+                        acc[q, 1, u, v] += si
+        scale = 2.0 * np.pi / n
+        for q in range(nq):
+            for p in range(ix.size):
+                out[q, i, p] = scale * complex(acc[q, 0, ix[p], iy[p]], acc[q, 1, ix[p], iy[p]])
+
+
+_COMPILED = None
+
+
+def _compiled():
+    """:func:`_angular_loop` compiled by numba (imported here, on first use; disk-cached).
+
+    Its helpers are compiled too and replace the plain functions of this module. The sums may be
+    reassociated (vectorised) and multiply-adds fused: results change at round-off only.
+    """
+    global _COMPILED
+    if _COMPILED is None:
+        import numba
+
+        jit = numba.njit(cache=True, error_model="numpy", fastmath={"reassoc", "contract"})
+        module = globals()
+        for name in ("_phase", "_axis_factors"):
+            if not isinstance(module[name], numba.core.dispatcher.Dispatcher):
+                module[name] = jit(module[name])
+        _COMPILED = jit(_angular_loop)
+    return _COMPILED
+
+
+def _angular_sums(k, keys, names) -> np.ndarray:
+    """Angular factors (len(names), nk, P) of the components ``names`` (:data:`ANGULAR_SPECS`)."""
+    k = np.ascontiguousarray(k, dtype=complex)
     P = keys.shape[0]
+    out = np.empty((len(names), k.size, P), dtype=complex)
+    if k.size == 0 or P == 0:
+        return out
     xkeys, ix = np.unique(np.round(keys[:, [0, 2, 4]], 12), axis=0, return_inverse=True)
     ykeys, iy = np.unique(np.round(keys[:, [1, 3, 5]], 12), axis=0, return_inverse=True)
-    ix, iy = ix.ravel(), iy.ravel()
-    Rmax = float(pair_extent(keys).max())
-
-    out = np.empty((k.size, P), dtype=complex)
-    for idx, n in _angular_groups(k, Rmax):
-        step = max(1, chunk_entries // (n * (len(xkeys) + len(ykeys) + P)))
-        theta = (np.arange(n) + 0.5) * (0.5 * np.pi / n)
-        c, s = np.cos(theta), np.sin(theta)
-        for j in range(0, idx.size, step):
-            sel = idx[j:j + step]
-            kk = k[sel][:, None]
-            kx, ky = kk * c[None, :], kk * s[None, :]
-            Sx = _factors(kx, xkeys)                                        # (q, n, Ux)
-            Sy = _factors(ky, ykeys)                                        # (q, n, Uy)
-            M = np.matmul(Sx.transpose(0, 2, 1), Sy)                       # (q, Ux, Uy)
-            out[sel] = (2.0 * np.pi / n) * M[:, ix, iy]
+    nodes = np.empty(k.size, dtype=np.int64)
+    korder = []
+    for idx, n in _angular_groups(k, float(pair_extent(keys).max())):
+        nodes[idx] = n
+        korder.append(idx)
+    kabs = float(np.abs(k).max())
+    spec = np.array([ANGULAR_SPECS[nm] for nm in names], dtype=np.int64).reshape(-1, 3)
+    _compiled()(k, nodes, np.concatenate(korder).astype(np.int64), spec, ix.ravel().astype(np.int64), iy.ravel().astype(np.int64),
+                _axis_plan(xkeys, kabs), _axis_plan(ykeys, kabs), out)
     return out
+
+
+def angular(k, keys) -> np.ndarray:
+    """Angular factors ``H_p(k)`` (nk, P) for pair keys (P, 6) ``|dx|, |dy|, a_r, b_r, a_s, b_s``.
+
+    ``H_p(k) = int_0^2pi X(k cos theta) Y(k sin theta) dtheta``: the integrand factorises into an
+    x-factor ``(|dx|, a_r, a_s)`` and a y-factor ``(|dy|, b_r, b_s)`` (sinc products times
+    ``cos(k_x dx)``, ``cos(k_y dy)``); each distinct factor is evaluated once per angle (on a grid
+    there are ~sqrt(P) of each, see :func:`_axis_plan`) and the pairs are formed by products over
+    the angles (:func:`_angular_loop`). The integrand is even in ``theta -> -theta`` and
+    ``theta -> pi - theta``: midpoint nodes on the first quadrant, never at ``k_x = 0`` or
+    ``k_y = 0``, so the sincs are evaluated directly.
+    """
+    return _angular_sums(k, keys, ["1"])[0]
 
 
 def point_hankel(k, r):
@@ -259,26 +535,18 @@ def tensor_kernels(k, S, eta, nu):
     return krr - (1.0 - nu) / kk, ktt, kc - (0.5 - nu) / kk
 
 
-def _factors_odd(kc, keys, odd):
-    """As :func:`_factors` with ``sin(kc d)`` instead of ``cos(kc d)`` when ``odd``."""
-    if not odd:
-        return _factors(kc, keys)
-    sizes, group = np.unique(keys[:, 1:], axis=0, return_inverse=True)
-    sincs = [_factor(kc, 0.0, a1, a2) for a1, a2 in sizes]
-    return np.stack([np.sin(kc * d) * sincs[g] for (d, _, _), g in zip(keys, group.ravel())], axis=-1)
-
-
-#: angular weights of the tensor components: name -> (weight(cos, sin), x factor odd, y factor odd)
+#: angular weights of the tensor components: name -> (weight, x factor odd, y factor odd), the weight
+#: 0: 1, 1: cos^2, 2: cos sin, 3: cos, 4: sin of the wavenumber angle
 ANGULAR_SPECS = {
-    "1": (None, False, False),                       # zz (and xx + yy)
-    "cc": (lambda c, s: c * c, False, False),        # xx: cos^2 K_rr + sin^2 K_tt
-    "cs": (lambda c, s: c * s, True, True),          # xy
-    "c": (lambda c, s: c, True, False),              # zx
-    "s": (lambda c, s: s, False, True),              # zy
+    "1": (0, False, False),                # zz (and xx + yy)
+    "cc": (1, False, False),               # xx: cos^2 K_rr + sin^2 K_tt
+    "cs": (2, True, True),                 # xy
+    "c": (3, True, False),                 # zx
+    "s": (4, False, True),                 # zy
 }
 
 
-def angular_components(k, keys, names, chunk_entries: int = 2_000_000) -> dict:
+def angular_components(k, keys, names) -> dict:
     """Angular factors of the tensor components for pair keys (P, 6) (``|dx|, |dy|`` >= 0).
 
     ``H_name(k) = int_0^2pi w(theta) X(k cos theta) Y(k sin theta) dtheta`` with ``X`` the sinc
@@ -287,32 +555,5 @@ def angular_components(k, keys, names, chunk_entries: int = 2_000_000) -> dict:
     ``theta -> -theta`` and ``theta -> pi - theta``, so the first quadrant suffices, as in
     :func:`angular`). Returns ``{name: (nk, P) complex}``.
     """
-    k = np.asarray(k)
-    P = keys.shape[0]
-    xkeys, ix = np.unique(np.round(keys[:, [0, 2, 4]], 12), axis=0, return_inverse=True)
-    ykeys, iy = np.unique(np.round(keys[:, [1, 3, 5]], 12), axis=0, return_inverse=True)
-    ix, iy = ix.ravel(), iy.ravel()
-    Rmax = float(pair_extent(keys).max())
-    specs = [(nm,) + ANGULAR_SPECS[nm] for nm in names]
-    need_x = {odd for _, _, odd, _ in specs}
-    need_y = {odd for _, _, _, odd in specs}
-
-    out = {nm: np.empty((k.size, P), dtype=complex) for nm in names}
-    for idx, n in _angular_groups(k, Rmax):
-        step = max(1, chunk_entries // (n * (2 * len(xkeys) + 2 * len(ykeys) + len(names) * P)))
-        theta = (np.arange(n) + 0.5) * (0.5 * np.pi / n)
-        c, s = np.cos(theta), np.sin(theta)
-        for j in range(0, idx.size, step):
-            sel = idx[j:j + step]
-            kk = k[sel][:, None]
-            kx, ky = kk * c[None, :], kk * s[None, :]
-            SX = {odd: _factors_odd(kx, xkeys, odd) for odd in need_x}        # (q, n, Ux)
-            SY = {odd: _factors_odd(ky, ykeys, odd) for odd in need_y}        # (q, n, Uy)
-            for oy in need_y:                                   # one product per y parity
-                group = [sp for sp in specs if sp[3] == oy]
-                Sx = np.concatenate([SX[ox] if wfun is None else SX[ox] * wfun(c, s)[None, :, None]
-                                     for _, wfun, ox, _ in group], axis=2)   # (q, n, g Ux)
-                M = np.matmul(Sx.transpose(0, 2, 1), SY[oy])                 # (q, g Ux, Uy)
-                for i, (nm, *_rest) in enumerate(group):
-                    out[nm][sel] = (2.0 * np.pi / n) * M[:, i * len(xkeys) + ix, iy]
-    return out
+    H = _angular_sums(k, keys, list(names))
+    return {nm: H[i] for i, nm in enumerate(names)}

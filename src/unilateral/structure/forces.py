@@ -373,10 +373,11 @@ def nodal_forces(structure, h: Histories) -> np.ndarray:
     return out
 
 
-def _onto_masters(structure, forces) -> np.ndarray:
+def _onto_masters(structure, forces, on_ground) -> np.ndarray:
     """Nodal forces (N+1, 3 n_nodes) with those of rigidly linked (slave) nodes added onto their
     master's rows: a support of the master carries them (``T_link^T f`` of
-    ``u_s = u_m + rz_m x (x_s - x_m)``)."""
+    ``u_s = u_m + rz_m x (x_s - x_m)``), but for what the slaves' own ground elements take
+    (``on_ground``, same shape: those are ground reactions of their own)."""
     dofs, coords = structure.dofs, structure.coords
     if not dofs.masters:
         return forces
@@ -384,7 +385,7 @@ def _onto_masters(structure, forces) -> np.ndarray:
     for slave, master in dofs.masters.items():
         s, m = dofs.full_index(slave, "ux"), dofs.full_index(master, "ux")
         dx, dy = np.asarray(coords[slave], dtype=float) - np.asarray(coords[master], dtype=float)
-        fx, fy, mz = forces[:, s], forces[:, s + 1], forces[:, s + 2]
+        fx, fy, mz = (forces[:, s + k] - on_ground[:, s + k] for k in range(3))
         out[:, m] += fx
         out[:, m + 1] += fy
         out[:, m + 2] += mz - dy * fx + dx * fy
@@ -408,34 +409,37 @@ def reactions(structure, h: Histories) -> dict:
     node (the ground reaction through soil, springs and dashpots to the ground);
     ``at`` : dict label -> node of each reaction (for moments).
     """
-    forces = _onto_masters(structure, nodal_forces(structure, h))
     dofs = structure.dofs
-    support, at = {}, {}
-    for node in dofs.nodes:
-        for dof in DOF_NAMES:
-            if (node, dof) in dofs._restrained:
-                row = dofs.full_index(node, dof)
-                label = f"{node}.{dof}"
-                support[label] = forces[:, row]
-                at[label] = node
-    ground = {}
+    ground, at = {}, {}
     sigma = stresses(structure, h)
     a1 = structure.rayleigh[1] if structure.rayleigh else 0.0
     vectors = {e.name: (cols, rows) for e, cols, rows in _element_vectors(structure)}
     for e in _ground_elements(structure):
         if e.name in vectors:
-            cols, rows = vectors[e.name]
+            cols, _ = vectors[e.name]
             s = sigma[:, cols]
             if a1 and not e.unilateral:
                 s = s + a1 * ((h.udot @ _free_a(structure, e).T) @ e.E.T)
         else:
-            rows = _full_rows(structure, e)
             s = (h.udot @ _free_a(structure, e).T) @ e.E.T
         f = np.zeros((len(h.t), 3))
         for col, (node, dof) in enumerate(e.dofs):
             f[:, DOF_NAMES.index(dof)] -= s @ e.a[:, col]
         ground[e.name] = f
         at[e.name] = e.dofs[0][0]
+    forces = nodal_forces(structure, h)
+    on_ground = np.zeros_like(forces)           # what the ground elements take at each node
+    for e in _ground_elements(structure):
+        row = dofs.full_index(e.dofs[0][0], "ux")
+        on_ground[:, row:row + 3] -= ground[e.name]
+    forces = _onto_masters(structure, forces, on_ground)
+    support = {}
+    for node in dofs.nodes:
+        for dof in DOF_NAMES:
+            if (node, dof) in dofs._restrained:
+                label = f"{node}.{dof}"
+                support[label] = forces[:, dofs.full_index(node, dof)]
+                at[label] = node
     return {"support": support, "ground_elements": ground, "at": at}
 
 
