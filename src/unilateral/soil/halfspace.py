@@ -13,6 +13,7 @@ from .statics import cerruti_averages, mean_inverse_distance
 __all__ = ["HalfSpace"]
 
 _CHUNK = 4_000_000          # complex entries per (s, k) block
+_KERNEL_BLOCK = 65_536      # complex entries per (s, k) block of the patch kernels (cache-sized temporaries)
 
 
 def laplace_points(s, materials):
@@ -316,7 +317,7 @@ class HalfSpace:
             H = lamb.angular(k, keys)
             wk = (w * k)[None, :]
             res = np.empty((Sd.size, keys.shape[0]), dtype=complex)
-            step = max(1, _CHUNK // k.size)
+            step = max(1, _KERNEL_BLOCK // k.size)
             for i in range(0, Sd.size, step):
                 sl = slice(i, i + step)
                 res[sl] = (lamb.kernel(k, Sd[sl], eta, nu) * wk) @ H / (4.0 * np.pi ** 2)
@@ -349,7 +350,7 @@ class HalfSpace:
             Hss = H["1"] - H["cc"]
             wk = (w * k)[None, :] / (4.0 * np.pi ** 2)
             res = {nm: np.empty((Sd.size, keys.shape[0]), dtype=complex) for nm in static}
-            step = max(1, _CHUNK // (4 * k.size))
+            step = max(1, _KERNEL_BLOCK // k.size)
             for i in range(0, Sd.size, step):
                 sl = slice(i, i + step)
                 kzz = lamb.kernel(k, Sd[sl], eta, nu) * wk

@@ -27,7 +27,9 @@ Numerics (all new here, in this module):
   geometric (ratio 2) on the wedge, width ``2h`` on the line;
 * angular factor of a receiver/source rectangle pair: ``H(k) = int_0^2pi S_r S_s cos(k_x dx) cos(k_y dy)
   dtheta`` (``S`` = products of sincs), independent of ``s``; periodic trapezoidal rule in ``theta``
-  (exponentially convergent, ``~ k D + 24`` points per period).
+  (exponentially convergent, ``~ k D + 24`` points per period). The sums over the angles are
+  compiled (:func:`_angular_loop`); the ``exp(+-i k_x d)`` of offsets on a progression (a regular
+  grid of patches) are powers of one exponential per angle (:func:`_axis_plan`).
 
 Horizontal and coupled components (the surface Green's tensor): :func:`tensor_kernels` (P-SV radial,
 SH, vertical/radial coupling; derivation in the comment block above it) and
@@ -147,64 +149,49 @@ def _angular_groups(k, Rmax):
         start = stop
 
 
-def _progression(values, delta, kabs):
-    """``(m, r, on)``: ``values = values[0] + m delta + r`` and whether ``|r| kabs <= 1e-6``."""
-    m = np.rint((values - values[0]) / delta).astype(np.int64)
-    r = values - (values[0] + m * delta)
-    return m, r, np.abs(r) * kabs <= 1e-6
-
-
 def _axis_plan(keys, kabs):
     """How :func:`_axis_factors` evaluates the distinct axis factors ``(d, a1, a2)`` (U, 3), ``d >= 0``.
 
-    Every factor needs ``exp(+-i k_x v)`` at its offset ``v = d`` and, for the sincs, at the half
-    sides ``v = a/2 > 0``: these values, sorted and distinct, are written ``v = v0 + m delta + r``.
-    Where ``|r| kabs <= 1e-6`` (``kabs`` the largest ``|k|``; exact multiples have ``r = 0``) the
-    exponentials are powers of ``exp(+-i k_x delta)`` times ``exp(+-i k_x v0)`` and, for ``r != 0``,
-    ``exp(+-i k_x r)`` to second order (error below ``1e-19``); the other values are evaluated directly.
-    ``delta`` is the smallest or the most frequent gap between distinct offsets or between distinct
-    values (gaps rounded to 1e-12), whichever costs fewer direct evaluations and steps (a progression
-    of more than ``4 V + 16`` steps is not used).
+    The offsets are written ``d = d0 + m delta + r`` (``d0`` the smallest). Where ``|r| kabs <= 1e-6``
+    (``kabs`` the largest ``|k|``; exact multiples have ``r = 0``), ``exp(+-i k_x d)`` is the ``m``-th
+    power of ``exp(+-i k_x delta)`` times ``exp(+-i k_x d0)`` and, for ``r != 0``, ``exp(+-i k_x r)`` to
+    second order (error below ``1e-19``); the other offsets are evaluated directly. ``delta`` is the
+    smallest or the most frequent gap between distinct offsets (gaps rounded to 1e-12), whichever
+    costs fewer direct evaluations and steps (a progression of more than ``4 U + 16`` steps is not
+    used). The sinc products are evaluated once per distinct ``(a1, a2)``.
 
     Returns
     -------
     tuple
-        ``(values, m, r, order, ngrid, v0, delta, key_value, group, side_value, half)``: ``values``,
-        ``r`` (V,) float; ``m`` (V,) int; ``order`` (V,) int, the ``ngrid`` values on the progression by
-        increasing ``m``, then the others; ``key_value`` (U,) int, the value of each key's offset;
-        ``group`` (U,) int, the row of the key's sides in ``half`` (G, 2) (half sides) and
-        ``side_value`` (G, 2) int (-1 for a zero side).
+        ``(d0, delta, d, m, r, order, ngrid, group, half)``: ``d``, ``r`` (U,) float; ``m`` (U,) int;
+        ``order`` (U,) int, the ``ngrid`` keys on the progression by increasing ``m``, then the
+        others; ``group`` (U,) int, the row of the key's sides in ``half`` (G, 2) (half sides).
     """
-    U = keys.shape[0]
-    d = keys[:, 0]
+    d = np.ascontiguousarray(keys[:, 0], dtype=float)
     sizes, group = np.unique(keys[:, 1:], axis=0, return_inverse=True)
-    half = np.ascontiguousarray(0.5 * sizes)
-    values, inverse = np.unique(np.concatenate([d, half[half > 0]]), return_inverse=True)
-    side_value = np.full(half.shape, -1, dtype=np.int64)
-    side_value[half > 0] = inverse[U:]
-    best = None
-    for distinct in (np.unique(d), values):
-        if distinct.size < 2:
-            continue
+    distinct = np.unique(d)
+    d0 = float(distinct[0])
+    best = (30 * np.count_nonzero(d != d0), 1.0, np.zeros(d.size, dtype=np.int64), d - d0, d == d0)
+    if distinct.size > 1:
         gaps, counts = np.unique(np.round(np.diff(distinct), 12), return_counts=True)
-        for delta in {float(gaps[0]), float(gaps[np.argmax(counts)])}:
+        for delta in sorted({float(gaps[0]), float(gaps[np.argmax(counts)])}):
             if delta <= 0.0:
                 continue
-            m, r, on = _progression(values, delta, kabs)
-            if m[on].max() > 4 * values.size + 16:
-                on[:] = False
-            cost = 30 * np.count_nonzero(~on) + int(m[on].max(initial=0))
-            if best is None or cost < best[0]:
+            m = np.rint((d - d0) / delta).astype(np.int64)
+            r = d - (d0 + m * delta)
+            on = np.abs(r) * kabs <= 1e-6
+            if m[on].max() > 4 * d.size + 16:
+                continue
+            cost = 30 * np.count_nonzero(~on) + int(m[on].max())
+            if cost < best[0]:
                 best = (cost, delta, m, r, on)
-    if best is None:
-        best = (0, 1.0) + _progression(values, 1.0, kabs)
     _, delta, m, r, on = best
     m[~on] = -1
     r[~on] = 0.0
     grid = np.flatnonzero(on)
     order = np.concatenate([grid[np.argsort(m[grid], kind="stable")], np.flatnonzero(~on)])
-    return (values, m, r, order.astype(np.int64), int(grid.size), float(values[0]), delta,
-            inverse[:U].astype(np.int64), group.ravel().astype(np.int64), side_value, half)
+    return (d0, delta, d, m, r, order.astype(np.int64), int(grid.size), group.ravel().astype(np.int64),
+            np.ascontiguousarray(0.5 * sizes))
 
 
 # --- compiled angular sums -----------------------------------------------------------------------
@@ -219,7 +206,7 @@ def _axis_plan(keys, kabs):
 #: Angles per block of the compiled loop.
 _BLOCK = 128
 #: Powers of ``exp(+-i k_x delta)`` are re-evaluated directly every ``_ANCHOR`` steps (round-off of
-#: the repeated products stays below ``_ANCHOR`` ulps of ``exp(|Im k_x| v) <= e^3``).
+#: the repeated products stays below ``_ANCHOR`` ulps of ``exp(|Im k_x| d) <= e^3``).
 _ANCHOR = 128
 #: Sinc ``sin(z)/z`` by its Taylor series (to ``z^14``, error < 1e-19) for ``|z|^2 < _SMALL``, else
 #: from ``exp(+-i z)``.
@@ -236,119 +223,114 @@ def _phase(kxr, kxi, v):
     return e * c, e * s, c / e, -s / e
 
 
-def _axis_factors(kr, ki, proj, b, plan, want, wk, ph, sinc, out):
+def _axis_factors(k, proj, b, plan, want, arrays):
     """Axis factors of the keys of ``plan`` (:func:`_axis_plan`) at ``k_x = k proj[j]``, ``j < b``.
 
-    ``out[0, :, u, j]`` (re, im) = sinc product times ``cos(k_x d_u)`` if ``want[0]``; ``out[1]``
-    the same with ``sin(k_x d_u)`` if ``want[1]``. Work space: ``wk`` (6, >= b), ``ph`` (4, V, >= b)
-    (``exp(+-i k_x v)`` of the values) and ``sinc`` (2, G, >= b) float.
+    ``k = (re, im)``; ``arrays = (wk, sinc, out)``: ``out[0, :, u, j]`` (re, im) = sinc product
+    times ``cos(k_x d_u)`` if ``want[0]``; ``out[1]`` the same with ``sin(k_x d_u)`` if
+    ``want[1]``. Work space: ``wk`` (10, >= b) and ``sinc`` (2, G, >= b) float.
     """
-    values, m, r, order, ngrid, v0, delta, key_value, group, side_value, half = plan
-    kxr, kxi, Wr, Wi, Vr, Vi = wk[0], wk[1], wk[2], wk[3], wk[4], wk[5]
-    Pr, Pi, Qr, Qi = ph[0], ph[1], ph[2], ph[3]
+    kr, ki = k
+    wk, sinc, out = arrays
+    d0, delta, d, m, r, order, ngrid, group, half = plan
+    kxr, kxi, Pr, Pi, Qr, Qi = wk[0], wk[1], wk[2], wk[3], wk[4], wk[5]
+    Wr, Wi, Vr, Vi = wk[6], wk[7], wk[8], wk[9]
     for j in range(b):
         kxr[j] = kr * proj[j]
         kxi[j] = ki * proj[j]
+    for g in range(half.shape[0]):
+        for j in range(b):
+            sr, si = 1.0, 0.0
+            for side in range(2):
+                h = half[g, side]
+                if h <= 0.0:
+                    continue
+                if side == 1 and h == half[g, 0]:
+                    fr, fi = sr, si
+                else:
+                    zr = h * kxr[j]
+                    zi = h * kxi[j]
+                    z2r = zr * zr - zi * zi
+                    z2i = 2.0 * zr * zi
+                    if z2r * z2r + z2i * z2i < _SMALL * _SMALL:  # 1 - z^2/3! + z^4/5! - ... + z^14/15!
+                        fr, fi = 1.0, 0.0
+                        for n in range(15, 1, -2):
+                            cr = -(fr * z2r - fi * z2i) / (n * (n - 1))
+                            fi = -(fr * z2i + fi * z2r) / (n * (n - 1))
+                            fr = 1.0 + cr
+                    else:                                       # (e^{iz} - e^{-iz})/(2 i z)
+                        er, ei, qr, qi = _phase(kxr[j], kxi[j], h)
+                        nr = 0.5 * (ei - qi)
+                        ni = 0.5 * (qr - er)
+                        den = zr * zr + zi * zi
+                        fr = (nr * zr + ni * zi) / den
+                        fi = (ni * zr - nr * zi) / den
+                sr, si = sr * fr - si * fi, sr * fi + si * fr
+            sinc[0, g, j] = sr
+            sinc[1, g, j] = si
+    even, odd = want[0], want[1]
     mcur = 0
-    prev = -1
     for t in range(order.size):
-        v = order[t]
+        u = order[t]
         if t >= ngrid:                                   # off the progression: direct
             for j in range(b):
-                Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = _phase(kxr[j], kxi[j], values[v])
-            continue
-        if t == 0:
+                Pr[j], Pi[j], Qr[j], Qi[j] = _phase(kxr[j], kxi[j], d[u])
+        elif t == 0:
             for j in range(b):
-                Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = _phase(kxr[j], kxi[j], v0)
-        else:
-            for j in range(b):
-                Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = Pr[prev, j], Pi[prev, j], Qr[prev, j], Qi[prev, j]
-        while mcur < m[v]:
+                Pr[j], Pi[j], Qr[j], Qi[j] = _phase(kxr[j], kxi[j], d0)
+        while t < ngrid and mcur < m[u]:
             if mcur == 0:
                 for j in range(b):
                     Wr[j], Wi[j], Vr[j], Vi[j] = _phase(kxr[j], kxi[j], delta)
             mcur += 1
             if mcur % _ANCHOR == 0:
-                vm = v0 + mcur * delta
+                dm = d0 + mcur * delta
                 for j in range(b):
-                    Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j] = _phase(kxr[j], kxi[j], vm)
+                    Pr[j], Pi[j], Qr[j], Qi[j] = _phase(kxr[j], kxi[j], dm)
             else:
                 for j in range(b):
-                    pr = Pr[v, j] * Wr[j] - Pi[v, j] * Wi[j]
-                    Pi[v, j] = Pr[v, j] * Wi[j] + Pi[v, j] * Wr[j]
-                    Pr[v, j] = pr
-                    qr = Qr[v, j] * Vr[j] - Qi[v, j] * Vi[j]
-                    Qi[v, j] = Qr[v, j] * Vi[j] + Qi[v, j] * Vr[j]
-                    Qr[v, j] = qr
-        prev = v
-    for t in range(ngrid):                               # times exp(+-i z), z = k_x r, to 2nd order
-        v = order[t]
-        rv = r[v]
-        if rv == 0.0:
-            continue
-        for j in range(b):
-            zr = kxr[j] * rv
-            zi = kxi[j] * rv
-            hr = 0.5 * (zr * zr - zi * zi)
-            hi = zr * zi
-            ar, ai = 1.0 - zi - hr, zr - hi
-            br, bi = 1.0 + zi - hr, -zr - hi
-            er, ei, fr, fi = Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j]
-            Pr[v, j], Pi[v, j] = er * ar - ei * ai, er * ai + ei * ar
-            Qr[v, j], Qi[v, j] = fr * br - fi * bi, fr * bi + fi * br
-    for g in range(half.shape[0]):
-        for j in range(b):
-            sr, si = 1.0, 0.0
-            for side in range(2):
-                v = side_value[g, side]
-                if v < 0:
-                    continue
-                zr = half[g, side] * kxr[j]
-                zi = half[g, side] * kxi[j]
-                z2r = zr * zr - zi * zi
-                z2i = 2.0 * zr * zi
-                if z2r * z2r + z2i * z2i < _SMALL * _SMALL:      # 1 - z^2/3! + z^4/5! - ... + z^14/15!
-                    fr, fi = 1.0, 0.0
-                    for n in range(15, 1, -2):
-                        cr = -(fr * z2r - fi * z2i) / (n * (n - 1))
-                        fi = -(fr * z2i + fi * z2r) / (n * (n - 1))
-                        fr = 1.0 + cr
-                else:                                           # (e^{iz} - e^{-iz})/(2 i z)
-                    nr = 0.5 * (Pi[v, j] - Qi[v, j])
-                    ni = 0.5 * (Qr[v, j] - Pr[v, j])
-                    den = zr * zr + zi * zi
-                    fr = (nr * zr + ni * zi) / den
-                    fi = (ni * zr - nr * zi) / den
-                sr, si = sr * fr - si * fi, sr * fi + si * fr
-            sinc[0, g, j] = sr
-            sinc[1, g, j] = si
-    even, odd = want[0], want[1]
-    for u in range(key_value.size):
-        v = key_value[u]
+                    pr = Pr[j] * Wr[j] - Pi[j] * Wi[j]
+                    Pi[j] = Pr[j] * Wi[j] + Pi[j] * Wr[j]
+                    Pr[j] = pr
+                    qr = Qr[j] * Vr[j] - Qi[j] * Vi[j]
+                    Qi[j] = Qr[j] * Vi[j] + Qi[j] * Vr[j]
+                    Qr[j] = qr
+        ru = r[u]
         g = group[u]
         for j in range(b):
-            er, ei, fr, fi = Pr[v, j], Pi[v, j], Qr[v, j], Qi[v, j]
+            er, ei, fr, fi = Pr[j], Pi[j], Qr[j], Qi[j]
+            if ru != 0.0:                       # times exp(+-i z), z = k_x r, to second order
+                zr = kxr[j] * ru
+                zi = kxi[j] * ru
+                hr = 0.5 * (zr * zr - zi * zi)
+                hi = zr * zi
+                ar, ai = 1.0 - zi - hr, zr - hi
+                br, bi = 1.0 + zi - hr, -zr - hi
+                er, ei = er * ar - ei * ai, er * ai + ei * ar
+                fr, fi = fr * br - fi * bi, fr * bi + fi * br
             sr, si = sinc[0, g, j], sinc[1, g, j]
-            if even:                                    # cos = (e + f)/2
+            if even:                            # cos = (e + f)/2
                 cr, ci = 0.5 * (er + fr), 0.5 * (ei + fi)
                 out[0, 0, u, j] = cr * sr - ci * si
                 out[0, 1, u, j] = cr * si + ci * sr
-            if odd:                                     # sin = (e - f)/(2 i)
+            if odd:                             # sin = (e - f)/(2 i)
                 cr, ci = 0.5 * (ei - fi), 0.5 * (fr - er)
                 out[1, 0, u, j] = cr * sr - ci * si
                 out[1, 1, u, j] = cr * si + ci * sr
 
 
-def _angular_loop(k, nodes, korder, spec, ix, iy, xplan, yplan, out):
+def _angular_loop(k, nodes, korder, spec, pairs, plans, out):
     """``out[q, i, p] = (2 pi/n_i) sum_j w_q(theta_j) X_p(k_i cos theta_j) Y_p(k_i sin theta_j)``.
 
     ``theta_j = (j + 1/2) pi/(2 n_i)``, ``j < n_i = nodes[i]``, the wavenumbers taken in the order
     ``korder`` (by ``n_i``: the angles are evaluated once per ``n``); ``spec[q] = (weight, x odd,
-    y odd)`` as in :data:`ANGULAR_SPECS`; pair ``p`` has the x key ``ix[p]`` of ``xplan`` and the
-    y key ``iy[p]`` of ``yplan``.
+    y odd)`` as in :data:`ANGULAR_SPECS`; ``pairs = (ix, iy)``, ``plans = (xplan, yplan)``: pair
+    ``p`` has the x key ``ix[p]`` of ``xplan`` and the y key ``iy[p]`` of ``yplan``.
     """
+    ix, iy = pairs
+    xplan, yplan = plans
     nq = spec.shape[0]
-    Ux, Uy = xplan[7].size, yplan[7].size
+    Ux, Uy = xplan[2].size, yplan[2].size
     wantx = np.zeros(2, dtype=np.bool_)
     wanty = np.zeros(2, dtype=np.bool_)
     for q in range(nq):
@@ -356,11 +338,9 @@ def _angular_loop(k, nodes, korder, spec, ix, iy, xplan, yplan, out):
         wanty[spec[q, 2]] = True
     B = _BLOCK
     wt, ywr, ywi = np.empty(B), np.empty(B), np.empty(B)
-    wk = np.empty((6, B))
-    phx = np.empty((4, xplan[0].size, B))
-    phy = np.empty((4, yplan[0].size, B))
-    sx = np.empty((2, xplan[10].shape[0], B))
-    sy = np.empty((2, yplan[10].shape[0], B))
+    wk = np.empty((10, B))
+    sx = np.empty((2, xplan[8].shape[0], B))
+    sy = np.empty((2, yplan[8].shape[0], B))
     FX = np.zeros((2, 2, Ux, B))
     FY = np.zeros((2, 2, Uy, B))
     acc = np.empty((nq, 2, Ux, Uy))
@@ -382,8 +362,8 @@ def _angular_loop(k, nodes, korder, spec, ix, iy, xplan, yplan, out):
             b = min(B, n - j0)
             cth = cos_all[j0:j0 + b]
             sth = sin_all[j0:j0 + b]
-            _axis_factors(kr, ki, cth, b, xplan, wantx, wk, phx, sx, FX)
-            _axis_factors(kr, ki, sth, b, yplan, wanty, wk, phy, sy, FY)
+            _axis_factors((kr, ki), cth, b, xplan, wantx, (wk, sx, FX))
+            _axis_factors((kr, ki), sth, b, yplan, wanty, (wk, sy, FY))
             for q in range(nq):
                 code, xo, yo = spec[q, 0], spec[q, 1], spec[q, 2]
                 for j in range(b):
@@ -456,8 +436,9 @@ def _angular_sums(k, keys, names) -> np.ndarray:
         korder.append(idx)
     kabs = float(np.abs(k).max())
     spec = np.array([ANGULAR_SPECS[nm] for nm in names], dtype=np.int64).reshape(-1, 3)
-    _compiled()(k, nodes, np.concatenate(korder).astype(np.int64), spec, ix.ravel().astype(np.int64), iy.ravel().astype(np.int64),
-                _axis_plan(xkeys, kabs), _axis_plan(ykeys, kabs), out)
+    _compiled()(k, nodes, np.concatenate(korder).astype(np.int64), spec,
+                (ix.ravel().astype(np.int64), iy.ravel().astype(np.int64)),
+                (_axis_plan(xkeys, kabs), _axis_plan(ykeys, kabs)), out)
     return out
 
 
@@ -470,7 +451,7 @@ def angular(k, keys) -> np.ndarray:
     there are ~sqrt(P) of each, see :func:`_axis_plan`) and the pairs are formed by products over
     the angles (:func:`_angular_loop`). The integrand is even in ``theta -> -theta`` and
     ``theta -> pi - theta``: midpoint nodes on the first quadrant, never at ``k_x = 0`` or
-    ``k_y = 0``, so the sincs are evaluated directly.
+    ``k_y = 0``.
     """
     return _angular_sums(k, keys, ["1"])[0]
 
