@@ -127,11 +127,17 @@ t_end = 2.0
 
 
 def _same_tables(a, b) -> None:
-    """Every column of two study tables equal, but those of the run itself (times, run id)."""
+    """Every column of two study tables equal to round-off, but those of the run itself (times, run
+    id): the analyses run in other processes on the two clusters, and a clean-clone CI run under
+    load once differed by one unit in the last place (5.7e-14 in a base shear of 375.5)."""
     assert sorted(a.data_vars) == sorted(b.data_vars)
     for name in a.data_vars:
         if name not in RUN_COLUMNS:
-            np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+            values = a[name].values
+            if np.issubdtype(values.dtype, np.floating):
+                np.testing.assert_allclose(values, b[name].values, rtol=1e-12, atol=0, err_msg=name)
+            else:
+                np.testing.assert_array_equal(values, b[name].values, err_msg=name)
 
 
 def test_hand_started_workers_without_the_study_folder_give_the_table_of_a_local_cluster(
