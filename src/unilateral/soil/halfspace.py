@@ -299,6 +299,16 @@ class HalfSpace:
         return self._finish(out, Gs, flip)
 
     # --- engine --------------------------------------------------------------------------------
+    def _contour(self, keys, Sd, kmax_factor):
+        """The wavenumber contour ``(k, w)`` of pair keys (P, 6) at the nonzero ``S`` values ``Sd``:
+        truncated at ``k_max = kmax_factor (6 max|sqrt(S)| + 30/a_min)``."""
+        sig = np.abs(np.sqrt(Sd))
+        sizes = keys[:, 2:]
+        a_min = float(sizes[sizes > 0].min())
+        D = float(lamb.pair_extent(keys).max())
+        return lamb.contour(np.sqrt(lamb.eta_of(self.nu)) * sig.min(), D,
+                            kmax_factor * (6.0 * sig.max() + 30.0 / a_min))
+
     def _pairs(self, keys, S, zero, kmax_factor):
         """(ns, P) values times G(s): static closed form plus wavenumber integral."""
         nu, eta = self.nu, lamb.eta_of(self.nu)
@@ -308,12 +318,7 @@ class HalfSpace:
         dyn = ~zero
         if np.any(dyn):
             Sd = S[dyn]
-            sig = np.abs(np.sqrt(Sd))
-            sizes = keys[:, 2:]
-            a_min = float(sizes[sizes > 0].min())
-            D = float(lamb.pair_extent(keys).max())
-            k, w = lamb.contour(np.sqrt(eta) * sig.min(), D,
-                                kmax_factor * (6.0 * sig.max() + 30.0 / a_min))
+            k, w = self._contour(keys, Sd, kmax_factor)
             H = lamb.angular(k, keys)
             wk = (w * k)[None, :]
             res = np.empty((Sd.size, keys.shape[0]), dtype=complex)
@@ -340,12 +345,7 @@ class HalfSpace:
         dyn = ~zero
         if np.any(dyn):
             Sd = S[dyn]
-            sig = np.abs(np.sqrt(Sd))
-            sizes = keys[:, 2:]
-            a_min = float(sizes[sizes > 0].min())
-            D = float(lamb.pair_extent(keys).max())
-            k, w = lamb.contour(np.sqrt(eta) * sig.min(), D,
-                                kmax_factor * (6.0 * sig.max() + 30.0 / a_min))
+            k, w = self._contour(keys, Sd, kmax_factor)
             H = lamb.angular_components(k, keys, names)
             Hss = H["1"] - H["cc"]
             wk = (w * k)[None, :] / (4.0 * np.pi ** 2)
