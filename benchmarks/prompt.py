@@ -3,7 +3,8 @@
 Times, each the median of ``--repeat`` (default 5) fresh processes after one warm-up run:
 
 - ``import unilateral.cli`` (what every command pays first);
-- ``unilateral run`` on a model file with a typo in a key (``kk = ...``), which must fail at once;
+- ``unilateral run`` on a wrong model file, which must fail at once: a typo in a key (``kk = ...``),
+  a TOML syntax error (a missing ``=``) and an element on a node that does not exist (a cross check);
 - ``unilateral example liolios1990 --figures none`` and ``unilateral example liolios1990`` (its figures).
 
 Each process's wall time is measured from outside (subprocess start to exit). BLAS runs
@@ -35,16 +36,32 @@ OUT = Path(__file__).parent / "results" / "prompt.json"
 EXAMPLE = ROOT / "examples" / "liolios1990.toml"
 #: Targets of the issue "Fast at the prompt" [s], on a quiet machine.
 TARGETS = {"import unilateral.cli": 0.5, "run: a model file with a typo": 0.5,
+           "run: a TOML syntax error": 0.5, "run: an element on a missing node": 0.5,
            "example liolios1990 --figures none": 1.0, "example liolios1990": 1.5}
+#: The rows of a wrong model file: the command must fail.
+FAILING = ("run: a model file with a typo", "run: a TOML syntax error", "run: an element on a missing node")
+
+
+def _broken(work: Path, name: str, old: str, new: str) -> Path:
+    """examples/liolios1990.toml with ``old`` replaced by ``new``, written to ``work/name``."""
+    text = EXAMPLE.read_text()
+    if old not in text:
+        raise RuntimeError(f"{EXAMPLE} no longer holds {old!r}: update benchmarks/prompt.py")
+    path = work / name
+    path.write_text(text.replace(old, new, 1))
+    return path
 
 
 def commands(work: Path) -> dict[str, list[str]]:
-    typo = work / "typo.toml"
-    typo.write_text(EXAMPLE.read_text().replace("node = 3, k = 200e3", "node = 3, kk = 200e3", 1))
+    typo = _broken(work, "typo.toml", "node = 3, k = 200e3", "node = 3, kk = 200e3")
+    syntax = _broken(work, "syntax.toml", 'title = "Liolios', 'title "Liolios')
+    node = _broken(work, "node.toml", "node_j = 1\n", "node_j = 99\n")
     cli = [sys.executable, "-m", "unilateral"]
     return {
         "import unilateral.cli": [sys.executable, "-c", "import unilateral.cli"],
         "run: a model file with a typo": [*cli, "run", str(typo), "--out", str(work / "typo")],
+        "run: a TOML syntax error": [*cli, "run", str(syntax), "--out", str(work / "syntax")],
+        "run: an element on a missing node": [*cli, "run", str(node), "--out", str(work / "node")],
         "example liolios1990 --figures none": [*cli, "example", "liolios1990", "--figures", "none",
                                                "--out", str(work / "none")],
         "example liolios1990": [*cli, "example", "liolios1990", "--out", str(work / "figures")],
@@ -79,7 +96,7 @@ def main(argv=None) -> int:
     load_before = os.getloadavg()
     rows = {}
     for label, command in commands(work).items():
-        failing = "typo" in label
+        failing = label in FAILING
         wall_time(command, env, failing)                                # warm-up: byte code, numba's cache
         times = [wall_time(command, env, failing) for _ in range(args.repeat)]
         rows[label] = {"median_s": statistics.median(times), "best_s": min(times), "runs_s": times,

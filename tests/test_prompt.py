@@ -66,49 +66,104 @@ def test_import_cli_imports_nothing_heavy(tmp_path):
     assert not set(loaded) & {*HEAVY, "numpy", "scipy", "pydantic"}, loaded
 
 
-@pytest.mark.parametrize("old, new, expected", [
-    ("node = 3, k = 200e3", "node = 3, kk = 200e3",
-     'unilateral[0].kk: unknown key (did you mean "k"?'),
-    ("k = 200e3", "k = -200e3", "unilateral[0].k = -200000.0: must be > 0"),
-    ("rule = \"bdf2\"", "rule = \"bdf3\"", "analysis.rule = \"bdf3\""),
-], ids=["typo", "negative-stiffness", "wrong-rule"])
-def test_a_wrong_model_file_fails_before_the_heavy_imports(tmp_path, old, new, expected):
+#: A wrong model file is reported importing none of these (pydantic checks it; numpy is not needed).
+NOT_FOR_A_WRONG_FILE = (*HEAVY, "scipy", "numpy")
+RECORD = '[[loads.ground_motion]]\nfile = "records/missing.AT2"\ndirection = "ux"\n\n[analysis]'
+
+#: ``(old, new, expected)``: a change of examples/liolios1990.toml and the start of the message it gives,
+#: after ``<file>: ``.
+WRONG_FILES = {
+    "typo": ("node = 3, k = 200e3", "node = 3, kk = 200e3", 'unilateral[0].kk: unknown key (did you mean "k"?'),
+    "negative-stiffness": ("k = 200e3", "k = -200e3", "unilateral[0].k = -200000.0: must be > 0"),
+    "wrong-rule": ("rule = \"bdf2\"", "rule = \"bdf3\"", "analysis.rule = \"bdf3\""),
+    "not-toml": ("units = {", "units = {{", "line 8, column 10: invalid TOML: "),
+    "missing-equals": ("title = \"Liolios", "title \"Liolios",
+                       "line 61, column 7: invalid TOML: Expected '=' after a key"),
+    "open-string": ('title = "Liolios (1990), Fig. 2: vertical displacement of node 3"',
+                    'title = "Liolios (1990), Fig. 2: vertical displacement of node 3',
+                    "line 61, column 65: invalid TOML: Illegal character '\\n'; the line reads: title = \"Liolios"),
+    "element-node": ("node_j = 1\n", "node_j = 17\n", "elements[0].node_j = 17: no node 17 (nodes are 1..4)"),
+    "support-node": ("node = 2\nux = true", "node = 12\nux = true",
+                     "supports[0].node = 12: no node 12 (nodes are 1..4)"),
+    "load-node": ("node = 1\nux = 200.0", "node = 97\nux = 200.0",
+                  "loads.nodal[0].node = 97: no node 97 (nodes are 1..4)"),
+    "record-file": ("[analysis]", RECORD, 'loads.ground_motion[0].file = "records/missing.AT2": file not found'),
+    "duplicate-name": ('name = "soil2"', 'name = "soil3"',
+                       'unilateral[1].name = "soil3": duplicate element name (also unilateral[0].name)'),
+    "same-node": ("node_i = 2\nnode_j = 1", "node_i = 1\nnode_j = 1",
+                  "elements[0]: node_i and node_j are the same node 1"),
+    "slave-twice": ("master = 2\nslave = 4", "master = 1\nslave = 3",
+                    "rigid_links[1].slave = 3: node 3 is already a slave of node 2 (rigid_links[0])"),
+    "floor-spectra": ("[output]", "[output]\nfloor_spectra = [1, 7]",
+                      "output.floor_spectra[1] = 7: no node 7 (nodes are 1..4)"),
+    "pulse-order": ('t_end = 0.1 }', 't_start = 0.2, t_end = 0.1 }',
+                    "loads.nodal[0].time_function: t_end must be > t_start"),
+}
+
+
+@pytest.mark.parametrize("case", list(WRONG_FILES))
+def test_a_wrong_model_file_fails_before_the_heavy_imports(tmp_path, case):
+    """Syntax errors, wrong keys and values and the cross checks of the document: all before numpy."""
+    old, new, expected = WRONG_FILES[case]
     path = _model_file(tmp_path, old, new)
     done = _in_subprocess(["run", str(path), "--out", str(tmp_path / "out")], tmp_path)
     assert done["code"] == 1, done["output"]
-    assert f"{path}: {expected}" in done["output"]
-    assert not set(done["modules"]) & {*HEAVY, "scipy"}, done["modules"]         # pydantic checks the file
+    assert f"{path}: {expected}" in done["output"], done["output"]
+    assert not set(done["modules"]) & set(NOT_FOR_A_WRONG_FILE), done["modules"]
     assert not (tmp_path / "out").exists()
 
 
-def test_the_quick_check_says_what_load_model_file_says(tmp_path):
-    """The command line's check raises the error of the full reader, word for word."""
+def test_plot_model_checks_the_file_first(tmp_path):
+    path = _model_file(tmp_path, *WRONG_FILES["element-node"][:2])
+    done = _in_subprocess(["plot", "--model", str(path), "--out", str(tmp_path / "out")], tmp_path)
+    assert done["code"] == 1 and f"{path}: {WRONG_FILES['element-node'][2]}" in done["output"], done["output"]
+    assert not set(done["modules"]) & set(NOT_FOR_A_WRONG_FILE), done["modules"]
+
+
+@pytest.mark.parametrize("case", list(WRONG_FILES))
+def test_the_quick_check_says_what_load_model_file_says(tmp_path, case):
+    """The command line's check raises the error of the full reader, word for word (they run the same checks)."""
     from unilateral.cli import check_model_file
     from unilateral.modelfile import ModelFileError, load_model_file
 
-    path = _model_file(tmp_path, "k = 200e3", "k = -200e3", count=2)
-    path.write_text(path.read_text().replace("A = 1e12", "Area = 1e12"))
+    path = _model_file(tmp_path, *WRONG_FILES[case][:2])
     with pytest.raises(ModelFileError) as quick:
         check_model_file(path)
     with pytest.raises(ModelFileError) as full:
         load_model_file(path)
     assert str(quick.value) == str(full.value)
-    assert "elements[0].Area: unknown key" in str(quick.value)
-    check_model_file(EXAMPLE)                           # a valid file passes
+    assert str(quick.value).startswith(f"{path}: {WRONG_FILES[case][2]}")
 
 
-@pytest.mark.parametrize("old, new, expected", [
-    ("units = {", "units = {{", "line 8, column 10: invalid TOML"),
-    ("node_j = 1\n", "node_j = 17\n", "elements[0].node_j = 17: no node 17"),
-], ids=["not-toml", "no-such-node"])
-def test_what_the_quick_check_leaves_to_the_full_reader(tmp_path, old, new, expected):
-    """Syntax errors and the cross checks pass the quick check; ``load_model_file`` reports them, as before."""
+def test_the_quick_check_reports_every_problem(tmp_path):
+    from unilateral.cli import check_model_file
+    from unilateral.modelfile import ModelFileError
+
+    path = _model_file(tmp_path, "k = 200e3", "k = -200e3", count=2)
+    path.write_text(path.read_text().replace("A = 1e12", "Area = 1e12"))
+    with pytest.raises(ModelFileError) as quick:
+        check_model_file(path)
+    assert [p.partition(":")[0] for p in quick.value.problems] == [
+        "elements[0].A", "elements[0].Area", "unilateral[0].k = -200000.0", "unilateral[1].k = -200000.0"]
+    path = _model_file(tmp_path, "node_j = 1\n", "node_j = 17\n")
+    path.write_text(path.read_text().replace("slave = 4", "slave = 44").replace('"soil2"', '"soil3"'))
+    with pytest.raises(ModelFileError) as quick:
+        check_model_file(path)
+    assert [p.partition(":")[0] for p in quick.value.problems] == [
+        'unilateral[1].name = "soil3"', "rigid_links[1].slave = 44", "elements[0].node_j = 17"]
+    for name in ("liolios1990", "pounding", "winkler_beam", "yielding_frame"):    # (ida.toml is a study file)
+        check_model_file(ROOT / "examples" / f"{name}.toml")                    # the valid files pass
+
+
+def test_what_the_quick_check_leaves_to_the_full_reader(tmp_path):
+    """What needs the structure (here a nodal load on a supported DOF) passes the quick check;
+    ``load_model_file`` reports it."""
     from unilateral.cli import check_model_file
 
-    path = _model_file(tmp_path, old, new)
+    path = _model_file(tmp_path, "node = 1\nux = 200.0", "node = 2\nux = 200.0")
     check_model_file(path)
     done = _in_subprocess(["run", str(path), "--figures", "none", "--out", str(tmp_path / "out")], tmp_path)
-    assert done["code"] == 1 and f"{path}: {expected}" in done["output"], done["output"]
+    assert done["code"] == 1 and f"{path}: loads.nodal[0]" in done["output"], done["output"]
 
 
 def test_the_registry_names_match_the_registries():

@@ -145,32 +145,19 @@ def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral):
 
 
 def check_model_file(path: Path) -> None:
-    """Check the keys and values of the model file ``path`` against its schema, at once.
+    """Check the model file ``path`` at once: everything that can be found without building it.
 
-    A wrong key or value (``unilateral[0].kk: unknown key``, ``k = -2e5: must be > 0``) raises the
+    A file that cannot be read, a TOML syntax error (with its line and column), a wrong key or value
+    (``unilateral[0].kk: unknown key``, ``k = -2e5: must be > 0``) and the cross checks (a node, a beam
+    or a file that does not exist, a duplicate name, keys that go together) raise the
     :class:`~unilateral.modelfile.ModelFileError` that :func:`~unilateral.modelfile.load_model_file`
-    raises for it, before numpy, scipy, numba, xarray or matplotlib are imported (pydantic only).
-    A file that cannot be read or is not valid TOML, and the cross checks (references, duplicates),
-    are left to ``load_model_file``, which says the same for them after its imports.
+    raises for them (it runs the same checks, :mod:`unilateral.modelfile.checks`), before numpy, scipy,
+    numba, xarray or matplotlib are imported (pydantic only). What needs the structure or the data of
+    the files (a mechanism, a record that cannot be read) is left to ``load_model_file``.
     """
-    import tomllib
+    from .modelfile.checks import check_file
 
-    from pydantic import ValidationError
-
-    from .io.files import TOML_LIMIT, file_problem, read_input_text
-    from .modelfile.errors import ModelFileError, translate
-    from .modelfile.schema import ModelFile
-
-    if file_problem(path) is not None:                  # as read_toml: before opening (a FIFO would block)
-        return
-    try:
-        data = tomllib.loads(read_input_text(path, limit=TOML_LIMIT))
-    except (OSError, ValueError, RecursionError):       # the reader's message is load_model_file's
-        return
-    try:
-        ModelFile.model_validate(data)
-    except ValidationError as exc:
-        raise ModelFileError(path, translate(exc, data, ModelFile)) from None
+    check_file(path)
 
 
 @main.command()
@@ -193,15 +180,15 @@ def plot(results, model_file, out, formats):
     solving anything: the nodes, elements, unilateral elements and footings with their names, and
     the first mode shapes of the bilateral structure.
     """
-    from .figures import FigureDataError
-    from .io.atomic import WriteError
-    from .io.results import ResultsFileError
-
     if (results is None) == (model_file is None):
         raise click.UsageError("give either RESULTS (a results.nc) or --model MODEL.toml")
     if model_file is not None:
         _plot_model(model_file, out or Path("."), formats)
         return
+    from .figures import FigureDataError
+    from .io.atomic import WriteError
+    from .io.results import ResultsFileError
+
     target = out or results.parent
     try:
         paths, skipped, note = _plot(results, target, formats)
@@ -221,10 +208,13 @@ def plot(results, model_file, out, formats):
 
 def _plot_model(model_file: Path, target: Path, formats) -> None:
     """``unilateral plot --model``: check and read the model file, draw model.png into ``target``."""
+    try:
+        check_model_file(model_file)                # before the imports: a wrong file fails at once
+    except ValueError as exc:                   # ModelFileError: the file's problems, one per line
+        raise click.ClickException(str(exc)) from None
     from .io.atomic import WriteError
 
     try:
-        check_model_file(model_file)
         from .figures.model import model_file_drawing
         from .figures.replot import replot_model
 

@@ -85,10 +85,10 @@ def spectra_settings(spec):
     Raises
     ------
     unilateral.modelfile.ModelFileError
-        ``floor_spectra`` names a node that does not exist, twice, or in a matrix-level model;
-        the resolved shortest period is not below the longest.
+        ``floor_spectra`` in a matrix-level model; the resolved shortest period is not below
+        the longest (its nodes are checked with the model file, :mod:`unilateral.modelfile.checks`).
     """
-    from ..modelfile.errors import ModelFileError, compact_ids, did_you_mean, toml_value, value_problem
+    from ..modelfile.errors import ModelFileError
     from ..modelfile.schema import TIME_UNITS
     from .spectra import DEFAULT_PERIODS, SpectraSettings, period_grid
 
@@ -98,15 +98,7 @@ def spectra_settings(spec):
             raise ModelFileError(spec.source, ["output.floor_spectra: needs a frame (a matrix-level model has no "
                                                "nodes)"])
         return None
-    ids = [node.id for node in spec.document.nodes]
-    problems = []
-    for k, node in enumerate(output.floor_spectra):
-        if node not in ids:
-            problems.append(value_problem(("output", "floor_spectra", k), node,
-                                          f"no node {toml_value(node)} (nodes are {compact_ids(ids)})")
-                            + did_you_mean(node, ids))
-        elif node in output.floor_spectra[:k]:
-            problems.append(value_problem(("output", "floor_spectra", k), node, "node given twice"))
+    problems = []                           # the nodes of floor_spectra: modelfile.checks
     seconds = TIME_UNITS[spec.document.units.time]
     periods = output.spectra_periods
     shortest = periods.min if periods.min is not None else DEFAULT_PERIODS[0] / seconds

@@ -1,6 +1,8 @@
 """Read a model file: TOML -> validated document -> cross checks -> Structure, Model and load.
 
-:func:`load_model_file` is the entry point. Every problem is reported as a
+:func:`load_model_file` is the entry point. Reading, validating and the cross checks are in
+:mod:`unilateral.modelfile.checks` (no numpy, scipy or structure code: the command line runs them
+before the heavy imports); this module builds the checked document. Every problem is reported as a
 :class:`~unilateral.modelfile.errors.ModelFileError` naming the key path; errors of the
 :class:`~unilateral.structure.Frame2D` builder and of the load readers are re-raised with the key
 path of the entry that caused them.
@@ -8,9 +10,6 @@ path of the entry that caused them.
 
 from __future__ import annotations
 
-import re
-import sys
-import tomllib
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,21 +19,16 @@ import scipy.sparse as sp
 from pydantic import ValidationError
 
 from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Rectangular, Tabulated,
-                     Triangular, force_factor, length_factor, read_record)
+                     Triangular, length_factor, read_record)
 from ..loads.site_response import free_field
-from ..loads.units import mass_factor
-from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
 from ..model import Model
 from ..structure import Frame2D, Structure
-from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
-                     translate, value_problem)
+from .checks import check_document, consistent_mass_factor, read_document
+from .checks import read_toml  # noqa: F401 (the reader of study files too)
+from .errors import ModelFileError, Problems, key_path, translate
 from .matrices import dof_index, read_matrix_model, read_vector
-from .schema import (FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap,
-                     HalfSinePulse, Hinge, ModelFile, Node, RampLoad, RectangularPulse, Slider, Soil, Spring,
-                     TableLoad, TriangularPulse, YieldLink, iter_fields)
-
-
-_TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
+from .schema import (TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap, HalfSinePulse, Hinge, ModelFile,
+                     RampLoad, RectangularPulse, Slider, Soil, Spring, TableLoad, TriangularPulse, YieldLink)
 
 
 @dataclass(frozen=True, eq=False)
@@ -81,7 +75,7 @@ def load_model_file(path) -> ModelSpec:
     """
     source = Path(path)
     try:
-        document = _read_document(source)
+        document = read_document(source)
     except Problems as exc:
         raise ModelFileError(path, exc.problems) from None
     return _build_spec(document, source, path)
@@ -108,7 +102,7 @@ def build_model_spec(data: dict, source) -> ModelSpec:
 def _build_spec(document: ModelFile, source: Path, path) -> ModelSpec:
     """Cross checks and the build of a validated document (``path``: the file as named in errors)."""
     try:
-        _check(document, source.parent)
+        check_document(document, source.parent)
         if document.matrices is None:
             structure = _build_structure(document)
             with _at("structure"):
@@ -125,77 +119,6 @@ def _build_spec(document: ModelFile, source: Path, path) -> ModelSpec:
                      units=units, figure=_figure(document), source=source, document=document)
 
 
-# ---------------------------------------------------------------------- reading
-def read_toml(source: Path) -> dict:
-    """The TOML document at ``source`` as a dict; unreadable files and syntax errors raise :class:`Problems`."""
-    problem = file_problem(source)              # before opening: a FIFO would block
-    if problem is not None:
-        raise Problems([problem])
-    try:
-        text = read_input_text(source, limit=TOML_LIMIT)
-    except InputFileError as exc:
-        raise Problems([exc.problem]) from None
-    except FileNotFoundError:
-        raise Problems(["file not found"]) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise Problems([f"cannot read the file ({exc})"]) from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        match = _TOML_POSITION.match(str(exc))
-        where = f"line {match[2]}, column {match[3]}: " if match else ""
-        raise Problems([f"{where}invalid TOML: {match[1] if match else exc}"]) from None
-    except RecursionError:
-        raise Problems(["invalid TOML: arrays or tables nested too deeply to be read (hundreds of levels; "
-                        "a model or study file needs a few)"]) from None
-    except ValueError:                                  # an integer of more digits than Python converts
-        raise Problems([_long_integer_problem(text)]) from None
-
-
-_LONG_INTEGER = re.compile(r"[+-]?\d[\d_]{%d,}" % (sys.get_int_max_str_digits() - 1))
-
-
-def _long_integer_problem(text: str) -> str:
-    """Where ``text`` has an integer too long for Python to read: its key path, or its line."""
-    match = _LONG_INTEGER.search(text)
-    if match is None:
-        return "invalid TOML: a number that cannot be read"
-    digits = sum(c.isdigit() for c in match[0])
-    what = (f"{match[0][:20]}... ({digits} digits): an integer too large to be read (at most "
-            f"{sys.get_int_max_str_digits()} digits; a model value is at most about 1.8e308)")
-    sentinel = next(n for n in range(10 ** 17, 10 ** 18) if str(n) not in text)
-    try:
-        data = tomllib.loads(_LONG_INTEGER.sub(str(sentinel), text))
-    except ValueError:
-        data = {}
-    parts = _path_of(data, sentinel)
-    if parts is None:
-        line = text.count("\n", 0, match.start()) + 1
-        column = match.start() - text.rfind("\n", 0, match.start())
-        return f"line {line}, column {column}: {what}"
-    return f"{key_path(parts)} = {what}"
-
-
-def _path_of(node, value, parts=()) -> tuple | None:
-    """The key path of the first integer ``value`` in nested dicts and lists, or None."""
-    if isinstance(node, int) and not isinstance(node, bool) and node == value:
-        return parts
-    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
-    for key, item in items:
-        found = _path_of(item, value, (*parts, key))
-        if found is not None:
-            return found
-    return None
-
-
-def _read_document(source: Path) -> ModelFile:
-    data = read_toml(source)
-    try:
-        return ModelFile.model_validate(data)
-    except ValidationError as exc:
-        raise Problems(translate(exc, data, ModelFile)) from None
-
-
 @contextmanager
 def _at(where: str):
     """Re-raise a ``ValueError`` or ``TypeError`` of the library as a problem at ``where``."""
@@ -205,337 +128,17 @@ def _at(where: str):
         raise Problems([f"{where}: {exc}"]) from None
 
 
-# ---------------------------------------------------------------------- cross checks
-def _check(document: ModelFile, folder: Path) -> None:
-    """Raise :class:`Problems` listing every inconsistency of a validated document."""
-    problems = (_mode_problems(document) + _duplicate_problems(document)
-                + _reference_problems(document, folder) + _record_problems(document)
-                + _foundation_problems(document) + _unilateral_problems(document))
-    if problems:
-        raise Problems(problems)
-
-
-def _mode_problems(document: ModelFile) -> list[str]:
-    """A frame and a matrix-level model take different sections and load keys."""
-    loads = document.loads
-    if document.matrices is None:
-        problems = [] if document.nodes else [missing_section(("nodes",), Node)]
-        problems += [value_problem(("loads", "nodal", k, "dof"), load.dof,
-                                   "DOF loads are for matrix-level models (give node with ux, uy, rz)")
-                     for k, load in enumerate(loads.nodal) if load.dof is not None]
-        for k, motion in enumerate(loads.ground_motion):
-            if motion.direction is None:
-                problems.append(f"{key_path(('loads', 'ground_motion', k, 'direction'))}: missing key "
-                                '(a frame needs direction = "ux" or "uy")')
-            if motion.influence is not None:
-                problems.append(value_problem(("loads", "ground_motion", k, "influence"), motion.influence,
-                                              "only for matrix-level models (a frame uses direction)"))
-        return problems
-    needs_frame = "not allowed with [matrices] (a matrix-level model has no frame)"
-    problems = [f"{name}: {needs_frame}" for name in FRAME_SECTIONS if getattr(document, name)]
-    if loads.gravity is not None:
-        problems.append("loads.gravity: needs a frame (give the weight of a matrix-level model as a "
-                        "constant [[loads.nodal]] load)")
-    if loads.distributed:
-        problems.append("loads.distributed: needs a frame (a matrix-level model has no beams)")
-    if document.output.overturning_about is not None:
-        problems.append("output.overturning_about: needs a frame (a matrix-level model has no base)")
-    if document.output.figure is not None:
-        problems.append("output.figure: needs a frame (a matrix-level model has no nodes)")
-    problems += [value_problem(("loads", "nodal", k, "node"), load.node,
-                               "a matrix-level model has no nodes (give dof and value)")
-                 for k, load in enumerate(loads.nodal) if load.node is not None]
-    for k, motion in enumerate(loads.ground_motion):
-        if motion.direction is not None:
-            problems.append(value_problem(("loads", "ground_motion", k, "direction"), motion.direction,
-                                          'a matrix-level model needs influence = "<file>.mtx" instead'))
-        elif motion.influence is None:
-            problems.append(f"{key_path(('loads', 'ground_motion', k, 'influence'))}: missing key "
-                            "(a matrix-level model needs the influence vector r)")
-    return problems
-
-
-def _duplicate_problems(document: ModelFile) -> list[str]:
-    problems = []
-    first_node = {}
-    for k, node in enumerate(document.nodes):
-        if node.id in first_node:
-            problems.append(value_problem(("nodes", k, "id"), node.id,
-                                          f"duplicate node id (also {key_path(first_node[node.id])})"))
-        first_node.setdefault(node.id, ("nodes", k, "id"))
-    first_name = {}
-    for section in ("elements", "unilateral"):
-        for k, element in enumerate(getattr(document, section)):
-            if element.name in first_name:
-                problems.append(value_problem((section, k, "name"), element.name,
-                                              f"duplicate element name (also {key_path(first_name[element.name])})"))
-            first_name.setdefault(element.name, (section, k, "name"))
-    return problems
-
-
-def _reference_problems(document: ModelFile, folder: Path) -> list[str]:
-    """Nodes that are not defined and files that do not exist."""
-    ids = [node.id for node in document.nodes]
-    known = set(ids)
-    problems = []
-    for parts, value, info in iter_fields(document):
-        if value is None:
-            continue
-        if NODE_REF in info.metadata and document.matrices is None and value not in known:
-            problems.append(value_problem(parts, value, f"no node {toml_value(value)} (nodes are {compact_ids(ids)})")
-                            + did_you_mean(value, ids))
-        if FILE_REF in info.metadata and (problem := file_problem(folder / value)) is not None:
-            problems.append(value_problem(parts, value, f"{problem} (looked for {folder / value})"))
-    return problems
-
-
-def _record_problems(document: ModelFile) -> list[str]:
-    """An .AT2 record has its time step, a plain-text record needs its units."""
-    problems = []
-    for k, motion in enumerate(document.loads.ground_motion):
-        at2 = Path(motion.file).suffix.lower() == ".at2"
-        if at2 and motion.dt is not None:
-            problems.append(value_problem(("loads", "ground_motion", k, "dt"), motion.dt,
-                                          "only for plain-text records (an .AT2 file gives DT in its header)"))
-        if not at2 and motion.units is None:
-            problems.append(f"{key_path(('loads', 'ground_motion', k, 'units'))}: missing key (a plain-text "
-                            'record needs the units of its values, e.g. units = "g" or "cm/s2")')
-    return problems + _site_problems(document)
-
-
-_SITE_KEYS = ("layers = [{thickness, Vs or G, nu, rho, damping}, ...] and base = {Vs or G, nu, rho, damping} "
-              'or "rigid"')
-
-
-def _site_problems(document: ModelFile) -> list[str]:
-    """``[site]`` and the keys ``at``, ``depth``, ``wave`` of the ground motions that use it."""
-    site, problems = document.site, []
-    tables = []
-    if site is not None:
-        if not site.layers:
-            problems.append(value_problem(("site", "layers"), [], "give at least one layer, from the surface down "
-                                          "({thickness, Vs or G, nu, rho, damping})"))
-        tables = [(("site", "layers", j), layer) for j, layer in enumerate(site.layers)]
-        tables += [] if site.base is None else [(("site", "base"), site.base)]
-        for where, table in tables:
-            if table.G is None and table.Vs is None:
-                problems.append(f"{key_path((*where, 'G'))}: missing key (give G [F/L^2] or Vs [L/T])")
-            elif table.G is not None and table.Vs is not None:
-                problems.append(value_problem((*where, "Vs"), table.Vs, "give either G or Vs, not both"))
-    frame = document.matrices is None
-    vertical = None
-    for k, motion in enumerate(document.loads.ground_motion):
-        parts = ("loads", "ground_motion", k)
-        if motion.depth is not None and motion.at != "within":
-            problems.append(value_problem((*parts, "depth"), motion.depth, 'only for at = "within" (a record taken '
-                                          "at depth)"))
-        if motion.wave is not None and frame:
-            problems.append(value_problem((*parts, "wave"), motion.wave, "only for matrix-level models (a frame's "
-                                          'direction sets the waves: "ux" S waves, "uy" P waves): remove it'))
-        if motion.at == "surface":
-            continue
-        if site is None:
-            problems.append(value_problem((*parts, "at"), motion.at, f"needs the [site] table with the soil profile "
-                                          f"under the record ({_SITE_KEYS})"))
-            continue
-        total = sum(layer.thickness for layer in site.layers)
-        if motion.at == "outcrop" and site.base is None:
-            problems.append(value_problem((*parts, "at"), motion.at, 'a rigid base (site.base = "rigid") has no '
-                                          'outcrop motion: give the motion of the base with at = "within", depth = '
-                                          f"{total:g}, or an elastic site.base"))
-        if motion.at == "within" and motion.depth is None:
-            problems.append(f"{key_path((*parts, 'depth'))}: missing key (at = \"within\" needs the depth [L] of "
-                            "the record below the surface)")
-        elif motion.at == "within" and motion.depth > total * (1.0 + 1e-12):
-            problems.append(value_problem((*parts, "depth"), motion.depth, f"below the [site] profile: give 0 <= "
-                                          f"depth <= {total:g} (the thickness of the layers, the top of the base)"))
-        if not frame and motion.wave is None:
-            problems.append(f"{key_path((*parts, 'wave'))}: missing key (a matrix-level model with at = "
-                            f'{toml_value(motion.at)} needs wave = "S" (horizontal motion) or "P" (vertical))')
-        if vertical is None and (motion.direction == "uy" if frame else motion.wave == "P"):
-            vertical = k
-    if vertical is not None:
-        for where, table in tables:
-            if table.nu is None:
-                problems.append(f"{key_path((*where, 'nu'))}: missing key (loads.ground_motion[{vertical}] is "
-                                "vertical: P waves, which need Poisson's ratio, 0 <= nu < 0.5)")
-    return problems
-
-
+# ---------------------------------------------------------------------- the site
 def _site_profile(document: ModelFile) -> tuple[list[dict], dict | None]:
     """``layers, base`` of ``[site]`` for :func:`~unilateral.loads.site_response.free_field`, rho in the
     consistent mass unit."""
-    to_mass = _mass_factor(document.units)
+    to_mass = consistent_mass_factor(document.units)
 
     def table(t):
         values = {key: value for key, value in t.model_dump().items() if value is not None}
         return {**values, "rho": values["rho"] * to_mass}
     site = document.site
     return [table(layer) for layer in site.layers], None if site.base is None else table(site.base)
-
-
-def _unilateral_problems(document: ModelFile) -> list[str]:
-    """Keys of ``[[unilateral]]`` entries that go together: friction, yield forces, hinges on beams."""
-    problems = []
-    beams = [e.name for e in document.elements if isinstance(e, Beam)]
-    hinged = {}
-    for k, e in enumerate(document.unilateral):
-        at = ("unilateral", k)
-        if isinstance(e, Soil | Gap):
-            problems += _friction_problems(at, e)
-        elif isinstance(e, YieldLink):
-            problems += _yield_force_problems(at, e)
-        elif isinstance(e, Hinge):
-            if e.beam not in beams:
-                problems.append(value_problem((*at, "beam"), e.beam, f"no beam {toml_value(e.beam)} in [[elements]] "
-                                              f"(beams are {compact_ids(beams)})") + did_you_mean(e.beam, beams))
-            elif (e.beam, e.end) in hinged:
-                problems.append(value_problem((*at, "end"), e.end, f"beam {toml_value(e.beam)} already has a hinge "
-                                              f"at this end ({key_path(hinged[(e.beam, e.end)])}); one per end"))
-            hinged.setdefault((e.beam, e.end), (*at, "end"))
-    return problems
-
-
-def _friction_problems(at, e) -> list[str]:
-    """A contact with friction needs ``kt``; ``kt`` and ``ct`` need ``mu``."""
-    if e.mu is None:
-        return [value_problem((*at, key), getattr(e, key), "a friction parameter: give the friction coefficient "
-                              "mu too, or remove it") for key in ("kt", "ct") if getattr(e, key)]
-    if e.kt is None:
-        return [f"{key_path((*at, 'kt'))}: missing key (friction, mu = {toml_value(e.mu)}, needs the stick "
-                "stiffness kt [F/L] > 0)"]
-    return []
-
-
-def _yield_force_problems(at, e) -> list[str]:
-    """A yield link takes ``Fy``, or ``Fy_t`` and ``Fy_c``."""
-    if e.Fy is not None:
-        return [value_problem((*at, key), getattr(e, key), "give either Fy (both ways) or Fy_t and Fy_c, not both")
-                for key in ("Fy_t", "Fy_c") if getattr(e, key) is not None]
-    if e.Fy_t is None and e.Fy_c is None:
-        return [f"{key_path((*at, 'Fy'))}: missing key (give the yield force Fy [F], or Fy_t and Fy_c)"]
-    return [f"{key_path((*at, key))}: missing key (Fy_t and Fy_c go together; or give Fy for both)"
-            for key in ("Fy_t", "Fy_c") if getattr(e, key) is None]
-
-
-def _foundation_problems(document: ModelFile) -> list[str]:
-    """The keys of every footing that go together (soil model and its parameters, nodes)."""
-    if document.matrices is not None:
-        return []
-    problems = []
-    for at, f in document.footings:
-        problems += _footing_problems(document, at, f)
-    return problems
-
-
-def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
-    """The problems of one footing ``f`` at key path ``at``."""
-    problems = []
-    ids = [node.id for node in document.nodes]
-    for k, node in enumerate(f.nodes or ()):
-        if node not in set(ids):
-            problems.append(value_problem((*at, "nodes", k), node, f"no node {toml_value(node)} (nodes are "
-                                          f"{compact_ids(ids)})") + did_you_mean(node, ids))
-    if f.nodes is not None and f.patches is not None:
-        problems.append(value_problem((*at, "patches"), f.patches, "only for a rigid footing (a flexible footing, "
-                                      "with nodes, has one patch per node): remove patches or nodes"))
-    if f.nodes is not None and len(f.nodes) < 2:
-        problems.append(value_problem((*at, "nodes"), f.nodes, "a flexible footing needs at least two nodes; "
-                                      "omit nodes for a rigid footing"))
-    if f.nodes is None and f.width is None:
-        problems.append(f"{key_path((*at, 'width'))}: missing key (a rigid footing needs its width along x)")
-    if f.nodes is not None and (f.mass or f.J):
-        problems.append(value_problem((*at, "mass" if f.mass else "J"), f.mass or f.J, "only for a rigid footing "
-                                      "(give a flexible footing's masses to its nodes in [[masses]])"))
-    if f.horizontal == "soil" and f.mu is None:
-        problems.append(f"{key_path((*at, 'mu'))}: missing key (horizontal = \"soil\" needs the friction "
-                        "coefficient of the footing on the soil, a number >= 0)")
-    if f.horizontal != "soil" and f.mu is not None:
-        problems.append(value_problem((*at, "mu"), f.mu, f'only for horizontal = "soil" (now '
-                                      f'{toml_value(f.horizontal)}): remove it, or let the footing slide'))
-    soil, where = f.soil, (*at, "soil")
-    m = len(f.nodes) if f.nodes is not None else (f.patches or 3)
-    if soil.model != "layered" and (soil.layers is not None or soil.base != "halfspace"):
-        problems.append(value_problem((*where, "layers" if soil.layers is not None else "base"),
-                                      soil.layers if soil.layers is not None else soil.base,
-                                      f'only for model = "layered" (model = {toml_value(soil.model)})'))
-    if soil.model == "layered":
-        if not soil.layers:
-            problems.append(f"{key_path((*where, 'layers'))}: missing key (model = \"layered\" needs the layers "
-                            "from the surface down: [{ thickness = ..., Vs = ..., nu = ..., rho = ... }])")
-        if soil.base == "rigid":
-            return problems + [value_problem((*where, key), getattr(soil, key), 'not used with base = "rigid": '
-                                             "remove it") for key in ("G", "Vs", "nu", "rho")
-                               if getattr(soil, key) is not None]
-    if soil.model == "winkler-kelvin":
-        for key in ("G", "Vs", "nu", "rho"):
-            if getattr(soil, key) is not None:
-                problems.append(value_problem((*where, key), getattr(soil, key), 'not used by model = '
-                                              '"winkler-kelvin" (give k and c per patch): remove it'))
-        if soil.damping:
-            problems.append(value_problem((*where, "damping"), soil.damping, 'not used by model = "winkler-kelvin" '
-                                          "(give c): remove it"))
-        if soil.k is None:
-            problems.append(f"{key_path((*where, 'k'))}: missing key (model = \"winkler-kelvin\" needs the spring "
-                            "of each patch [F/L], one number or a list of one per patch)")
-        if f.horizontal == "soil" and soil.kx is None:
-            problems.append(f"{key_path((*where, 'kx'))}: missing key (a footing with horizontal = \"soil\" on "
-                            "model = \"winkler-kelvin\" needs the horizontal spring of each patch [F/L])")
-        if f.horizontal != "soil" and (soil.kx is not None or soil.cx != 0.0):
-            key = "kx" if soil.kx is not None else "cx"
-            problems.append(value_problem((*where, key), getattr(soil, key), 'only for horizontal = "soil" (a '
-                                          "footing that slides): remove it"))
-        for key in ("k", "c", "kx", "cx"):
-            value = getattr(soil, key)
-            if isinstance(value, list) and len(value) != m:
-                problems.append(value_problem((*where, key), value, f"give one number or a list of {m} numbers "
-                                              f"(one per patch; the footing has {m})"))
-        return problems
-    if soil.G is None and soil.Vs is None:
-        problems.append(f"{key_path((*where, 'G'))}: missing key (model = {toml_value(soil.model)} needs G or Vs)")
-    elif soil.G is not None and soil.Vs is not None:
-        problems.append(value_problem((*where, "Vs"), soil.Vs, "give either G or Vs, not both"))
-    for key in ("nu", "rho"):
-        if getattr(soil, key) is None:
-            problems.append(f"{key_path((*where, key))}: missing key (model = {toml_value(soil.model)} needs it)")
-    for key in ("k", "c", "kx", "cx"):
-        value = getattr(soil, key)
-        if value is not None and value != 0.0:
-            problems.append(value_problem((*where, key), value, f'only for model = "winkler-kelvin" (model = '
-                                          f"{toml_value(soil.model)} takes G or Vs, nu, rho)"))
-    problems += _soil_scale_problems(document, f, where)
-    if soil.model == "cones" and soil.damping:
-        problems.append(value_problem((*where, "damping"), soil.damping, 'the cones have no material damping; '
-                                      'use damping = 0 or model = "halfspace"'))
-    if f.horizontal == "cone" and soil.model == "winkler-kelvin":
-        problems.append(value_problem((*at, "horizontal"), f.horizontal, 'needs the soil\'s G or Vs, nu, rho '
-                                      '(model = "halfspace" or "cones")'))
-    return problems
-
-
-def _soil_scale_problems(document: ModelFile, f, where: tuple) -> list[str]:
-    """Moduli derived from the soil's ``G`` or ``Vs``, ``rho`` and the footing's area that overflow or vanish.
-
-    ``G = rho Vs^2``, ``Vs = sqrt(G / rho)`` and the footing's stiffness ``G sqrt(A)`` and dashpot
-    ``rho Vs A`` (``A = width length``) must be finite numbers > 0.
-    """
-    soil = f.soil
-    if soil.rho is None or (soil.G is None) == (soil.Vs is None):
-        return []
-    key = "G" if soil.G is not None else "Vs"
-    rho = soil.rho * _mass_factor(document.units)
-    G = soil.G if soil.G is not None else rho * soil.Vs * soil.Vs
-    vs = soil.Vs if soil.Vs is not None else float(np.sqrt(G / rho))
-    area = (f.width or 1.0) * f.length
-    derived = {"the shear modulus G = rho Vs^2": G, "the shear-wave speed Vs = sqrt(G/rho)": vs,
-               "the footing's stiffness G sqrt(A)": G * float(np.sqrt(area)),
-               "the footing's dashpot rho Vs A": rho * vs * area}
-    for name, value in derived.items():
-        if not 0.0 < value < np.inf:
-            return [value_problem((*where, key), getattr(soil, key), f"with rho = {toml_value(soil.rho)} and the "
-                                  f"footing's area A = {area:g} gives {name} = {value:g}; give values for which "
-                                  "it is a finite number > 0")]
-    return []
 
 
 # ---------------------------------------------------------------------- the frame
@@ -550,7 +153,7 @@ def _build_structure(document: ModelFile) -> Structure:
     for k, link in enumerate(document.rigid_links):
         with _at(key_path(("rigid_links", k))):
             fr.rigid_link(link.master, link.slave)
-    to_mass = _mass_factor(document.units)
+    to_mass = consistent_mass_factor(document.units)
     for section in ("elements", "unilateral"):
         for k, element in enumerate(getattr(document, section)):
             with _at(key_path((section, k))):
@@ -580,11 +183,8 @@ def _build_structure(document: ModelFile) -> Structure:
     if modal is not None:
         with _at("damping.modal"):
             fr.modal_damping(modal.zeta, modal.modes)
-    if document.analysis.p_delta:
+    if document.analysis.p_delta:                   # with [loads.gravity]: checks._analysis_problems
         gravity = document.loads.gravity
-        if gravity is None:
-            raise Problems(["analysis.p_delta = true: needs [loads.gravity] (the axial forces of P-Delta "
-                            "are those of the gravity load)"])
         with _at("analysis.p_delta"):
             fr.p_delta(g=_gravity_value(document), direction=gravity.direction)
     with _at("structure"):
@@ -595,14 +195,6 @@ def _gravity_value(document: ModelFile) -> float:
     """``g`` of ``[loads.gravity]`` in the model's units."""
     units, g = document.units, document.loads.gravity.g
     return STANDARD_GRAVITY * TIME_UNITS[units.time] ** 2 / length_factor(units.length) if g == "standard" else g
-
-
-def _mass_factor(units) -> float:
-    """Factor from ``units.mass`` to the consistent mass unit force time^2/length (1 without it)."""
-    if units.mass is None:
-        return 1.0
-    consistent_kg = force_factor(units.force) * TIME_UNITS[units.time] ** 2 / length_factor(units.length)
-    return mass_factor(units.mass) / consistent_kg
 
 
 def _add_element(fr: Frame2D, e, to_mass=1.0) -> None:

@@ -3,7 +3,7 @@
 Every table forbids unknown keys, takes TOML types as they are (no ``"1.0"`` for a number) and
 rejects ``inf`` and ``nan``. Numbers are in the units declared in ``[units]``; masses in
 ``force time^2 / length``. Cross references (nodes that exist, unique names, files that exist)
-are checked after validation, in :mod:`unilateral.modelfile.build`.
+are checked after validation, in :mod:`unilateral.modelfile.checks`.
 
 Fields that name a node carry the marker :data:`NODE_REF` in their metadata, fields that name a
 file :data:`FILE_REF`; :func:`iter_fields` walks a validated document for such checks.
@@ -108,6 +108,35 @@ class Table(BaseModel):
     model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
 
 
+def _toml(value) -> str:
+    """A node id or number as written in TOML (strings in double quotes)."""
+    return json.dumps(value) if isinstance(value, str) else f"{value:g}" if isinstance(value, float) else str(value)
+
+
+class _TwoNodes(Table):
+    """A table joining two nodes, ``NODES``, that must differ (the second may be absent: the ground)."""
+
+    NODES: ClassVar[tuple[str, str]] = ("node_i", "node_j")
+
+    @model_validator(mode="after")
+    def _two_nodes(self):
+        first, second = self.NODES
+        node = getattr(self, first)
+        if getattr(self, second) == node:
+            raise PydanticCustomError("same_node", "{first} and {second} are the same node {node}: give two "
+                                      "different nodes", {"first": first, "second": second, "node": _toml(node)})
+        return self
+
+
+def _in_order(table, earlier: str, later: str, *, strict: bool) -> None:
+    """``table.later`` > (``strict``) or >= ``table.earlier``, as :mod:`unilateral.loads.pulses` requires."""
+    a, b = getattr(table, earlier), getattr(table, later)
+    if b < a or (strict and b == a):
+        raise PydanticCustomError("order", "{later} must be {relation} {earlier}, got {later}={b} and {earlier}={a}",
+                                  {"later": later, "earlier": earlier, "relation": ">" if strict else ">=",
+                                   "a": repr(a), "b": repr(b)})
+
+
 # ---------------------------------------------------------------------- units and geometry
 class Units(Table):
     """[units]: the units of every number in the file (mass is force time^2 / length)."""
@@ -138,9 +167,18 @@ class Support(Table):
     uy: bool = True
     rz: bool = False
 
+    @model_validator(mode="after")
+    def _restrains_something(self):
+        if not (self.ux or self.uy or self.rz):
+            raise PydanticCustomError("support", "ux, uy and rz are all false: the support restrains nothing "
+                                      "(set one of them true, or remove the support)")
+        return self
 
-class RigidLink(Table):
+
+class RigidLink(_TwoNodes):
     """[[rigid_links]]: node ``slave`` follows the rigid-body motion of node ``master``."""
+
+    NODES: ClassVar[tuple[str, str]] = ("master", "slave")
 
     master: NodeRef
     slave: NodeRef
@@ -158,7 +196,7 @@ class Mass(Table):
 
 
 # ---------------------------------------------------------------------- elements
-class Beam(Table):
+class Beam(_TwoNodes):
     """Euler-Bernoulli beam-column from node_i to node_j."""
 
     type: Literal["beam"]
@@ -175,7 +213,7 @@ class Beam(Table):
         "at each end node (with [loads.gravity], its self-weight)."))
 
 
-class Bar(Table):
+class Bar(_TwoNodes):
     """Axial bar (truss member) from node_i to node_j."""
 
     type: Literal["bar"]
@@ -187,7 +225,7 @@ class Bar(Table):
     axial_strain: float = Field(0.0, description="Imposed (e.g. thermal) axial strain.")
 
 
-class Spring(Table):
+class Spring(_TwoNodes):
     """Linear spring from node_i to the ground (no node_j) or to node_j."""
 
     type: Literal["spring"]
@@ -198,7 +236,7 @@ class Spring(Table):
     direction: Direction = "uy"
 
 
-class Dashpot(Table):
+class Dashpot(_TwoNodes):
     """Linear dashpot, attached (acts in tension too), from node_i to the ground or to node_j."""
 
     type: Literal["dashpot"]
@@ -228,7 +266,7 @@ class Soil(Table):
     ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
 
 
-class Gap(Table):
+class Gap(_TwoNodes):
     """Pounding link: a compression-only contact spring between node_i and node_j."""
 
     type: Literal["gap"]
@@ -244,7 +282,7 @@ class Gap(Table):
     ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
 
 
-class Cable(Table):
+class Cable(_TwoNodes):
     """Tension-only cable from node_i to node_j that goes slack in compression."""
 
     type: Literal["cable"]
@@ -257,8 +295,10 @@ class Cable(Table):
     capacity: NonNegative = Field(0.0, description="Compression carried before going slack [force].")
 
 
-class YieldLink(Table):
+class YieldLink(_TwoNodes):
     """Zero-length elastic-plastic spring from node to the ground (no node_j) or to node_j."""
+
+    NODES: ClassVar[tuple[str, str]] = ("node", "node_j")
 
     type: Literal["yield"]
     name: Name
@@ -328,6 +368,15 @@ class ModalDamping(Table):
     modes: Annotated[int, Field(ge=1)] | None = Field(None, description=(
         "Number of lowest modes damped (default: all, or as many as ratios)."))
 
+    @model_validator(mode="after")
+    def _one_ratio_per_mode(self):
+        if isinstance(self.zeta, list) and not self.zeta:
+            raise PydanticCustomError("modal", "zeta = []: give one ratio for every mode, or one per mode")
+        if isinstance(self.zeta, list) and self.modes is not None and len(self.zeta) != self.modes:
+            raise PydanticCustomError("modal", "{count} ratios for modes = {modes}: give one per mode (or one "
+                                      "ratio for all)", {"count": len(self.zeta), "modes": self.modes})
+        return self
+
 
 class Damping(Table):
     """[damping]: structural damping (Kelvin dashpots of soil and gaps are given with them)."""
@@ -343,6 +392,11 @@ class RectangularPulse(Table):
     type: Literal["rectangular"]
     t_start: float = 0.0
     t_end: float
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        _in_order(self, "t_start", "t_end", strict=True)
+        return self
 
 
 class HalfSinePulse(Table):
@@ -360,6 +414,13 @@ class TriangularPulse(Table):
     t_start: float = 0.0
     t_peak: float
     t_end: float
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        _in_order(self, "t_start", "t_end", strict=True)
+        _in_order(self, "t_start", "t_peak", strict=False)
+        _in_order(self, "t_peak", "t_end", strict=False)
+        return self
 
 
 class ConstantLoad(Table):
