@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _validate as V
-from .lcp import get_lcp_solver
+from .lcp import BlockPrincipalPivoting, get_lcp_solver
 from .linalg import Factorization, SingularMatrixError, dense, mechanism_dofs, transpose_times
 
 
@@ -100,6 +100,9 @@ def _static_state(model, q0, solver) -> InitialState:
         state = static_state(stiff.conditioned, T.T @ np.asarray(q0, dtype=float), solver)
         state.u, state.udot = T @ state.u, np.zeros(model.n)
         return state
+    state = _static_full_space(model, q0, solver)
+    if state is not None:
+        return state
     try:
         K = Factorization(
             model.K, what="K (the structure with every constraint held bilateral must be stable)"
@@ -121,6 +124,32 @@ def _static_state(model, q0, solver) -> InitialState:
     u = uq + (K.solve(np.asarray(model.F @ v).ravel()) if np.any(v) else 0.0)
     return InitialState(v=v, psi=psiL0 - Lambda0 @ v, u=u, udot=np.zeros(model.n),
                         lcp_iterations=iters, message=message)
+
+
+def _static_full_space(model, q0, solver):
+    """The static state of a large sparse model with contacts by pivoting in the full space, or None.
+
+    For more than :data:`~unilateral.march.active_set.FULL_SPACE_MIN_M` constraints of the trivial
+    law and ``lcp="bpp"``: ``K u = q0 + F v`` with ``psi = F^T u - H v - g`` solved on the sparse
+    ``K`` without the open constraints (:class:`~unilateral.march.active_set.ActiveSetSolver`,
+    the same solution as the condensed LCP), so that ``F^T K^-1 F`` is never formed. None where
+    it does not apply or does not converge (the condensed LCP then gives the solution or the
+    reason there is none).
+    """
+    from .march.active_set import FULL_SPACE_MIN_M, ActiveSetSolver
+
+    if not (model.sparse and model.m > FULL_SPACE_MIN_M and model.law.trivial
+            and isinstance(solver, BlockPrincipalPivoting)):
+        return None
+    zero = np.zeros(model.m)
+    try:
+        lcp = ActiveSetSolver(model.K, model.F, dense(model.H), 1.0, zero, max_iter=solver.max_iter or 50)
+        v, psi, u, _, iterations = lcp.solve(q0, -model.g(0.0), np.zeros(model.m, dtype=bool))
+    except SingularMatrixError:
+        return None
+    if iterations < 0:
+        return None
+    return InitialState(v=v, psi=psi, u=u, udot=np.zeros(model.n), lcp_iterations=iterations)
 
 
 #: Right-hand sides of at most this many entries are solved at once (a large sparse model's

@@ -26,34 +26,42 @@ import scipy.sparse as sp
 from .direct import direct_outputs
 from ..linalg import Factorization
 
+#: Sparse models with more constraints than this solve the LCP in the full sparse space (with
+#: ``lcp="bpp"`` and constraints of the trivial law): the condensed ``W0`` would be large and dense.
+FULL_SPACE_MIN_M = 64
 #: Factorisations kept (least recently used first out).
 CACHE_SIZE = 16
 _BLOCK_TRIES = 3
 
 
 class ActiveSetSolver:
-    """Per-step LCP of a :class:`~unilateral.march.stepper.StructureStepper` in the full space.
+    """The LCP of one step (or of the static state) in the full space.
 
     Parameters
     ----------
-    stepper : StructureStepper (built with ``condensed=False``)
+    D : (n, n) sparse, the effective stiffness (``K`` for the static state)
+    Fp : (n, m) sparse or dense;  Hs : (m, m) dense;  a : float, ``1 - alpha`` (1 for statics)
     v_b : (m,) base deformations
     max_iter : int, trial active sets per step at most
     """
 
-    def __init__(self, stepper, v_b, max_iter=50):
-        self.stepper = stepper
-        self.a = 1.0 - stepper.alpha
-        self.Fp = sp.csc_matrix(stepper.Fp)
-        self.Hs = np.asarray(stepper.Hs)
+    def __init__(self, D, Fp, Hs, a, v_b, max_iter=50):
+        self.a = a
+        self.Fp = sp.csc_matrix(Fp)
+        self.Hs = np.asarray(Hs)
         self.diagonal = not np.any(self.Hs - np.diag(np.diag(self.Hs)))
-        self.D_eff = sp.csc_matrix(stepper.D_eff)
+        self.D_eff = sp.csc_matrix(D)
         self.v_b = v_b
         self.shift = self.a * (self.Fp @ v_b)
         self.Hv_b = self.Hs @ v_b
         self.max_iter = max_iter
         self._cache = OrderedDict()
         self.factorizations = 0
+
+    @classmethod
+    def of_stepper(cls, stepper, v_b, max_iter=50):
+        """For the steps of a :class:`~unilateral.march.stepper.StructureStepper` (``condensed=False``)."""
+        return cls(stepper.D_eff, stepper.Fp, stepper.Hs, 1.0 - stepper.alpha, v_b, max_iter)
 
     def solve(self, rhs, c, active):
         """Return ``(v, psi, du, active, iterations)``; ``iterations < 0`` on failure."""
@@ -115,7 +123,7 @@ def march_direct_active_set(stepper, N, v_b, psi0, *, dt, bilateral=False, callb
                             max_iter=50):
     """:func:`~unilateral.march.direct.march_direct` for large sparse models (same returns)."""
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
-    solver = ActiveSetSolver(stepper, v_b, max_iter)
+    solver = ActiveSetSolver.of_stepper(stepper, v_b, max_iter)
     active = v_b > 0
     for k in range(1, N + 1):
         rhs, c = stepper.free_terms()

@@ -11,6 +11,8 @@ run (:data:`SWEEP_STEP_COST`).
 
 from __future__ import annotations
 
+import sys
+
 #: Runs of fewer steps use the Python loops when a method's engine is ``"auto"`` (0: always compiled).
 COMPILE_MIN_STEPS = 0
 #: Python cost of a step of a linear sweep (no LCP) relative to a step of a march with an LCP:
@@ -23,6 +25,7 @@ def compiled_pays(steps: int, step_cost: float = 1.0) -> bool:
 
     ``step_cost``: the Python cost of one step relative to a march step with an LCP
     (:data:`SWEEP_STEP_COST` for a linear sweep), so that a cheap loop is compiled only when it
-    is long enough to repay the loading of the compiled code.
+    is long enough to repay the loading of the compiled code. Once numba is imported (an earlier
+    run of the process compiled), its import is paid and every run compiles.
     """
-    return steps * step_cost >= COMPILE_MIN_STEPS
+    return steps * step_cost >= COMPILE_MIN_STEPS or "numba" in sys.modules

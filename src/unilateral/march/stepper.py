@@ -157,6 +157,36 @@ class StructureStepper:
                 np.ascontiguousarray(self.Hs, dtype=float), dense_or(self.model.H_v, zeros_mm),
                 self.vstate is not None, f, offset, start)
 
+    def compiled_rule(self):
+        """``(kind, rp, ustart)`` of the compiled direct marches, or None for a stepped or foreign rule.
+
+        ``kind``: :data:`~unilateral.march.compiled.RULE_BDF1`, ``RULE_BDF2`` or ``RULE_NEWMARK``;
+        ``rp`` (8,): ``dt``, the Newmark coefficients of the history terms and ``c1`` (see
+        :func:`unilateral.march.compiled._rule_history`); ``ustart`` (5, n): the rule's state
+        ``y0, y1, y0', y1', y0''`` of a fresh stepper.
+        """
+        from ..rules import BDF, Newmark
+        from .compiled import RULE_BDF1, RULE_BDF2, RULE_NEWMARK
+
+        rule, dt, n = self.rule, self.dt, self.model.n
+        if self.k != 0 or type(rule) not in (BDF, Newmark):
+            return None
+        c1 = rule.coefficients(dt)[0]
+        rp = np.zeros(8)
+        rp[0], rp[7] = dt, c1
+        if isinstance(rule, Newmark):
+            kind, (g, b) = RULE_NEWMARK, (rule.gamma, rule.beta)
+            rp[1:7] = (g / (b * dt), g / b - 1.0, dt * (g / (2 * b) - 1.0), dt, dt * dt * (0.5 - b),
+                       1.0 / (b * dt * dt))
+            y0, yd0, ydd0 = self.state
+            y1, yd1 = np.zeros(n), np.zeros(n)
+        else:
+            kind = RULE_BDF1 if rule.order == 1 else RULE_BDF2
+            (y0, *ys), (yd0, *yds) = self.state
+            y1, yd1 = (ys[0], yds[0]) if ys else (np.zeros(n), np.zeros(n))
+            ydd0 = np.zeros(n)
+        return kind, rp, np.array([y0, y1, yd0, yd1, ydd0], dtype=float)
+
     def march_arrays(self, N):
         """Arguments of :func:`unilateral.march.compiled.direct_steps` for N steps, or None.
 
@@ -171,27 +201,12 @@ class StructureStepper:
         dict with ``kind``, ``rp``, ``mats``, ``sparse``, ``f``, ``offset``, ``ustart`` (5, n)
         and the scalars ``c0``, ``alpha``, ``viscous``; or None
         """
-        from ..rules import BDF, Newmark
-        from .compiled import RULE_BDF1, RULE_BDF2, RULE_NEWMARK
-
-        rule, dt = self.rule, self.dt
-        if self.k != 0 or not hasattr(self, "X") or type(rule) not in (BDF, Newmark):
+        compiled_rule = self.compiled_rule()
+        if compiled_rule is None or not hasattr(self, "X"):
             return None
+        kind, rp, ustart = compiled_rule
         n, m = self.model.n, self.model.m
-        c1, c0 = rule.coefficients(dt)
-        rp = np.zeros(8)
-        rp[0], rp[7] = dt, c1
-        if isinstance(rule, Newmark):
-            kind, (g, b) = RULE_NEWMARK, (rule.gamma, rule.beta)
-            rp[1:7] = (g / (b * dt), g / b - 1.0, dt * (g / (2 * b) - 1.0), dt, dt * dt * (0.5 - b),
-                       1.0 / (b * dt * dt))
-            y0, yd0, ydd0 = self.state
-            y1, yd1 = np.zeros(n), np.zeros(n)
-        else:
-            kind = RULE_BDF1 if rule.order == 1 else RULE_BDF2
-            (y0, *ys), (yd0, *yds) = self.state
-            y1, yd1 = (ys[0], yds[0]) if ys else (np.zeros(n), np.zeros(n))
-            ydd0 = np.zeros(n)
+        c0 = self.rule.coefficients(self.dt)[1]
         lu_piv = self._dense_factors()
         if self.tables is not None:
             f, offset = (np.ascontiguousarray(table[: N + 1], dtype=float) for table in self.tables)
@@ -206,7 +221,7 @@ class StructureStepper:
                 as_dense(self.X, (n, m)), as_dense(self.W0, (m, m)))
         return {"kind": kind, "rp": rp, "mats": mats,
                 "sparse": tuple(_matvec_operand(A) for A in (self.M, self.C, self.K)),
-                "f": f, "offset": offset, "ustart": np.array([y0, y1, yd0, yd1, ydd0], dtype=float),
+                "f": f, "offset": offset, "ustart": ustart,
                 "c0": c0, "alpha": float(self.alpha), "viscous": self.vstate is not None}
 
     def _dense_factors(self):

@@ -6,7 +6,7 @@ import functools
 
 from ..kernels import KernelModel, TimeKernelModel
 from ..lcp import BlockPrincipalPivoting
-from ..march.stepper import DENSE_STEPPING_MAX_N
+from ..march.stepper import COMPILED_MAX_N, DENSE_STEPPING_MAX_N
 from ..model import Model
 from ..soil.foundation_model import FoundationModel
 from .cq import CQ
@@ -57,7 +57,8 @@ def _(model: Model, rule, solver, options):
     if small and rule.supports_cq and isinstance(solver, BlockPrincipalPivoting) and model.m:
         return Modal(), ("small model: the compiled CLCP march with the exact recursive history "
                          "and compiled linear sweeps is the fastest end to end")
-    space = "full-space active-set LCP" if model.sparse and model.m > FULL_SPACE_MIN_M else "condensed LCP"
+    full = model.sparse and model.law.trivial and (model.m > FULL_SPACE_MIN_M or model.n > COMPILED_MAX_N)
+    space = "the LCP in the full sparse space" if full else "the condensed LCP"
     return Direct(), f"direct stepping ({space}) is the fastest end to end for this model"
 
 
