@@ -13,5 +13,6 @@ Coulomb friction on contacts — with yield links, plastic hinges and sliders, a
 from .dofs import DofMap
 from .examples import liolios1990, winkler_beam
 from .frame import Frame2D, Structure
+from .frame3d import Frame3D, Structure3D
 
-__all__ = ["DofMap", "Frame2D", "Structure", "liolios1990", "winkler_beam"]
+__all__ = ["DofMap", "Frame2D", "Frame3D", "Structure", "Structure3D", "liolios1990", "winkler_beam"]

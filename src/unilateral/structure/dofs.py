@@ -36,8 +36,12 @@ class DofMap:
     nodes : list of node ids, in definition order
     free : list of (node, dof) pairs; ``u[k]`` is the DOF ``free[k]``
     masters : dict slave -> root master (the end of the chain of links)
-    T : (3 n_nodes, n) csr matrix; row ``3 p + d`` is DOF ``d`` of ``nodes[p]``
+    T : (3 n_nodes, n) csr matrix; row ``3 p + d`` is DOF ``dof_names[d]`` of ``nodes[p]``
     """
+
+    #: The nodal DOFs of every node, in the order of the rows of ``T`` (:class:`.dofs3d.DofMap3D`:
+    #: the six of a 3-D frame).
+    dof_names: tuple[str, ...] = DOF_NAMES
 
     def __init__(self, coords: dict, restrained: set, rotated: set, links: dict):
         self.nodes = list(coords)
@@ -46,27 +50,27 @@ class DofMap:
         offset = {s: np.asarray(coords[s]) - np.asarray(coords[m]) for s, m in self.masters.items()}
         rotating = set(rotated) - set(self.masters)
         rotating |= {m for s, m in self.masters.items() if s in rotated or offset[s].any()}
-        self.free = [(node, dof) for node in self.nodes if node not in self.masters for dof in DOF_NAMES
+        self.free = [(node, dof) for node in self.nodes if node not in self.masters for dof in self.dof_names
                      if (node, dof) not in restrained and (dof != "rz" or node in rotating)]
         self._index = {key: k for k, key in enumerate(self.free)}
         self._restrained = set(restrained)
         rows, cols, vals = [], [], []
         for node in self.nodes:
-            p = 3 * self._position[node]
+            p = len(self.dof_names) * self._position[node]
             if node in self.masters:
                 m = self.masters[node]
                 dx, dy = offset[node]
                 terms = [(p, "ux", 1.0, m), (p, "rz", -dy, m), (p + 1, "uy", 1.0, m),
                          (p + 1, "rz", dx, m), (p + 2, "rz", 1.0, m)]
             else:
-                terms = [(p + d, dof, 1.0, node) for d, dof in enumerate(DOF_NAMES)]
+                terms = [(p + d, dof, 1.0, node) for d, dof in enumerate(self.dof_names)]
             for row, dof, value, owner in terms:
                 col = self._index.get((owner, dof))
                 if col is not None and value != 0.0:
                     rows.append(row)
                     cols.append(col)
                     vals.append(value)
-        self.T = sp.csr_matrix((vals, (rows, cols)), shape=(3 * len(self.nodes), len(self.free)))
+        self.T = sp.csr_matrix((vals, (rows, cols)), shape=(len(self.dof_names) * len(self.nodes), len(self.free)))
 
     @property
     def n(self) -> int:
@@ -80,11 +84,12 @@ class DofMap:
 
     def full_index(self, node: Hashable, dof: str) -> int:
         """Row of nodal DOF ``dof`` of ``node`` in ``u_full``."""
-        if dof not in DOF_NAMES:
-            raise ValueError(f"dof={dof!r} is not valid; use 'ux', 'uy' or 'rz'")
+        names = self.dof_names
+        if dof not in names:
+            raise ValueError(f"dof={dof!r} is not valid; use {', '.join(map(repr, names[:-1]))} or {names[-1]!r}")
         if node not in self._position:
             raise ValueError(f"node {node!r} is not defined (nodes: {node_list(self.nodes)})")
-        return 3 * self._position[node] + DOF_NAMES.index(dof)
+        return len(names) * self._position[node] + names.index(dof)
 
     def index(self, node: Hashable, dof: str) -> int:
         """Position of the free DOF ``(node, dof)`` in ``u``; ``ValueError`` if it is not free."""
@@ -109,17 +114,18 @@ class DofMap:
 
         Returns
         -------
-        (..., n_nodes, 3) array of ``(ux, uy, rz)`` per node, in the order of ``nodes``
+        (..., n_nodes, len(dof_names)) array of the :attr:`dof_names` per node (``(ux, uy, rz)`` in
+        2-D, ``(ux, uy, uz, rx, ry, rz)`` in 3-D), in the order of ``nodes``
         """
         u = np.asarray(u, dtype=float)
         if u.shape[-1:] != (self.n,):
             raise ValueError(f"u must have shape (..., {self.n}), got {u.shape}")
         flat = u.reshape(-1, self.n)
         full = (self.T @ flat.T).T
-        return full.reshape(u.shape[:-1] + (len(self.nodes), 3))
+        return full.reshape(u.shape[:-1] + (len(self.nodes), len(self.dof_names)))
 
     def gather(self, f_full) -> np.ndarray:
-        """Free-DOF load ``T^T f_full`` (n,) of nodal loads ``f_full`` (3 n_nodes,)."""
+        """Free-DOF load ``T^T f_full`` (n,) of nodal loads ``f_full`` (``len(dof_names) n_nodes``,)."""
         return np.asarray(self.T.T @ f_full).ravel()
 
 

@@ -207,7 +207,8 @@ def _axial(kind, name, i, xi, j, xj):
     return L, dofs, np.array([[-c, -s, c, s]])
 
 
-def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, unknowns=(), A=None) -> Element:
+def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, unknowns=(), A=None,
+                dof_names=DOF_NAMES) -> Element:
     """Element of the relative motion ``d . (u_j - u_i)`` of two ends (``None`` = ground).
 
     Parameters
@@ -218,8 +219,10 @@ def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, unknowns=(), A=
     c : viscosity of a Kelvin dashpot in parallel with ``k`` (0: none)
     theta : imposed strain
     unknowns, A : the constraint unknowns on the strain (row 0) and their interaction (see :class:`Element`)
+    dof_names : the nodal DOFs, in order (default the 2-D ones; a 3-D element: those of
+        :mod:`.elements3d`)
     """
-    dofs, a = _relative(i, j, (terms,))
+    dofs, a = _relative(i, j, (terms,), dof_names)
     E_v = np.array([[c]]) if c > 0 else None
     return Element(name, kind, dofs, a, np.array([[k]]), np.array([theta]), E_v=E_v, unknowns=tuple(unknowns), A=A)
 
@@ -283,9 +286,11 @@ def hinge(beam_element, name, end, *, My, k=None, modulus=0.0) -> Element:
     return replace(beam_element, E=E, unknowns=beam_element.unknowns + unknowns, A=A)
 
 
-def _relative(i, j, directions):
-    """DOFs and strain rows ``(len(directions), d)`` of the motions ``dir . (u_j - u_i)``."""
-    names = [dof for dof in DOF_NAMES if any(dof == d for terms in directions for d, _ in terms)]
+def _relative(i, j, directions, dof_names=DOF_NAMES):
+    """DOFs and strain rows ``(len(directions), d)`` of the motions ``dir . (u_j - u_i)``
+    (``directions``: the ``(dof, coefficient)`` pairs of each direction; ``None`` = ground; the
+    DOFs in the order of ``dof_names``, the 2-D or the 3-D ones)."""
+    names = [dof for dof in dof_names if any(dof == d for terms in directions for d, _ in terms)]
     ends = [(node, sign) for node, sign in ((i, -1.0), (j, 1.0)) if node is not None]
     dofs = tuple((node, dof) for node, _ in ends for dof in names)
     a = np.array([[sign * dict(terms).get(dof, 0.0) for _, sign in ends for dof in names] for terms in directions])
@@ -306,29 +311,41 @@ def tangent_terms(where: str, terms) -> tuple[tuple[str, float], ...]:
     return tuple((dof, x) for dof, x in (("ux", dy), ("uy", -dx)) if x != 0.0)
 
 
-def direction_terms(where: str, direction) -> tuple[tuple[str, float], ...]:
+def direction_terms(where: str, direction, dof_names=DOF_NAMES, axes=("dx", "dy")) -> tuple[tuple[str, float], ...]:
     """``(dof, coefficient)`` pairs of the motion along ``direction``.
 
     Parameters
     ----------
-    direction : "ux", "uy", "rz" or (2,) vector
-        A vector is normalised to unit length.
+    direction : one of ``dof_names`` or a vector of the translations of ``dof_names``
+        (``"ux"``, ``"uy"``, ...): in 2-D ``"ux"``, ``"uy"``, ``"rz"`` or ``(dx, dy)``. A vector is
+        normalised to unit length.
+    dof_names : the nodal DOFs (default the 2-D ones, :data:`DOF_NAMES`; in 3-D those of
+        :mod:`.elements3d`)
+    axes : the names of a vector's components in the message of a bad vector (see :func:`vector`)
     """
+    translations = tuple(dof for dof in dof_names if dof.startswith("u"))
+    choices = f"{', '.join(map(repr, dof_names))} or a vector ({', '.join('d' + dof[1:] for dof in translations)})"
     if isinstance(direction, str):
-        if direction not in DOF_NAMES:
-            raise ValueError(
-                f"{where}: direction={direction!r} is not valid; use 'ux', 'uy', 'rz' or a vector (dx, dy)"
-            )
+        if direction not in dof_names:
+            raise ValueError(f"{where}: direction={direction!r} is not valid; use {choices}")
         return ((direction, 1.0),)
     try:
-        d = np.array(direction, dtype=float)
+        d = vector(where, "direction", direction, axes)
+    except TypeError:
+        raise TypeError(f"{where}: direction must be {choices}, got {direction!r}") from None
+    d = d / (np.hypot(d[0], d[1]) if d.shape == (2,) else np.linalg.norm(d))
+    return tuple((dof, float(x)) for dof, x in zip(translations, d) if x != 0.0)
+
+
+def vector(where: str, arg: str, value, axes=("dx", "dy")) -> np.ndarray:
+    """``value`` as a finite nonzero vector of ``len(axes)`` components (named ``axes`` in the
+    messages); ``TypeError`` if it is not a vector, ``ValueError`` naming ``arg`` if it is not finite
+    and nonzero or not of that size."""
+    shape = f"({', '.join(axes)})"
+    try:
+        d = np.array(value, dtype=float)
     except (TypeError, ValueError):
-        raise TypeError(
-            f"{where}: direction must be 'ux', 'uy', 'rz' or a vector (dx, dy), got {direction!r}"
-        ) from None
-    if d.shape != (2,) or not np.all(np.isfinite(d)) or not d.any():
-        raise ValueError(
-            f"{where}: direction={direction!r} must be a finite nonzero vector (dx, dy)"
-        )
-    d = d / np.hypot(d[0], d[1])
-    return tuple((dof, float(x)) for dof, x in zip(("ux", "uy"), d) if x != 0.0)
+        raise TypeError(f"{where}: {arg} must be a vector {shape}, got {value!r}") from None
+    if d.shape != (len(axes),) or not np.all(np.isfinite(d)) or not d.any():
+        raise ValueError(f"{where}: {arg}={value!r} must be a finite nonzero vector {shape}")
+    return d

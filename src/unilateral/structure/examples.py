@@ -129,7 +129,7 @@ def winkler_beam(n_elements=100, *, length=50.0, EI=2e6, EA=2e7, mass_per_length
         q = LoadHistory(weight, [(structure.nodal_load(node, uy=-P), HalfSine(1.0, duration=0.02))])
     else:
         node = n_elements // 2
-        unit = [structure.nodal_load(i, uy=-P) for i in range(n_elements + 1)]
+        index = [structure.dofs.index(i, "uy") for i in range(n_elements + 1)]   # one number per node
 
         def q(t):
             x = speed * t / h                   # position in elements; linear between nodes
@@ -137,7 +137,10 @@ def winkler_beam(n_elements=100, *, length=50.0, EI=2e6, EA=2e7, mass_per_length
             if t <= 0.0 or i >= n_elements:
                 return weight
             f = x - i
-            return weight + (1.0 - f) * unit[i] + f * unit[i + 1]
+            out = weight.copy()
+            out[index[i]] -= (1.0 - f) * P
+            out[index[i + 1]] -= f * P
+            return out
     info = {"units": "kN, m, s", "node": node,
             "figure": {"node": node, "dof": "uy", "label": f"vertical displacement of node {node} (m)"}}
     return structure, q, info

@@ -654,13 +654,18 @@ def build_foundation(*, name, node, nodes, width, length, soil, patches, horizon
         contact_nodes = tuple(nodes)
         y0 = xy[0, 1]
     flex, spec = soil_flexibility(soil, pts, f"{where}: soil", "xz" if horizontal == "soil" else "z")
-    gap_arr = np.broadcast_to(np.asarray(gap, dtype=float), (pts.m,)).copy() if np.ndim(gap) == 0 else \
+    return Foundation(name=name, node=node, nodes=contact_nodes, width=float(width), length=length, patches=pts,
+                      soil=flex, spec=spec, horizontal=horizontal, gap=patch_gaps(where, gap, pts.m),
+                      contact_names=names, y=float(y0), mu=mu)
+
+
+def patch_gaps(where, gap, m) -> np.ndarray:
+    """The opening of each of ``m`` patches at ``u = 0`` from ``gap`` (a number or ``m`` numbers)."""
+    out = np.broadcast_to(np.asarray(gap, dtype=float), (m,)).copy() if np.ndim(gap) == 0 else \
         np.asarray(gap, dtype=float)
-    if gap_arr.shape != (pts.m,) or not np.all(np.isfinite(gap_arr)):
-        raise ValueError(f"{where}: gap={gap!r} must be a finite number or one number per patch ({pts.m})")
-    fnd = Foundation(name=name, node=node, nodes=contact_nodes, width=float(width), length=length, patches=pts,
-                     soil=flex, spec=spec, horizontal=horizontal, gap=gap_arr, contact_names=names, y=float(y0), mu=mu)
-    return fnd
+    if out.shape != (m,) or not np.all(np.isfinite(out)):
+        raise ValueError(f"{where}: gap={gap!r} must be a finite number or one number per patch ({m})")
+    return out
 
 
 def horizontal_cone(fnd: Foundation, where: str) -> tuple[float, float]:

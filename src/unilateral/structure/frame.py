@@ -33,116 +33,40 @@ from . import elements as el
 from .dofs import DofMap, node_list
 
 
-class Frame2D:
-    """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
+class _Frame:
+    """What :class:`Frame2D` and :class:`~unilateral.structure.Frame3D` share: the node, name and tie
+    checks, Rayleigh and modal damping, the directional elements and the assembly of the natural
+    form, the mass and the damping matrices.
 
-    Nodes have the DOFs ``ux``, ``uy`` (along global x, y) and ``rz`` (counter-clockwise). Define
-    nodes first, then supports, links, elements and masses in any order (a :meth:`hinge` after its
-    beam), then :meth:`build`. Every element name must be unique.
-
-    Each contact (:meth:`soil`, :meth:`cable`, :meth:`gap`) adds one unilateral unknown ``v >= 0``
-    and one reaction ``psi <= 0``, named after the element; a contact with friction (``mu``) adds
-    two slip multipliers ``"name.slip+"``, ``"name.slip-"``. A :meth:`yield_link` or a
-    :meth:`hinge` adds two plastic multipliers ``"name.plastic+"``, ``"name.plastic-"`` (yield
-    family), a :meth:`slider` two slips ``"name.slip+"``, ``"name.slip-"`` (friction family);
-    for these ``psi`` is the yield function, ``<= 0``.
-
-    Masses: :meth:`mass`, and a beam's own mass from its density (``rho`` of :meth:`beam`). Damping:
-    :meth:`rayleigh` and/or :meth:`modal_damping`. Second-order effects of gravity: :meth:`p_delta`.
-    Loads are vectors of the built :class:`Structure`: :meth:`Structure.gravity`,
-    :meth:`Structure.nodal_load`, :meth:`Structure.distributed_load` (a uniform load on a beam).
+    A subclass sets the nodal DOFs :attr:`_dof_names` and the components :attr:`_axes` of a vector
+    (see :func:`~unilateral.structure.elements.direction_terms`), and gives the master of a slave
+    node with :meth:`_master`.
     """
+
+    #: The nodal DOFs of every node.
+    _dof_names = el.DOF_NAMES
+    #: The components of a vector direction in messages (:func:`~unilateral.structure.elements.vector`).
+    _axes = ("dx", "dy")
 
     def __init__(self):
         self._coords: dict = {}
         self._restrained: set = set()
-        self._links: dict = {}
         self._elements: list[el.Element] = []
         self._dashpots: list[el.Element] = []
         self._names: set = set()
-        self._beams: dict = {}
-        self._hinges: dict = {}
         self._mass: dict = {}
         self._rayleigh: tuple[float, float] | None = None
         self._modal: tuple | None = None
-        self._p_delta: tuple | None = None
-        self._foundations = []
 
-    # ------------------------------------------------------------------ nodes and supports
-    def node(self, node_id, x, y) -> None:
-        """Define node ``node_id`` (int or str) at ``(x, y)``."""
-        if isinstance(node_id, numbers.Integral) and not isinstance(node_id, bool):
-            node_id = int(node_id)
-        elif not isinstance(node_id, str):
-            raise TypeError(f"node id must be an int or a str, got {node_id!r}")
-        if node_id in self._coords:
-            x0, y0 = self._coords[node_id]
-            raise ValueError(f"node {node_id!r} is already defined (at ({x0:g}, {y0:g}))")
-        where = f"node {node_id!r}"
-        self._coords[node_id] = np.array([_real(where, "x", x), _real(where, "y", y)])
-
-    def support(self, node, ux=True, uy=True, rz=False) -> None:
-        """Restrain DOFs of ``node`` (True = restrained); restrained DOFs are removed from ``u``."""
-        where = f"support at node {node!r}"
-        self._node(where, "node", node)
-        flags = {"ux": ux, "uy": uy, "rz": rz}
-        for dof, flag in flags.items():
-            if not isinstance(flag, (bool, np.bool_)):
-                raise TypeError(f"{where}: {dof}={flag!r} must be True or False")
-        if not any(flags.values()):
-            raise ValueError(f"{where}: ux, uy and rz are all False; the support restrains nothing")
-        if node in self._links:
-            raise ValueError(
-                f"{where}: node {node!r} is rigidly linked to node {self._links[node]!r}; "
-                "support the master node instead"
-            )
-        self._restrained |= {(node, dof) for dof, flag in flags.items() if flag}
-
-    def rigid_link(self, master, slave) -> None:
-        """Attach node ``slave`` rigidly (ux, uy, rz) to node ``master``: ``u_full = T u``.
-
-        The slave's DOFs are eliminated; chains of links are allowed (a master may itself be a
-        slave). A slave node cannot be supported; support its master.
-        """
-        where = f"rigid_link({master!r}, {slave!r})"
-        self._node(where, "master", master)
-        self._node(where, "slave", slave)
-        if master == slave:
-            raise ValueError(f"{where}: master and slave are the same node")
-        if slave in self._links:
-            raise ValueError(f"{where}: node {slave!r} is already a slave of node {self._links[slave]!r}")
-        supported = [dof for dof in el.DOF_NAMES if (slave, dof) in self._restrained]
-        if supported:
-            raise ValueError(
-                f"{where}: slave node {slave!r} is supported ({', '.join(supported)}); "
-                "support the master node instead"
-            )
-        root = master
-        while root in self._links:
-            root = self._links[root]
-            if root == slave:
-                raise ValueError(
-                    f"{where}: the link would close a loop of rigid links through node {slave!r}"
-                )
-        self._links[slave] = master
-
-    def mass(self, node, m, *, J=0.0) -> None:
-        """Lumped mass ``m`` on ``ux`` and ``uy`` of ``node`` and rotational inertia ``J`` on ``rz``.
-
-        Repeated calls add up. A slave node's mass acts on its master through ``T^T M T``.
-        """
-        where = f"mass at node {node!r}"
-        self._node(where, "node", node)
-        add = np.array([_real(where, "m", m, ">=0")] * 2 + [_real(where, "J", J, ">=0")])
-        self._mass[node] = self._mass.get(node, np.zeros(3)) + add
-
+    # ------------------------------------------------------------------ damping
     def rayleigh(self, a0=0.0, a1=0.0) -> None:
         """Rayleigh damping ``C += a0 M + a1 K`` (either coefficient may be left at 0).
 
         ``K`` here is the stiffness of the bilateral elements only: a unilateral element (soil,
-        gap, cable, yield link, slider) gets no stiffness-proportional damping, which would act
-        across an open contact or a slip. Give a contact its own dashpot (``c``) instead. A beam
-        with a :meth:`hinge` keeps it, acting on its total end rotation (plastic part included).
+        gap, cable, and in 2-D a yield link or a slider) gets no stiffness-proportional damping,
+        which would act across an open contact or a slip. Give a contact its own dashpot (``c``)
+        instead. A 2-D beam with a :meth:`Frame2D.hinge` keeps it, acting on its total end rotation
+        (plastic part included).
         """
         if self._rayleigh is not None:
             a0, a1 = self._rayleigh
@@ -195,6 +119,232 @@ class Frame2D:
             if not isinstance(zeta, float) and len(zeta) != modes:
                 raise ValueError(f"{where}: {len(zeta)} ratios for modes={modes}; give one per mode")
         self._modal = (zeta, modes)
+
+    # ------------------------------------------------------------------ shared parts of the builders
+    def _define_node(self, node_id, xyz) -> None:
+        """Define node ``node_id`` at the coordinates ``xyz`` (``(x, y)`` or ``(x, y, z)``)."""
+        if isinstance(node_id, numbers.Integral) and not isinstance(node_id, bool):
+            node_id = int(node_id)
+        elif not isinstance(node_id, str):
+            raise TypeError(f"node id must be an int or a str, got {node_id!r}")
+        if node_id in self._coords:
+            at = ", ".join(f"{x:g}" for x in self._coords[node_id])
+            raise ValueError(f"node {node_id!r} is already defined (at ({at}))")
+        where = f"node {node_id!r}"
+        self._coords[node_id] = np.array([_real(where, axis, value) for axis, value in zip("xyz", xyz)])
+
+    def _support_flags(self, node, values) -> tuple[str, dict]:
+        """``(where, {dof: flag})`` of a support of ``node`` with the flags ``values`` of the
+        :attr:`_dof_names`, checked: booleans, at least one True."""
+        where = f"support at node {node!r}"
+        self._node(where, "node", node)
+        flags = dict(zip(self._dof_names, values))
+        for dof, flag in flags.items():
+            if not isinstance(flag, (bool, np.bool_)):
+                raise TypeError(f"{where}: {dof}={flag!r} must be True or False")
+        if not any(flags.values()):
+            names = self._dof_names
+            raise ValueError(f"{where}: {', '.join(names[:-1])} and {names[-1]} are all False; the support "
+                             "restrains nothing")
+        return where, flags
+
+    def _master(self, node):
+        """The master of ``node`` if it is a slave (of a rigid link or a diaphragm), else None."""
+        raise NotImplementedError
+
+    def _check_tie(self, where, master, slave, dofs) -> None:
+        """The checks of tying ``dofs`` of ``slave`` to ``master`` (a rigid link or a diaphragm):
+        defined nodes, not the same node, ``slave`` not yet a slave nor supported on ``dofs``, no
+        loop of ties."""
+        self._node(where, "master", master)
+        self._node(where, "slave", slave)
+        if master == slave:
+            raise ValueError(f"{where}: master and slave are the same node {slave!r}")
+        if self._master(slave) is not None:
+            raise ValueError(f"{where}: node {slave!r} is already a slave of node {self._master(slave)!r}")
+        supported = [dof for dof in dofs if (slave, dof) in self._restrained]
+        if supported:
+            raise ValueError(f"{where}: slave node {slave!r} is supported ({', '.join(supported)}); "
+                             "support the master node instead")
+        root = master
+        while self._master(root) is not None:
+            root = self._master(root)
+            if root == slave:
+                raise ValueError(f"{where}: the link would close a loop of rigid links through node {slave!r}")
+
+    def _assemble(self, dofs, exempt=frozenset()) -> dict:
+        """The natural form of the elements on the free DOFs ``dofs``, the mass and the damping
+        matrices: the fields of a :class:`Structure` but the foundation and P-Delta.
+
+        Raises ``ValueError`` if no DOF is free, or naming the free DOFs no element stiffens but
+        those ``exempt`` (see :func:`_check_stiffness`).
+        """
+        if dofs.n == 0:
+            raise ValueError("every DOF is supported or linked: the frame has no free DOF")
+        elements = self._elements
+        G = _compatibility(elements, dofs)
+        E = _block_diagonal([e.E for e in elements])
+        kelvin = any(e.E_v is not None for e in elements)
+        E_v = _block_diagonal([np.zeros_like(e.E) if e.E_v is None else e.E_v for e in elements]) if kelvin else None
+        theta = np.concatenate([e.theta for e in elements]) if elements else np.zeros(0)
+        starts = np.cumsum([0] + [e.E.shape[0] for e in elements])
+        columns = [(int(starts[p]) + u.row, u) for p, e in enumerate(elements) for u in e.unknowns]
+        rows = np.array([row for row, _ in columns], dtype=int)
+        m = len(columns)
+        B = sp.csr_matrix(([u.b for _, u in columns], (rows, np.arange(m))), shape=(G.shape[1], m))
+        r = np.array([u.r for _, u in columns])
+        A = block_diag(*[e.interaction for e in elements if e.unknowns]) if m else np.zeros((0, 0))
+        nodal_mass = np.array([self._mass.get(node, np.zeros(len(dofs.dof_names))) for node in dofs.nodes])
+        M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
+        K = (G @ E @ G.T).tocsr()
+        _check_stiffness(K, dofs, exempt=exempt)
+        C = self._damping(dofs, M, K)
+        natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=ConstantStrain(theta), E_v=E_v)
+        return dict(
+            natural=natural, M=M, C=C, dofs=dofs,
+            element_names=tuple(e.name for e in elements),
+            strain_names=tuple(s for e in elements for s in e.strain_labels),
+            constraint_names=tuple(u.name for _, u in columns),
+            constraint_strains=rows, nodal_mass=nodal_mass,
+            elements=tuple(elements), dashpots=tuple(self._dashpots),
+            coords={node: x.copy() for node, x in self._coords.items()}, rayleigh=self._rayleigh,
+        )
+
+    # ------------------------------------------------------------------ helpers
+    def _damping(self, dofs, M, K=None):
+        """Attached dashpots plus Rayleigh damping plus modal damping, or None.
+
+        The stiffness-proportional part uses the bilateral elements only: a unilateral element
+        must not transmit damping forces across an open contact.
+        """
+        C = None
+        if self._dashpots:
+            Gd = _compatibility(self._dashpots, dofs)
+            C = (Gd @ _block_diagonal([d.E for d in self._dashpots]) @ Gd.T).tocsr()
+        if self._rayleigh is not None:
+            a0, a1 = self._rayleigh
+            R = a0 * M
+            bilateral = [e for e in self._elements if not e.unilateral]
+            if a1 and bilateral:
+                Gb = _compatibility(bilateral, dofs)
+                R = R + a1 * (Gb @ _block_diagonal([e.E for e in bilateral]) @ Gb.T)
+            C = R.tocsr() if C is None else (C + R).tocsr()
+        if self._modal is not None:
+            D = sp.csr_matrix(modal_damping_matrix(K, M, *self._modal))
+            C = D if C is None else (C + D).tocsr()
+        return C
+
+    def _label(self, kind, name) -> str:
+        if not isinstance(name, str) or not name:
+            raise TypeError(f"{kind} name must be a non-empty str, got {name!r}")
+        if name in self._names:
+            raise ValueError(f"{kind} {name!r}: the name is already used by another element")
+        return f"{kind} {name!r}"
+
+    def _add(self, element: el.Element) -> None:
+        self._elements.append(element)
+        self._names.add(element.name)
+
+    def _known(self, node) -> bool:
+        """Whether ``node`` is a defined node (False for an unhashable ``node``)."""
+        try:
+            return node in self._coords
+        except TypeError:
+            return False
+
+    def _node(self, where, arg, node) -> None:
+        if not self._known(node):
+            nodes = node_list(list(self._coords))
+            raise ValueError(f"{where}: {arg}={node!r} is not defined (nodes: {nodes})")
+
+    def _two_nodes(self, where, i, j, labels=("i", "j")) -> None:
+        self._node(where, labels[0], i)
+        self._node(where, labels[1], j)
+        if i == j:
+            raise ValueError(f"{where}: {labels[0]} and {labels[1]} are the same node {i!r}")
+
+    def _directional(self, kind, name, i, j, k, direction) -> el.Element:
+        where, ends, terms = self._ends(kind, name, i, j, direction)
+        coefficient = "c" if kind == "dashpot" else "k"
+        return el.directional(name, kind, *ends, terms, _real(where, coefficient, k, ">0"), dof_names=self._dof_names)
+
+    def _ends(self, kind, name, i, j, direction, labels=("i", "j")):
+        """``(where, ends, terms)`` of a directional element from node ``i`` to the ground or ``j``
+        (``labels``: the names of the arguments ``i`` and ``j``, for messages)."""
+        where = self._label(kind, name)
+        self._node(where, labels[0], i)
+        if j is not None:
+            self._two_nodes(where, i, j, labels)
+        return where, ((None, i) if j is None else (i, j)), el.direction_terms(where, direction, self._dof_names,
+                                                                               self._axes)
+
+
+class Frame2D(_Frame):
+    """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
+
+    Nodes have the DOFs ``ux``, ``uy`` (along global x, y) and ``rz`` (counter-clockwise). Define
+    nodes first, then supports, links, elements and masses in any order (a :meth:`hinge` after its
+    beam), then :meth:`build`. Every element name must be unique.
+
+    Each contact (:meth:`soil`, :meth:`cable`, :meth:`gap`) adds one unilateral unknown ``v >= 0``
+    and one reaction ``psi <= 0``, named after the element; a contact with friction (``mu``) adds
+    two slip multipliers ``"name.slip+"``, ``"name.slip-"``. A :meth:`yield_link` or a
+    :meth:`hinge` adds two plastic multipliers ``"name.plastic+"``, ``"name.plastic-"`` (yield
+    family), a :meth:`slider` two slips ``"name.slip+"``, ``"name.slip-"`` (friction family);
+    for these ``psi`` is the yield function, ``<= 0``.
+
+    Masses: :meth:`mass`, and a beam's own mass from its density (``rho`` of :meth:`beam`). Damping:
+    :meth:`rayleigh` and/or :meth:`modal_damping`. Second-order effects of gravity: :meth:`p_delta`.
+    Loads are vectors of the built :class:`Structure`: :meth:`Structure.gravity`,
+    :meth:`Structure.nodal_load`, :meth:`Structure.distributed_load` (a uniform load on a beam).
+    """
+
+    def __init__(self):
+        super().__init__()
+        self._links: dict = {}
+        self._beams: dict = {}
+        self._hinges: dict = {}
+        self._p_delta: tuple | None = None
+        self._foundations = []
+
+    # ------------------------------------------------------------------ nodes and supports
+    def node(self, node_id, x, y) -> None:
+        """Define node ``node_id`` (int or str) at ``(x, y)``."""
+        self._define_node(node_id, (x, y))
+
+    def support(self, node, ux=True, uy=True, rz=False) -> None:
+        """Restrain DOFs of ``node`` (True = restrained); restrained DOFs are removed from ``u``."""
+        where, flags = self._support_flags(node, (ux, uy, rz))
+        if node in self._links:
+            raise ValueError(
+                f"{where}: node {node!r} is rigidly linked to node {self._links[node]!r}; "
+                "support the master node instead"
+            )
+        self._restrained |= {(node, dof) for dof, flag in flags.items() if flag}
+
+    def rigid_link(self, master, slave) -> None:
+        """Attach node ``slave`` rigidly (ux, uy, rz) to node ``master``: ``u_full = T u``.
+
+        The slave's DOFs are eliminated; chains of links are allowed (a master may itself be a
+        slave). A slave node cannot be supported; support its master.
+        """
+        self._check_tie(f"rigid_link({master!r}, {slave!r})", master, slave, el.DOF_NAMES)
+        self._links[slave] = master
+
+    def mass(self, node, m, *, J=0.0) -> None:
+        """Lumped mass ``m`` on ``ux`` and ``uy`` of ``node`` and rotational inertia ``J`` on ``rz``.
+
+        Repeated calls add up. A slave node's mass acts on its master through ``T^T M T``.
+        """
+        where = f"mass at node {node!r}"
+        self._node(where, "node", node)
+        add = np.array([_real(where, "m", m, ">=0")] * 2 + [_real(where, "J", J, ">=0")])
+        self._mass[node] = self._mass.get(node, np.zeros(3)) + add
+
+    # The damping of :class:`_Frame`, listed as this class's own: the API reference documents those only.
+    rayleigh = _Frame.rayleigh
+    rayleigh_from_ratios = _Frame.rayleigh_from_ratios
+    modal_damping = _Frame.modal_damping
 
     def p_delta(self, enabled=True, *, g=STANDARD_GRAVITY, direction=(0.0, -1.0)) -> None:
         """P-Delta: the geometric stiffness of the gravity's axial forces, constant in time, in ``K``.
@@ -527,46 +677,17 @@ class Frame2D:
             if footing.rigid and footing.m > 1:
                 rotated.add(footing.node)               # the footing rocks on its patches
         dofs = DofMap(self._coords, self._restrained, rotated, self._links)
-        if dofs.n == 0:
-            raise ValueError("every DOF is supported or linked: the frame has no free DOF")
-        G = _compatibility(self._elements, dofs)
-        E = _block_diagonal([e.E for e in self._elements])
-        kelvin = any(e.E_v is not None for e in self._elements)
-        E_v = _block_diagonal([np.zeros_like(e.E) if e.E_v is None else e.E_v
-                               for e in self._elements]) if kelvin else None
-        theta = np.concatenate([e.theta for e in self._elements]) if self._elements else np.zeros(0)
-        starts = np.cumsum([0] + [e.E.shape[0] for e in self._elements])
-        columns = [(int(starts[p]) + u.row, u) for p, e in enumerate(self._elements) for u in e.unknowns]
-        rows = np.array([row for row, _ in columns], dtype=int)
-        m = len(columns)
-        B = sp.csr_matrix(([u.b for _, u in columns], (rows, np.arange(m))), shape=(G.shape[1], m))
-        r = np.array([u.r for _, u in columns])
-        A = block_diag(*[e.interaction for e in self._elements if e.unknowns]) if m else np.zeros((0, 0))
-        nodal_mass = np.array([self._mass.get(node, np.zeros(3)) for node in dofs.nodes])
-        M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
-        K = (G @ E @ G.T).tocsr()
         on_soil = set()
         for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
             for terms in footing.moved_rows(self._coords) + (footing.shear_rows() if footing.sliding else []):
                 on_soil |= {(node, dof) for node, dof, _ in terms}
-        _check_stiffness(K, dofs, exempt=on_soil)
-        C = self._damping(dofs, M, K)
-        natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=ConstantStrain(theta), E_v=E_v)
+        fields = self._assemble(dofs, exempt=on_soil)
         footings = None
         if self._foundations:
             from .foundation import Footings
 
-            footings = Footings(self._foundations, first=m)
-        structure = Structure(
-            natural=natural, M=M, C=C, dofs=dofs,
-            element_names=tuple(e.name for e in self._elements),
-            strain_names=tuple(s for e in self._elements for s in e.strain_labels),
-            constraint_names=tuple(u.name for _, u in columns),
-            constraint_strains=rows, nodal_mass=nodal_mass,
-            elements=tuple(self._elements), dashpots=tuple(self._dashpots),
-            coords={node: xy.copy() for node, xy in self._coords.items()}, rayleigh=self._rayleigh,
-            foundation=footings,
-        )
+            footings = Footings(self._foundations, first=len(fields["constraint_names"]))
+        structure = Structure(**fields, foundation=footings)
         if self._p_delta is None:
             return structure
         if self._foundations:
@@ -577,68 +698,8 @@ class Frame2D:
         return replace(structure, geometric=structure.geometric_stiffness(axial), axial_forces=axial)
 
     # ------------------------------------------------------------------ helpers
-    def _damping(self, dofs, M, K=None):
-        """Attached dashpots plus Rayleigh damping plus modal damping, or None.
-
-        The stiffness-proportional part uses the bilateral elements only: a unilateral element
-        must not transmit damping forces across an open contact.
-        """
-        C = None
-        if self._dashpots:
-            Gd = _compatibility(self._dashpots, dofs)
-            C = (Gd @ _block_diagonal([d.E for d in self._dashpots]) @ Gd.T).tocsr()
-        if self._rayleigh is not None:
-            a0, a1 = self._rayleigh
-            R = a0 * M
-            bilateral = [e for e in self._elements if not e.unilateral]
-            if a1 and bilateral:
-                Gb = _compatibility(bilateral, dofs)
-                R = R + a1 * (Gb @ _block_diagonal([e.E for e in bilateral]) @ Gb.T)
-            C = R.tocsr() if C is None else (C + R).tocsr()
-        if self._modal is not None:
-            D = sp.csr_matrix(modal_damping_matrix(K, M, *self._modal))
-            C = D if C is None else (C + D).tocsr()
-        return C
-
-    def _label(self, kind, name) -> str:
-        if not isinstance(name, str) or not name:
-            raise TypeError(f"{kind} name must be a non-empty str, got {name!r}")
-        if name in self._names:
-            raise ValueError(f"{kind} {name!r}: the name is already used by another element")
-        return f"{kind} {name!r}"
-
-    def _add(self, element: el.Element) -> None:
-        self._elements.append(element)
-        self._names.add(element.name)
-
-    def _node(self, where, arg, node) -> None:
-        try:
-            known = node in self._coords
-        except TypeError:
-            known = False
-        if not known:
-            nodes = node_list(list(self._coords))
-            raise ValueError(f"{where}: {arg}={node!r} is not defined (nodes: {nodes})")
-
-    def _two_nodes(self, where, i, j, labels=("i", "j")) -> None:
-        self._node(where, labels[0], i)
-        self._node(where, labels[1], j)
-        if i == j:
-            raise ValueError(f"{where}: {labels[0]} and {labels[1]} are the same node {i!r}")
-
-    def _directional(self, kind, name, i, j, k, direction) -> el.Element:
-        where, ends, terms = self._ends(kind, name, i, j, direction)
-        coefficient = "c" if kind == "dashpot" else "k"
-        return el.directional(name, kind, *ends, terms, _real(where, coefficient, k, ">0"))
-
-    def _ends(self, kind, name, i, j, direction, labels=("i", "j")):
-        """``(where, ends, terms)`` of a directional element from node ``i`` to the ground or ``j``
-        (``labels``: the names of the arguments ``i`` and ``j``, for messages)."""
-        where = self._label(kind, name)
-        self._node(where, labels[0], i)
-        if j is not None:
-            self._two_nodes(where, i, j, labels)
-        return where, ((None, i) if j is None else (i, j)), el.direction_terms(where, direction)
+    def _master(self, node):
+        return self._links.get(node)
 
     def _contact(self, kind, where, name, i, j, *, k, c, direction, gap, capacity, friction) -> el.Element:
         terms = el.direction_terms(where, direction)

@@ -1,0 +1,185 @@
+"""Natural strains and stiffnesses of 3-D frame elements (the 3-D analogue of :mod:`.elements`).
+
+Every node has six nodal DOFs ``(ux, uy, uz, rx, ry, rz)``: displacements along the global axes
+x, y, z and rotations about them (right-hand rule: ``rz`` turns x towards y, ``rx`` y towards z,
+``ry`` z towards x). The elements are :class:`~unilateral.structure.elements.Element` objects, with
+the strain conventions of :mod:`.elements`:
+
+- beam ``i -> j`` (:func:`beam`, kind ``"beam3d"``), length L, local axes ``x'`` (the unit chord
+  ``i -> j``), ``y'``, ``z'`` (:func:`local_axes`): six strains ``[elongation, twist, rotz_i,
+  rotz_j, roty_i, roty_j]``, with ``twist = x' . (theta_j - theta_i)``, ``rotz_* = z' . theta_* -
+  beta_z``, ``beta_z = y' . (u_j - u_i) / L`` the chord rotation about ``z'`` and ``roty_* = y' .
+  theta_* - beta_y``, ``beta_y = -z' . (u_j - u_i) / L`` the chord rotation about ``y'``
+  (``theta`` the rotation vector ``(rx, ry, rz)``, ``u`` the displacement ``(ux, uy, uz)``);
+  ``E = diag(EA/L, GJ/L, EIz/L [[4, 2], [2, 4]], EIy/L [[4, 2], [2, 4]])``. Stresses: the axial
+  force (tension positive), the torque at ``j`` about ``x'`` and the end moments acting on the
+  element about ``z'`` and ``y'`` (right-hand positive). For a beam in the x-y plane with
+  ``vecxz = z`` the strains ``[elongation, rotz_i, rotz_j]`` are those of the 2-D beam.
+- bar and cable: ``[elongation]`` along the chord, ``E = [[EA/L]]``, tension positive.
+- directional elements (spring, dashpot, soil, gap) between an end ``i`` and an end ``j``
+  (either may be the ground): ``[d . (u_j - u_i)]`` for a direction ``d``
+  (:func:`.elements.direction_terms` with the 3-D :data:`DOF_NAMES` and :data:`AXES`): a unit
+  vector ``(dx, dy, dz)`` or one of the six DOF names (a rotation for ``"rx"``, ``"ry"``, ``"rz"``):
+  the extension, positive when ``j`` moves away from ``i`` along ``d``; they are the 2-D
+  :func:`.elements.directional` elements on the 3-D DOFs (``dof_names=DOF_NAMES``). A contact with
+  friction (:func:`frictional`) adds the tangential strains ``t1 . (u_j - u_i)`` and
+  ``t2 . (u_j - u_i)`` along its tangent axes (:func:`tangents`) and their forces ``T1``, ``T2``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .elements import Element, Unknown, _relative, pair
+from .elements import vector as _vector
+
+DOF_NAMES = ("ux", "uy", "uz", "rx", "ry", "rz")
+TRANSLATIONS = DOF_NAMES[:3]
+ROTATIONS = DOF_NAMES[3:]
+#: The components of a vector, in messages (:func:`vector`).
+AXES = ("x", "y", "z")
+#: Sine of the angle below which ``vecxz`` counts as parallel to a beam's axis.
+PARALLEL = 1e-6
+
+
+@dataclass(frozen=True)
+class Beam3D(Element):
+    """A 3-D beam in natural form (six strains, see :func:`beam`)."""
+
+    @property
+    def strain_labels(self) -> tuple[str, ...]:
+        """``("b.axial", "b.twist", "b.rotz_i", "b.rotz_j", "b.roty_i", "b.roty_j")``."""
+        return tuple(f"{self.name}.{s}" for s in ("axial", "twist", "rotz_i", "rotz_j", "roty_i", "roty_j"))
+
+
+def chord(where: str, i, xi, j, xj):
+    """Length and unit vector (3,) of the chord from node ``i`` at ``xi`` to node ``j`` at ``xj``.
+
+    Raises ``ValueError`` for a zero-length chord.
+    """
+    d = np.asarray(xj, dtype=float) - np.asarray(xi, dtype=float)
+    L = float(np.linalg.norm(d))
+    if L == 0.0:
+        x, y, z = xi
+        raise ValueError(f"{where}: nodes i={i!r} and j={j!r} are both at ({x:g}, {y:g}, {z:g}): "
+                         "zero-length element")
+    return L, d / L
+
+
+def vector(where: str, arg: str, value) -> np.ndarray:
+    """``value`` as a finite nonzero (3,) vector; ``TypeError``/``ValueError`` naming ``arg``."""
+    return _vector(where, arg, value, AXES)
+
+
+def local_axes(where: str, i, xi, j, xj, vecxz=None):
+    """Length ``L`` and the rotation ``R`` (3, 3) whose rows are the local axes ``x', y', z'``.
+
+    The convention of OpenSees's ``geomTransf``: ``x'`` is the unit chord ``i -> j``, ``vecxz``
+    any vector in the local ``x'-z'`` plane, ``y' = vecxz x x' / |vecxz x x'|`` and
+    ``z' = x' x y'``. ``vecxz=None``: global Z, or global X for a member parallel to Z (then
+    ``y' = -Y``, ``z' = X``). Raises ``ValueError`` if ``vecxz`` is parallel to the member.
+    """
+    L, x = chord(where, i, xi, j, xj)
+    if vecxz is None:
+        vecxz = (1.0, 0.0, 0.0) if np.linalg.norm(np.cross((0.0, 0.0, 1.0), x)) < PARALLEL else (0.0, 0.0, 1.0)
+    v = vector(where, "vecxz", vecxz)
+    y = np.cross(v, x)
+    if np.linalg.norm(y) < PARALLEL * np.linalg.norm(v):
+        raise ValueError(f"{where}: vecxz={tuple(map(float, v))} is parallel to the member axis {i!r} -> {j!r} "
+                         f"{tuple(np.round(x, 12))}; give a vector of the local x-z plane that is not along "
+                         "the member")
+    y /= np.linalg.norm(y)
+    return L, np.vstack([x, y, np.cross(x, y)])
+
+
+def beam(name, i, xi, j, xj, *, E, A, Iy, Iz, G, J, vecxz=None, axial_strain=0.0) -> Beam3D:
+    """Euler-Bernoulli beam-column ``i -> j`` without shear deformation.
+
+    Parameters
+    ----------
+    xi, xj : (3,) node coordinates
+    E, A : Young's modulus and area;  Iy, Iz : second moments of area about ``y'`` and ``z'``;
+    G, J : shear modulus and torsion constant (all > 0)
+    vecxz : (3,) vector in the local ``x'-z'`` plane, or None (see :func:`local_axes`)
+    axial_strain : imposed (e.g. thermal) axial strain; imposed elongation ``axial_strain * L``
+    """
+    L, (x, y, z) = local_axes(f"beam {name!r}", i, xi, j, xj, vecxz)
+    dofs = tuple((node, dof) for node in (i, j) for dof in DOF_NAMES)
+    zero = np.zeros(3)
+    beta_z = np.concatenate([-y, zero, y, zero]) / L
+    beta_y = np.concatenate([z, zero, -z, zero]) / L
+    a = np.vstack([np.concatenate([-x, zero, x, zero]), np.concatenate([zero, -x, zero, x]),
+                   np.concatenate([zero, z, zero, zero]) - beta_z, np.concatenate([zero, zero, zero, z]) - beta_z,
+                   np.concatenate([zero, y, zero, zero]) - beta_y, np.concatenate([zero, zero, zero, y]) - beta_y])
+    bending = np.array([[4.0, 2.0], [2.0, 4.0]]) / L
+    stiffness = np.zeros((6, 6))
+    stiffness[0, 0], stiffness[1, 1] = E * A / L, G * J / L
+    stiffness[2:4, 2:4], stiffness[4:6, 4:6] = E * Iz * bending, E * Iy * bending
+    theta = np.array([axial_strain * L, 0.0, 0.0, 0.0, 0.0, 0.0])
+    return Beam3D(name, "beam3d", dofs, a, stiffness, theta)
+
+
+def axial(kind, name, i, xi, j, xj, *, E, A, theta=0.0, unknowns=()) -> Element:
+    """Bar (``kind="bar"``) or cable ``i -> j``: strain = elongation along the chord, stiffness
+    ``EA/L``, imposed strain ``theta`` (an elongation, length), constraint ``unknowns``."""
+    L, d = chord(f"{kind} {name!r}", i, xi, j, xj)
+    dofs = tuple((node, dof) for node in (i, j) for dof in TRANSLATIONS)
+    return Element(name, kind, dofs, np.concatenate([-d, d])[None, :], np.array([[E * A / L]]),
+                   np.array([theta]), unknowns=tuple(unknowns))
+
+
+def cable(name, i, xi, j, xj, *, E, A, slack=0.0, capacity=0.0) -> Element:
+    """Tension-only cable ``i -> j``: a bar with one contact ``b = -1`` (``v`` = slack shortening),
+    ``theta = slack`` and ``r = capacity``, as :func:`unilateral.structure.elements.cable`."""
+    return axial("cable", name, i, xi, j, xj, E=E, A=A, theta=slack, unknowns=(Unknown(name, 0, -1.0, capacity),))
+
+
+@dataclass(frozen=True)
+class FrictionContact(Element):
+    """A contact with Coulomb friction in its tangent plane (three strains, see :func:`frictional`)."""
+
+    @property
+    def strain_labels(self) -> tuple[str, ...]:
+        """``("s", "s.tangential", "s.tangential2")``: along ``d``, ``t1`` and ``t2``."""
+        return (self.name, f"{self.name}.tangential", f"{self.name}.tangential2")
+
+
+def tangents(where: str, terms, tangent=None) -> tuple[np.ndarray, np.ndarray]:
+    """The tangent axes ``t1``, ``t2`` (3,) of a contact along the unit direction ``terms``.
+
+    ``t1``: ``tangent`` (default global X, or global Y for a contact along X) without its component
+    along ``d``, normalised; ``t2 = d x t1``, so that ``(t1, t2, d)`` is right-handed (``d = z``:
+    ``t1 = x``, ``t2 = y``). Raises ``ValueError`` if ``tangent`` is along ``d``.
+    """
+    d = np.array([dict(terms).get(dof, 0.0) for dof in TRANSLATIONS])
+    if tangent is None:
+        tangent = (0.0, 1.0, 0.0) if np.linalg.norm(np.cross((1.0, 0.0, 0.0), d)) < PARALLEL else (1.0, 0.0, 0.0)
+    t = vector(where, "tangent", tangent)
+    t1 = t - (t @ d) * d
+    if np.linalg.norm(t1) < PARALLEL * np.linalg.norm(t):
+        raise ValueError(f"{where}: tangent={tuple(map(float, t))} is along the contact's direction; give a vector "
+                         "of its tangent plane")
+    t1 /= np.linalg.norm(t1)
+    return t1, np.cross(d, t1)
+
+
+def frictional(name, kind, i, j, terms, axes, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, capacity=0.0):
+    """A contact along ``d`` (``terms``) with Coulomb friction in its tangent plane, on the axes
+    ``axes = (t1, t2)`` (:func:`tangents`): a four-sided friction pyramid.
+
+    Strains ``[d . (u_j - u_i), t1 . (u_j - u_i), t2 . (u_j - u_i)]``, stiffness ``diag(k, kt, kt)``
+    [force/length], Kelvin viscosity ``diag(c, ct, ct)``; unknowns: the contact ``name`` (row 0,
+    ``b = +1``, capacity ``r``), the slips ``name.slip+``, ``name.slip-`` along ``t1`` (row 1) and
+    ``name.slip2+``, ``name.slip2-`` along ``t2`` (row 2), each pair keeping its tangential force
+    ``|T1| <= mu N``, ``|T2| <= mu N`` (``N`` the compression of the contact ``name``).
+    """
+    rows = (terms, *(tuple((dof, float(x)) for dof, x in zip(TRANSLATIONS, t) if x != 0.0) for t in axes))
+    dofs, a = _relative(i, j, rows, DOF_NAMES)
+    second = tuple(replace(u, name=u.name.replace(".slip", ".slip2"))
+                   for u in pair(name, 2, "friction", normal=name, mu=mu, k=kt))
+    unknowns = (Unknown(name, 0, 1.0, capacity), *pair(name, 1, "friction", normal=name, mu=mu, k=kt), *second)
+    E_v = np.diag([c, ct, ct]) if c > 0 or ct > 0 else None
+    return FrictionContact(name, kind, dofs, a, np.diag([k, kt, kt]), np.array([theta, 0.0, 0.0]), E_v=E_v,
+                           unknowns=unknowns)

@@ -1,0 +1,470 @@
+"""A 3-D frame builder: nodes with six DOFs, supports, rigid links and diaphragms, beams, bars,
+springs, dashpots, masses and the unilateral elements (tensionless soil, pounding gaps, slack
+cables) -> the natural form and a :class:`~unilateral.Model`.
+
+Example (a portal frame in the x-z plane on tensionless soil)::
+
+    fr = Frame3D()
+    fr.node(1, 0.0, 0.0, 0.0); fr.node(2, 5.0, 0.0, 0.0)
+    fr.node(3, 0.0, 0.0, 3.0); fr.node(4, 5.0, 0.0, 3.0)
+    for base in (1, 2):
+        fr.support(base, ux=True, uy=True, uz=False, rx=True, rz=True)
+        fr.soil(f"soil{base}", base, 1e5, c=1e3)            # along "uz"
+    section = dict(E=3e7, A=0.16, Iy=2e-3, Iz=2e-3, G=1.2e7, J=3e-3)
+    fr.beam("c1", 1, 3, **section); fr.beam("c2", 2, 4, **section); fr.beam("g", 3, 4, **section)
+    fr.mass(3, 20.0); fr.mass(4, 20.0)
+    st = fr.build()
+    model = st.to_model()
+    q = st.gravity(9.81) + st.nodal_load(3, ux=100.0)
+
+Strain and sign conventions of the elements are in :mod:`unilateral.structure.elements3d`, the
+kinematics of rigid links and diaphragms in :mod:`unilateral.structure.dofs3d`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..loads.units import STANDARD_GRAVITY
+from ..model import NaturalForm  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
+from . import elements as el
+from . import elements3d as el3
+from .dofs import DofMap  # noqa: F401  (likewise)
+from .dofs3d import IN_PLANE, DofMap3D
+from .frame import Structure, _Frame, _friction, _real
+
+
+class Frame3D(_Frame):
+    """Builder of a space frame with unilateral elements (foundation uplift, pounding, cables).
+
+    Nodes have the DOFs ``ux``, ``uy``, ``uz`` (along global x, y, z) and ``rx``, ``ry``, ``rz``
+    (rotations about them, right-hand rule). A rotation is a DOF only where something uses it
+    (a beam end, a spring along it, a rotary inertia, a rigid link or diaphragm whose slave is
+    offset), as in :class:`~unilateral.structure.Frame2D`; a translation or a rotation that nothing
+    stiffens makes :meth:`build` raise, naming it (support it, or connect an element).
+
+    Define nodes first, then supports, links, elements and masses in any order, then :meth:`build`.
+    Every element name must be unique. Each contact (:meth:`soil`, :meth:`cable`, :meth:`gap`) adds
+    one unilateral unknown ``v >= 0`` and one reaction ``psi <= 0``, named after the element, with
+    the conventions of :class:`~unilateral.structure.Frame2D`.
+
+    Masses: :meth:`mass` (with rotary inertia), and a beam's own mass (``rho`` of :meth:`beam`).
+    Damping: :meth:`rayleigh`, :meth:`rayleigh_from_ratios`, :meth:`modal_damping`, :meth:`dashpot`
+    and the Kelvin dashpots of contacts. Loads are vectors of the built :class:`Structure3D`.
+    Coulomb friction on contacts (``mu`` of :meth:`soil` and :meth:`gap`) is a four-sided friction
+    pyramid in the tangent plane. Rigid footings in plan on a soil medium (:meth:`foundation`: a grid
+    of contact patches, rocking about both axes). Not (yet) in 3-D: yield links, hinges, sliders,
+    flexible footings and footings that slide, P-Delta.
+    """
+
+    _dof_names = el3.DOF_NAMES
+    _axes = el3.AXES
+
+    def __init__(self):
+        super().__init__()
+        self._ties: dict = {}
+        self._foundations = []
+
+    # ------------------------------------------------------------------ nodes and supports
+    def node(self, node_id, x, y, z) -> None:
+        """Define node ``node_id`` (int or str) at ``(x, y, z)``."""
+        self._define_node(node_id, (x, y, z))
+
+    def support(self, node, ux=True, uy=True, uz=True, rx=False, ry=False, rz=False) -> None:
+        """Restrain DOFs of ``node`` (True = restrained; default: a pin); restrained DOFs are
+        removed from ``u``. Repeated calls add up."""
+        where, flags = self._support_flags(node, (ux, uy, uz, rx, ry, rz))
+        tied = [dof for dof, flag in flags.items() if flag and self._tied(node, dof)]
+        if tied:
+            master = self._ties[node][0]
+            raise ValueError(f"{where}: {', '.join(tied)} of node {node!r} follow node {master!r} (a rigid link or "
+                             "diaphragm); support the master node instead")
+        self._restrained |= {(node, dof) for dof, flag in flags.items() if flag}
+
+    def rigid_link(self, master, slave) -> None:
+        """Attach node ``slave`` rigidly (all six DOFs) to node ``master``: ``u_s = u_m + theta_m x
+        (x_s - x_m)``, ``theta_s = theta_m`` (:mod:`unilateral.structure.dofs3d`).
+
+        The slave's DOFs are eliminated; chains are allowed (a master may itself be a slave). A
+        slave node cannot be supported; support its master.
+        """
+        self._tie(f"rigid_link({master!r}, {slave!r})", master, slave, el3.DOF_NAMES)
+
+    def rigid_diaphragm(self, master, slaves) -> None:
+        """A rigid floor in the plane ``z = z_master``: the ``ux``, ``uy``, ``rz`` of each slave follow
+        the master's in-plane rigid motion, ``ux_s = ux_m - (y_s - y_m) rz_m``,
+        ``uy_s = uy_m + (x_s - x_m) rz_m``, ``rz_s = rz_m``; the slaves keep ``uz``, ``rx``, ``ry``.
+
+        Parameters
+        ----------
+        master : node id
+            E.g. a node at the floor's centre of mass (support its ``uz``, ``rx``, ``ry`` if nothing
+            else stiffens them).
+        slaves : sequence of node ids, at the master's z
+        """
+        where = f"rigid_diaphragm({master!r}, ...)"
+        self._node(where, "master", master)
+        if isinstance(slaves, (str, bytes)) or not hasattr(slaves, "__iter__"):
+            raise TypeError(f"{where}: slaves must be a sequence of node ids, got {slaves!r}")
+        slaves = list(slaves)
+        if not slaves:
+            raise ValueError(f"{where}: slaves is empty; give the nodes of the floor")
+        z = self._coords[master][2]
+        for k, slave in enumerate(slaves):
+            self._node(where, f"slaves[{k}]", slave)
+            if abs(self._coords[slave][2] - z) > 1e-9 * max(1.0, abs(z)):
+                raise ValueError(f"{where}: slaves[{k}]={slave!r} is at z={self._coords[slave][2]:g}, not in the "
+                                 f"plane z={z:g} of the master")
+            if slaves.index(slave) != k:
+                raise ValueError(f"{where}: slaves[{k}]={slave!r} is given twice")
+        before = dict(self._ties)
+        try:
+            for slave in slaves:
+                self._tie(where, master, slave, IN_PLANE)
+        except ValueError:
+            self._ties = before                         # all the slaves or none
+            raise
+
+    def mass(self, node, m, *, Jx=0.0, Jy=0.0, Jz=0.0) -> None:
+        """Lumped mass ``m`` on ``ux``, ``uy`` and ``uz`` of ``node`` and rotary inertias ``Jx``,
+        ``Jy``, ``Jz`` (mass length^2) on ``rx``, ``ry``, ``rz``.
+
+        Repeated calls add up. A slave node's mass acts on its master through ``T^T M T``.
+        """
+        where = f"mass at node {node!r}"
+        self._node(where, "node", node)
+        m = _real(where, "m", m, ">=0")
+        add = np.array([m, m, m] + [_real(where, arg, J, ">=0") for arg, J in (("Jx", Jx), ("Jy", Jy), ("Jz", Jz))])
+        self._mass[node] = self._mass.get(node, np.zeros(6)) + add
+
+    def foundation(self, name, node, *, width, length, soil, patches=(3, 3), horizontal="support", gap=0.0,
+                   mass=0.0, Jx=0.0, Jy=0.0) -> None:
+        """A rigid rectangular footing on a soil medium, resting on an ``nx x ny`` grid of unilateral
+        contact patches (:mod:`unilateral.structure.foundation3d`); :meth:`Structure3D.to_model
+        <unilateral.structure.Structure.to_model>` then gives a
+        :class:`~unilateral.soil.FoundationModel`, as for :meth:`Frame2D.foundation
+        <unilateral.structure.Frame2D.foundation>`.
+
+        The footing is centred on ``node`` (its base at the node's z), which carries its ``uz`` and its
+        rocking ``rx``, ``ry``; the upward displacement of the patch at ``(x, y)`` is
+        ``uz + rx (y - y_node) - ry (x - x_node)``. Footings on a half-space (or a layered soil) share
+        it: every patch of every footing is coupled to every other through the ground.
+
+        Parameters
+        ----------
+        name : str
+            Contacts are named ``"name.1"`` ... (x varying fastest, then y).
+        node : node id
+        width, length : float, length
+            Plan dimensions along x and y.
+        soil : SoilFlexibility, SoilSpec or dict
+            As for ``Frame2D.foundation`` (``{"model": "halfspace", "Vs": ..., "nu": ..., "rho": ...}``,
+            ``"layered"``, ``"cones"``, ``"winkler-kelvin"``).
+        patches : (int, int) or int
+            ``(nx, ny)`` patches along x and y (one int: both), at most 400 in all.
+        horizontal : {"support", "none"}
+            ``"support"`` (default): ``ux``, ``uy`` and ``rz`` of ``node`` supported; ``"none"``: the
+            frame holds the footing in plan (springs, other members).
+        gap : float or (nx ny,) array, length
+            Opening of each patch at ``u = 0`` with the soil unloaded.
+        mass, Jx, Jy : float >= 0
+            The footing's own mass (on the translations of ``node``) and rotary inertias.
+        """
+        from .foundation import Footings
+        from .foundation3d import build_footing, check_plan_overlap
+
+        where = self._label("foundation", name)
+        self._node(where, "node", node)
+        if any(f.node == node for f in self._foundations):
+            raise ValueError(f"{where}: node {node!r} already carries another footing; give each footing its own "
+                             "node")
+        if (node, "uz") in self._restrained or self._tied(node, "uz"):
+            raise ValueError(f"{where}: uz of node {node!r} is supported (or follows another node): the footing "
+                             "could not move on the soil; remove that support")
+        fnd = build_footing(name=name, node=node, width=width, length=length, soil=soil, patches=patches,
+                            horizontal=horizontal, gap=gap, coords=self._coords)
+        check_plan_overlap(self._foundations, fnd, where)
+        Footings(self._foundations + [fnd])                 # one soil for all: the same medium, one elevation
+        if horizontal == "support":
+            self.support(node, ux=True, uy=True, uz=False, rz=True)
+        if mass or Jx or Jy:
+            self.mass(node, mass, Jx=Jx, Jy=Jy)
+        self._foundations.append(fnd)
+        self._names.add(name)
+
+    # The damping of :class:`_Frame`, listed as this class's own: the API reference documents those only.
+    rayleigh = _Frame.rayleigh
+    rayleigh_from_ratios = _Frame.rayleigh_from_ratios
+    modal_damping = _Frame.modal_damping
+
+    # ------------------------------------------------------------------ bilateral elements
+    def beam(self, name, i, j, *, E, A, Iy, Iz, G, J, vecxz=None, axial_strain=0.0, rho=None) -> None:
+        """Euler-Bernoulli beam-column (no shear deformation) from node ``i`` to node ``j``.
+
+        Natural strains (:mod:`unilateral.structure.elements3d`): elongation, twist, and the end
+        rotations about the local ``z'`` and ``y'`` relative to the chord; stiffness
+        ``diag(EA/L, GJ/L, EIz/L [[4, 2], [2, 4]], EIy/L [[4, 2], [2, 4]])``.
+
+        Parameters
+        ----------
+        E, A : Young's modulus (force/length^2) and area (length^2), > 0
+        Iy, Iz : second moments of area (length^4) about the local ``y'`` and ``z'``, > 0
+        G, J : shear modulus (force/length^2) and torsion constant (length^4), > 0
+        vecxz : (3,) vector, optional
+            A vector in the local ``x'-z'`` plane, as OpenSees's ``geomTransf``: ``x'`` runs from
+            ``i`` to ``j``, ``y' = vecxz x x'`` (normalised), ``z' = x' x y'``. Default: global Z,
+            or global X for a member along Z. It must not be parallel to the member.
+        axial_strain : imposed (e.g. thermal) axial strain, constant in time
+        rho : mass per volume (force time^2/length^4), or None: the beam's own mass ``rho A L``,
+            lumped half at each end node on ``ux``, ``uy``, ``uz`` (no rotary inertia), as
+            :meth:`mass` would add it.
+        """
+        where = self._label("beam", name)
+        self._two_nodes(where, i, j)
+        props = {arg: _real(where, arg, value, ">0")
+                 for arg, value in (("E", E), ("A", A), ("Iy", Iy), ("Iz", Iz), ("G", G), ("J", J))}
+        element = el3.beam(name, i, self._coords[i], j, self._coords[j], vecxz=vecxz,
+                           axial_strain=_real(where, "axial_strain", axial_strain), **props)
+        if rho is not None:
+            L = el3.chord(where, i, self._coords[i], j, self._coords[j])[0]
+            half = _real(where, "rho", rho, ">=0") * props["A"] * L / 2
+            for node in (i, j):
+                self.mass(node, half)
+        self._add(element)
+
+    def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
+        """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
+        where = self._label("bar", name)
+        self._two_nodes(where, i, j)
+        self._add(el3.axial("bar", name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
+                            A=_real(where, "A", A, ">0"),
+                            theta=_real(where, "axial_strain", axial_strain) * el3.chord(
+                                where, i, self._coords[i], j, self._coords[j])[0]))
+
+    def spring(self, name, i, k, *, j=None, direction="uz") -> None:
+        """Linear spring ``k`` from node ``i`` to the ground (``j=None``) or to node ``j``.
+
+        Strain: extension ``d . u_i`` to the ground, ``d . (u_j - u_i)`` between two nodes, for
+        ``direction`` ``"ux"``, ``"uy"``, ``"uz"``, ``"rx"``, ``"ry"``, ``"rz"`` or a vector
+        ``(dx, dy, dz)`` (normalised). ``k``: force/length (force length/rad for a rotation).
+        """
+        self._add(self._directional("spring", name, i, j, k, direction))
+
+    def dashpot(self, name, i, c, *, j=None, direction="uz") -> None:
+        """Attached linear dashpot ``c`` (acts in tension too; goes into ``C``), like :meth:`spring`."""
+        self._dashpots.append(self._directional("dashpot", name, i, j, c, direction))
+        self._names.add(name)
+
+    # ------------------------------------------------------------------ unilateral elements
+    def soil(self, name, node, k, *, c=0.0, direction="uz", gap=0.0, capacity=0.0, mu=None, kt=None, ct=0.0,
+             tangent=None) -> None:
+        """Tensionless soil element under ``node``: spring ``k`` and dashpot ``c`` in parallel (a
+        Kelvin element) in series with a unilateral contact, as
+        :meth:`Frame2D.soil <unilateral.structure.Frame2D.soil>`.
+
+        Strain ``e = d . u_node`` along ``direction`` (default ``"uz"``), which points from the soil
+        to the node (the direction in which the node separates); ``e < 0`` compresses the soil.
+        ``v >= 0`` is the separation; the force ``sigma = k (e - v + gap) + c (e' - v')`` (tension
+        positive) satisfies ``sigma <= capacity``.
+
+        Parameters
+        ----------
+        k : stiffness, force/length, > 0;  c : viscosity, force time/length, >= 0
+        direction : ``"ux"``, ``"uy"``, ``"uz"`` or a vector ``(dx, dy, dz)``
+        gap : initial gap between node and soil (imposed strain ``-gap``), length
+        capacity : the tension ``r >= 0`` carried before separating, force (default 0)
+        mu : Coulomb friction coefficient >= 0, or None (no friction: the node slides freely)
+        kt : stick stiffness, force/length, > 0, along each tangent axis; required with ``mu``
+        ct : viscosity of a Kelvin dashpot in parallel with ``kt``, force time/length (default 0)
+        tangent : (3,) vector, optional: the first tangent axis ``t1`` (projected on the tangent
+            plane; default global X, or Y for a contact along X); ``t2 = d x t1``
+
+        With ``mu``, the tangential strains ``t1 . u_node`` and ``t2 . u_node`` carry the forces
+        ``T1``, ``T2`` (stiffness ``kt``, viscosity ``ct``) within a four-sided friction pyramid:
+        ``|T1| <= mu N`` and ``|T2| <= mu N``, ``N = capacity - sigma`` the compression of the
+        contact. It circumscribes the Coulomb cone ``|T| <= mu N``: exact for sliding along ``t1``
+        or ``t2`` (choose ``tangent`` along the expected sliding), up to ``sqrt(2)`` too strong
+        along their diagonals. The slips are the unknowns ``"name.slip+"``, ``"name.slip-"``
+        (along ``t1``: the 2-D names) and ``"name.slip2+"``, ``"name.slip2-"`` (along ``t2``).
+        """
+        where, ends, terms = self._ends("soil", name, node, None, direction, ("node", None))
+        self._add(self._contact("soil", where, name, ends, terms, k=k, c=c, gap=gap, capacity=capacity,
+                                friction=(_friction(where, mu, kt, ct), tangent)))
+
+    def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None, mu=None, kt=None, ct=0.0,
+            tangent=None) -> None:
+        """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
+        (force/length, with a Kelvin dashpot ``c``, force time/length) that engages when the gap
+        closes, as :meth:`Frame2D.gap <unilateral.structure.Frame2D.gap>`.
+
+        Strain ``e = d . (u_j - u_i)``: the opening along ``direction`` (a vector or ``"ux"``,
+        ``"uy"``, ``"uz"``; default: the unit vector from ``i`` to ``j``). The link engages when
+        ``e <= -gap`` (length); ``v >= 0`` is the gap opening. ``mu``, ``kt``, ``ct``, ``tangent``:
+        Coulomb friction across the closed gap, as for :meth:`soil` (tangential strains
+        ``t1 . (u_j - u_i)``, ``t2 . (u_j - u_i)``).
+        """
+        if direction is None and self._known(i) and self._known(j) and i != j:
+            direction = el3.chord(f"gap {name!r}", i, self._coords[i], j, self._coords[j])[1]
+        where, ends, terms = self._ends("gap", name, i, j, "ux" if direction is None else direction)
+        self._add(self._contact("gap", where, name, ends, terms, k=k, c=c, gap=gap, capacity=0.0,
+                                friction=(_friction(where, mu, kt, ct), tangent)))
+
+    def cable(self, name, i, j, E, A, *, slack=0.0, capacity=0.0) -> None:
+        """Tension-only cable (bar) from node ``i`` to node ``j`` that goes slack in compression.
+
+        Strain ``e`` = elongation; ``B = -1`` and ``theta = slack``: the axial force is
+        ``EA/L (e + v - slack)`` with ``v >= 0`` the slack shortening; taut once ``e >= slack``.
+        Negative ``slack``: a pretensioned cable. ``capacity``: the compression carried (default 0).
+        """
+        where = self._label("cable", name)
+        self._two_nodes(where, i, j)
+        self._add(el3.cable(name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
+                            A=_real(where, "A", A, ">0"), slack=_real(where, "slack", slack),
+                            capacity=_real(where, "capacity", capacity, ">=0")))
+
+    # ------------------------------------------------------------------ build
+    def build(self) -> Structure3D:
+        """Number the DOFs and assemble the natural form, the mass and the damping matrices.
+
+        Raises ``ValueError`` naming the free DOFs that no element stiffens (``K`` would be singular).
+        """
+        if not self._coords:
+            raise ValueError("the frame has no nodes; add nodes with Frame3D.node()")
+        everything = self._elements + self._dashpots
+        rotated = {(node, dof) for e in everything for node, dof in e.dofs if dof in el3.ROTATIONS}
+        rotated |= {(node, dof) for node, mass in self._mass.items()
+                    for dof, J in zip(el3.ROTATIONS, mass[3:]) if J > 0}
+        on_soil = set()                                 # the soil stiffens these (FoundationModel checks)
+        for footing in self._foundations:
+            on_soil |= {(node, dof) for terms in footing.moved_rows(self._coords) for node, dof, _ in terms}
+        rotated |= {(node, dof) for node, dof in on_soil if dof in el3.ROTATIONS}
+        dofs = DofMap3D(self._coords, self._restrained, rotated, self._ties)
+        fields = self._assemble(dofs, exempt=on_soil)
+        if self._foundations:
+            from .foundation import Footings
+
+            fields["foundation"] = Footings(self._foundations, first=len(fields["constraint_names"]))
+        return Structure3D(**fields)
+
+    # ------------------------------------------------------------------ helpers
+    def _tied(self, node, dof) -> bool:
+        return node in self._ties and dof in self._ties[node][1]
+
+    def _master(self, node):
+        return self._ties[node][0] if node in self._ties else None
+
+    def _tie(self, where, master, slave, dofs) -> None:
+        """Tie ``dofs`` of ``slave`` to ``master`` (a rigid link or a diaphragm), with the checks."""
+        self._check_tie(where, master, slave, dofs)
+        self._ties[slave] = (master, tuple(dofs))
+
+    @staticmethod
+    def _contact(kind, where, name, ends, terms, *, k, c, gap, capacity, friction):
+        """A contact (soil, gap) along ``terms``: Kelvin element ``k``, ``c`` with one unknown, and
+        with ``friction = ((mu, kt, ct), tangent)`` (``(None, tangent)``: none) a friction pyramid."""
+        if any(dof in el3.ROTATIONS for dof, _ in terms):
+            raise ValueError(f"{where}: direction={terms[0][0]!r} is not valid for a contact; use 'ux', 'uy', "
+                             "'uz' or a vector (dx, dy, dz)")
+        contact = dict(k=_real(where, "k", k, ">0"), c=_real(where, "c", c, ">=0"), theta=-_real(where, "gap", gap))
+        capacity = _real(where, "capacity", capacity, ">=0")
+        coulomb, tangent = friction
+        if coulomb is None:
+            if tangent is not None:
+                raise ValueError(f"{where}: tangent is a friction parameter; give the friction coefficient mu too "
+                                 "(or remove it)")
+            return el.directional(name, kind, *ends, terms, contact.pop("k"),
+                                  unknowns=(el.Unknown(name, 0, 1.0, capacity),), dof_names=el3.DOF_NAMES, **contact)
+        mu, kt, ct = coulomb
+        return el3.frictional(name, kind, *ends, terms, el3.tangents(where, terms, tangent), kt=kt, ct=ct, mu=mu,
+                              capacity=capacity, **contact)
+
+
+@dataclass(frozen=True, eq=False)
+class Structure3D(Structure):
+    """A built 3-D frame: the natural form and the DOF map (:class:`DofMap3D`).
+
+    The attributes are those of :class:`~unilateral.structure.Structure`, with ``coords`` node ->
+    (3,) coordinates and ``nodal_mass`` (n_nodes, 6) the lumped ``(m, m, m, Jx, Jy, Jz)`` per node.
+    :meth:`to_model`, :meth:`families`, :meth:`element_forces`, :meth:`element_deformations`,
+    :meth:`node_displacement` and :meth:`ground_motion` work as in 2-D; the loads are 3-D:
+    :meth:`gravity`, :meth:`nodal_load`, :meth:`distributed_load`, :meth:`influence`. Beams have
+    the kind ``"beam3d"`` (six strains). The results of :mod:`unilateral.structure.forces` and
+    P-Delta (:meth:`geometric_stiffness`) are for 2-D frames only.
+    """
+
+    def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, 0.0, -1.0)) -> np.ndarray:
+        """Load (n,) of gravity ``g`` along ``direction`` (a vector, normalised) on the lumped masses."""
+        g = _real("gravity", "g", g)
+        d = dict(el.direction_terms("gravity", direction, el3.DOF_NAMES, el3.AXES))
+        if any(dof in el3.ROTATIONS for dof in d):
+            raise ValueError(f"gravity: direction={direction!r} is not a direction of gravity; use a vector "
+                             "(dx, dy, dz)")
+        f = np.zeros_like(self.nodal_mass)
+        for column, dof in enumerate(el3.TRANSLATIONS):
+            f[:, column] = self.nodal_mass[:, column] * g * d.get(dof, 0.0)
+        return self.dofs.gather(f.ravel())
+
+    def nodal_load(self, node, ux=0.0, uy=0.0, uz=0.0, rx=0.0, ry=0.0, rz=0.0) -> np.ndarray:
+        """Load (n,) of a force ``(ux, uy, uz)`` and a moment ``(rx, ry, rz)`` at ``node`` (slave
+        nodes too).
+
+        Raises ``ValueError`` if a nonzero component acts on a DOF that nothing free can move
+        (a supported DOF, or a rotation no element resists).
+        """
+        f = np.zeros(self.dofs.T.shape[0])
+        for dof, value in zip(el3.DOF_NAMES, (ux, uy, uz, rx, ry, rz)):
+            value = _real(f"nodal_load at node {node!r}", dof, value)
+            if value:
+                row = self.dofs.full_index(node, dof)
+                if self.dofs.T[row].nnz == 0:
+                    raise ValueError(f"nodal_load at node {node!r}: {dof}={value!r} acts on a DOF that cannot move "
+                                     "(supported, or a rotation no element resists)")
+                f[row] = value
+        return self.dofs.gather(f)
+
+    def influence(self, direction="ux") -> np.ndarray:
+        """Influence vector ``r`` (n,) of a rigid ground translation along ``"ux"``, ``"uy"`` or ``"uz"``.
+
+        ``r`` is 1 on the free translations along ``direction`` and 0 elsewhere: with
+        ``u_full = T r`` every node that is not supported moves by one unit along the direction
+        (linked nodes follow their masters). A ground acceleration ``a_g(t)`` then loads the
+        structure, in displacements relative to the ground, with ``-M r a_g(t)``
+        (:meth:`ground_motion`).
+        """
+        if direction not in el3.TRANSLATIONS:
+            raise ValueError(f"direction={direction!r} is not valid for a ground motion; valid: 'ux', 'uy', 'uz'")
+        return np.array([1.0 if dof == direction else 0.0 for _, dof in self.dofs.free])
+
+    def distributed_load(self, beam, wx=0.0, wy=0.0, wz=0.0) -> np.ndarray:
+        """Load (n,) equivalent to a uniform load ``w = (wx, wy, wz)`` (force per length of the beam,
+        along global x, y, z) on the beam ``beam``: its fixed-end forces reversed.
+
+        Each end gets the force ``w L/2``, and the moments ``+L^2/12 x' x w`` at ``i`` and
+        ``-L^2/12 x' x w`` at ``j`` (``x'`` the unit chord ``i -> j``; the 2-D moments ``+-w_t L^2/12``
+        of :meth:`Structure.distributed_load <unilateral.structure.Structure.distributed_load>`). For
+        Euler-Bernoulli beams these give the exact nodal displacements of the uniform load. Moments
+        on a rotation that is supported are dropped.
+        """
+        where = f"distributed_load on beam {beam!r}"
+        element = next((e for e in self.elements if e.name == beam and e.kind == "beam3d"), None)
+        if element is None:
+            beams = [e.name for e in self.elements if e.kind == "beam3d"]
+            raise ValueError(f"{where}: no beam {beam!r} (beams: {', '.join(map(repr, beams[:10])) or 'none'})")
+        w = np.array([_real(where, arg, value) for arg, value in (("wx", wx), ("wy", wy), ("wz", wz))])
+        i, j = element.dofs[0][0], element.dofs[6][0]
+        L, x = el3.chord(where, i, self.coords[i], j, self.coords[j])
+        moment = np.cross(x, w) * L * L / 12.0
+        f = np.zeros(self.dofs.T.shape[0])
+        for node, sign in ((i, 1.0), (j, -1.0)):
+            for dof, value in zip(el3.DOF_NAMES, np.concatenate([w * L / 2, sign * moment])):
+                f[self.dofs.full_index(node, dof)] += value
+        return self.dofs.gather(f)
+
+    def geometric_stiffness(self, axial) -> sp.csr_matrix:
+        """Refused: P-Delta (``Frame2D.p_delta``) has no 3-D form here, so there is no geometric
+        stiffness of a 3-D frame to give."""
+        raise TypeError("geometric_stiffness: P-Delta is available for Frame2D only; a Frame3D structure has no "
+                        "geometric stiffness (leave second-order effects out or model the frame in 2-D)")
