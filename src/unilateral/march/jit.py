@@ -28,4 +28,9 @@ def compiled_pays(steps: int, step_cost: float = 1.0) -> bool:
     is long enough to repay the loading of the compiled code. Once numba is imported (an earlier
     run of the process compiled), its import is paid and every run compiles.
     """
-    return steps * step_cost >= COMPILE_MIN_STEPS or "numba" in sys.modules
+    return steps * step_cost >= COMPILE_MIN_STEPS or numba_loaded()
+
+
+def numba_loaded() -> bool:
+    """True once numba is imported in this process (its import is paid)."""
+    return "numba" in sys.modules
