@@ -72,7 +72,8 @@ def test_a_square_footing_loaded_along_its_diagonal_rocks_about_the_diagonal():
     np.testing.assert_allclose(rx, -ry, rtol=0, atol=1e-10 * scale)      # the axis is (1, -1, 0)
     np.testing.assert_allclose(ux, uy, rtol=0, atol=1e-10 * np.abs(ux).max())
     # the patch forces are mirror images across the diagonal x = y (patch i + 4 j <-> j + 4 i)
-    mirror = np.array([j + 4 * i for i in range(4) for j in range(4)])
+    mirror = np.array([j + 4 * i for j in range(4) for i in range(4)])       # at i + 4 j: j + 4 i
+    assert not np.array_equal(mirror, np.arange(16))
     c = -sol.psi
     np.testing.assert_allclose(c, c[:, mirror], rtol=0, atol=1e-10 * np.abs(c).max())
     opening = sol.v
