@@ -260,20 +260,6 @@ def footing_columns(st):
     return out
 
 
-def static_openings(model, sol):
-    """Openings (m) of the patches in the static state, ``T^T u0 + Phi(0) c0 + gap``.
-
-    Computed from the displacements and the contact forces rather than read from ``sol.v[0]``: a
-    patch that carries no force under gravity can come out of the static LCP with ``c = 0`` and
-    ``v = 0`` although the footing above it is tilted off it (the static problem is degenerate
-    there: the whole building's rigid vertical motions are held by the soil alone). The openings of
-    the later steps are not affected.
-    """
-    T = model.T.toarray() if hasattr(model.T, "toarray") else np.asarray(model.T)
-    v0 = T.T @ sol.u[0] + model.soil.static() @ -sol.psi[0] + model.gap
-    return np.where(v0 > OPEN, v0, 0.0)
-
-
 def base_torque(st, model, sol):
     """Torque (N+1,) about the vertical axis through the plan's centre that the footings' horizontal
     supports exert on the building, kN m: ``-rho^T K u`` (``rho``: :func:`twist_vector`; the elements
@@ -286,8 +272,8 @@ def summarise(run) -> dict:
     st, model, sol, held = run["structure"], run["model"], run["sol"], run["bilateral"]
     periods, shares = modes(st, model)
     cols = footing_columns(st)
-    c0, v0 = -sol.psi[0], static_openings(model, sol)
-    openings = np.vstack([v0, sol.v[1:]])
+    c0, v0 = -sol.psi[0], sol.v[0]
+    openings = sol.v
     footings = {}
     for name, j in cols.items():
         v = openings[:, j]
@@ -394,7 +380,7 @@ def draw(run, s, path):
 
     # (a) the plan
     cols = footing_columns(st)
-    openings = np.vstack([static_openings(model, sol), sol.v[1:]])
+    openings = sol.v
     peak = {name: openings[:, j].max(axis=0) for name, j in cols.items()}
     vmax = 1e3 * max(p.max() for p in peak.values()) or 1.0
     norm, cmap = colors.Normalize(0.0, vmax), matplotlib.colormaps["viridis"]

@@ -165,7 +165,10 @@ def solve_foundation(model, load, initial, disc, run, *, operators):
     mp, ms = model.mp, model.ms
     # unknowns z: the structure's v, the contact forces c (sliding: the shears f, the slips); rows: the
     # structure's psi, the openings (sliding: the shear equations, 0 at the base, and +-f)
-    c_b, opening_b = -init.psi[mp:mp + ms], init.v[mp:mp + ms]
+    opening_b = init.v[mp:mp + ms]
+    # an open contact carries no force: exactly 0, not the static LCP's round-off (which _columns
+    # would read as a closed contact)
+    c_b = np.where(opening_b > 0, 0.0, -init.psi[mp:mp + ms])
     z_b = np.concatenate([init.v[:mp], c_b])
     row_b = np.concatenate([init.psi[:mp], opening_b])
     if model.sliding:
