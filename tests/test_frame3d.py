@@ -169,6 +169,27 @@ def test_a_ground_motion_shakes_the_plane_frame_in_3d_as_in_2d():
     assert relative(sol3.psi, sol2.psi) < 1e-9
 
 
+def test_a_pair_of_records_at_an_angle_is_the_pair_rotated_into_x_and_y():
+    """Two components along (cos a, sin a, 0) and (-sin a, cos a, 0) load the structure as their
+    projections on x and y do: the same solution to round-off."""
+    from unilateral.loads import LoadHistory
+
+    st = building(tops_fixed=False)
+    a1 = lambda t: 3.0 * np.sin(2 * np.pi * 1.5 * t)          # noqa: E731
+    a2 = lambda t: 2.0 * np.sin(2 * np.pi * 2.5 * t + 0.4)    # noqa: E731
+    angle = np.deg2rad(35.0)
+    c, s = np.cos(angle), np.sin(angle)
+    rotated = LoadHistory(np.zeros(st.n), [st.ground_motion(a1, (c, s, 0.0)), st.ground_motion(a2, (-s, c, 0.0))])
+    projected = LoadHistory(np.zeros(st.n), [st.ground_motion(lambda t: c * a1(t) - s * a2(t), "ux"),
+                                             st.ground_motion(lambda t: s * a1(t) + c * a2(t), "uy")])
+    options = dict(dt=2e-3, t_end=0.4, method="direct", rule="trapezoidal")
+    one, two = (ul.solve(st.to_model(), load, **options) for load in (rotated, projected))
+    assert np.abs(one.u).max() > 1e-4
+    assert relative(one.u, two.u) < 1e-12
+    with pytest.raises(ValueError, match="not valid for a ground motion"):
+        st.influence("rz")
+
+
 # ---------------------------------------------------------------------- torsion on a rigid diaphragm
 A_HALF, B_HALF, HEIGHT, ECC = 3.0, 2.0, 3.5, 0.8
 IY_COL, IZ_COL = 1.2e-3, 0.7e-3

@@ -426,17 +426,25 @@ class Structure3D(Structure):
         return self.dofs.gather(f)
 
     def influence(self, direction="ux") -> np.ndarray:
-        """Influence vector ``r`` (n,) of a rigid ground translation along ``"ux"``, ``"uy"`` or ``"uz"``.
+        """Influence vector ``r`` (n,) of a rigid ground translation along ``direction``.
 
-        ``r`` is 1 on the free translations along ``direction`` and 0 elsewhere: with
-        ``u_full = T r`` every node that is not supported moves by one unit along the direction
-        (linked nodes follow their masters). A ground acceleration ``a_g(t)`` then loads the
-        structure, in displacements relative to the ground, with ``-M r a_g(t)``
+        ``direction``: ``"ux"``, ``"uy"``, ``"uz"`` or a vector ``(dx, dy, dz)`` (normalised), e.g.
+        ``(cos a, sin a, 0)`` for a record at an angle ``a`` from x in plan; a pair of horizontal
+        components at ``a``: ``ground_motion(a1, (cos a, sin a, 0))`` and
+        ``ground_motion(a2, (-sin a, cos a, 0))``. ``r`` is the component of the unit translation
+        on each free translation (every node that is not supported moves by one unit along the
+        direction; linked nodes follow their masters). A ground acceleration ``a_g(t)`` then loads
+        the structure, in displacements relative to the ground, with ``-M r a_g(t)``
         (:meth:`ground_motion`).
         """
-        if direction not in el3.TRANSLATIONS:
-            raise ValueError(f"direction={direction!r} is not valid for a ground motion; valid: 'ux', 'uy', 'uz'")
-        return np.array([1.0 if dof == direction else 0.0 for _, dof in self.dofs.free])
+        if isinstance(direction, str) and direction not in el3.TRANSLATIONS:
+            raise ValueError(f"direction={direction!r} is not valid for a ground motion; valid: 'ux', 'uy', 'uz' "
+                             "or a vector (dx, dy, dz)")
+        d = dict(el.direction_terms("ground motion", direction, el3.DOF_NAMES, el3.AXES))
+        if any(dof in el3.ROTATIONS for dof in d):
+            raise ValueError(f"direction={direction!r} is not valid for a ground motion; valid: 'ux', 'uy', 'uz' "
+                             "or a vector (dx, dy, dz)")
+        return np.array([d.get(dof, 0.0) if dof in el3.TRANSLATIONS else 0.0 for _, dof in self.dofs.free])
 
     def distributed_load(self, beam, wx=0.0, wy=0.0, wz=0.0) -> np.ndarray:
         """Load (n,) equivalent to a uniform load ``w = (wx, wy, wz)`` (force per length of the beam,
