@@ -280,24 +280,7 @@ def run_opensees(spec, steps, dt, system=OPENSEES_SYSTEM, tol=OPENSEES_TOL, mate
     for i, mass in enumerate(masses(spec)):
         ops.load(i + 1, 0.0, -float(mass) * spec.gravity, 0.0)
 
-    def analysis(kind):
-        ops.wipeAnalysis()
-        ops.constraints("Plain")
-        ops.numberer("RCM")
-        ops.system(system)
-        ops.test("NormDispIncr", tol, 50)
-        ops.algorithm("Newton")
-        if kind == "Static":
-            ops.integrator("LoadControl", 1.0)
-        else:
-            ops.integrator("Newmark", 0.5, 0.25)
-        ops.analysis(kind)
-
-    analysis("Static")
-    if ops.analyze(1) != 0:
-        raise RuntimeError("OpenSees: the static gravity step failed")
-    ops.loadConst("-time", 0.0)
-    ops.rayleigh(spec.a0, 0.0, 0.0, 0.0)
+    analysis = _gravity_first(ops, system, tol, spec.a0)
     for tag, (node, values) in enumerate(sorted(load_samples(spec, steps, dt).items()), start=2):
         ops.timeSeries("Path", tag, "-dt", dt, "-values", *map(float, values))
         ops.pattern("Plain", tag, tag)
@@ -317,6 +300,30 @@ def run_opensees(spec, steps, dt, system=OPENSEES_SYSTEM, tol=OPENSEES_TOL, mate
     elapsed = time.perf_counter() - start
     ops.wipe()
     return uy, elapsed, failed, iterations, setup
+
+
+def _gravity_first(ops, system, tol, a0):
+    """The static gravity step (load control, Newton), ``loadConst``, damping ``a0 M``; returns the
+    function that sets up an analysis of a kind (``"Transient"``: Newmark 1/2, 1/4, Newton)."""
+    def analysis(kind):
+        ops.wipeAnalysis()
+        ops.constraints("Plain")
+        ops.numberer("RCM")
+        ops.system(system)
+        ops.test("NormDispIncr", tol, 50)
+        ops.algorithm("Newton")
+        if kind == "Static":
+            ops.integrator("LoadControl", 1.0)
+        else:
+            ops.integrator("Newmark", 0.5, 0.25)
+        ops.analysis(kind)
+
+    analysis("Static")
+    if ops.analyze(1) != 0:
+        raise RuntimeError("OpenSees: the static gravity step failed")
+    ops.loadConst("-time", 0.0)
+    ops.rayleigh(a0, 0.0, 0.0, 0.0)
+    return analysis
 
 
 def opensees_in_subprocess(spec, steps, dt, system=OPENSEES_SYSTEM, tol=OPENSEES_TOL, material="ENT"):
@@ -563,24 +570,7 @@ def run_tower_opensees(spec, steps, samples, system=OPENSEES_SYSTEM, tol=OPENSEE
     for storey in range(1, spec.storeys + 1):
         ops.load(storey, 0.0, -spec.mass * spec.gravity, 0.0)
 
-    def analysis(kind):
-        ops.wipeAnalysis()
-        ops.constraints("Plain")
-        ops.numberer("RCM")
-        ops.system(system)
-        ops.test("NormDispIncr", tol, 50)
-        ops.algorithm("Newton")
-        if kind == "Static":
-            ops.integrator("LoadControl", 1.0)
-        else:
-            ops.integrator("Newmark", 0.5, 0.25)
-        ops.analysis(kind)
-
-    analysis("Static")
-    if ops.analyze(1) != 0:
-        raise RuntimeError("OpenSees: the static gravity step failed")
-    ops.loadConst("-time", 0.0)
-    ops.rayleigh(spec.a0, 0.0, 0.0, 0.0)
+    analysis = _gravity_first(ops, system, tol, spec.a0)
     ops.timeSeries("Path", 2, "-dt", dt, "-values", *map(float, samples))
     ops.pattern("UniformExcitation", 2, 1, "-accel", 2)
     analysis("Transient")
