@@ -35,7 +35,7 @@ def _readme_command() -> list[str]:
 #: functions the package exports, so pdoc does not walk to them from there (the structure's results,
 #: the energy balance, the modes and the outputs of a run are looked up by users).
 DEEP_MODULES = {"unilateral.analysis.energy", "unilateral.analysis.modes", "unilateral.analysis.outputs",
-                "unilateral.analysis.results", "unilateral.structure.forces"}
+                "unilateral.analysis.results", "unilateral.structure.forces", "unilateral.structure.forces3d"}
 
 
 def _public_modules() -> set[str]:

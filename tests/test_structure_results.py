@@ -294,3 +294,32 @@ def test_a_support_of_a_master_node_carries_its_rigidly_linked_slaves():
     applied = 5.0 * r.sum()
     # the ground's force plus the applied load accelerates the masses
     assert np.abs(support["0.ux"][1:] + applied - inertia[1:]).max() < 1e-8 * applied
+
+
+def test_a_slaves_ground_spring_loads_the_masters_support_through_the_link():
+    """A master supported in ux and rz, a slave 2 m away on a vertical spring, 100 down on the
+    master: the spring carries the 100 and the link brings its moment to the master's rz support
+    (-200); the overturning moment of all the ground's forces about the master vanishes."""
+    import unilateral as ul
+    from unilateral.structure import Frame2D
+    from unilateral.structure import forces as F
+
+    fr = Frame2D()
+    fr.node(0, 0.0, 0.0)
+    fr.node(1, 2.0, 0.0)
+    fr.node(2, 0.0, 3.0)
+    fr.support(0, ux=True, uy=False, rz=True)
+    fr.rigid_link(0, 1)
+    fr.beam("column", 0, 2, E=3e7, A=0.1, I=1e-3)
+    fr.mass(2, 1.0)
+    fr.spring("s", 1, 1e4, direction="uy")
+    st = fr.build()
+    q = 100.0 * st.nodal_load(2, uy=-1.0)
+    sol = ul.solve(st.to_model(), lambda t: q, dt=1e-3, t_end=2e-3)         # the static state throughout
+    h = F.Histories.from_solution(st, sol, "bdf2")
+    r = F.reactions(st, h)
+    assert r["support"]["0.rz"][0] == pytest.approx(-200.0, rel=1e-9)
+    assert r["ground_elements"]["s"][0, 1] == pytest.approx(100.0, rel=1e-9)
+    base = F.base_forces(st, r, point=(0.0, 0.0))
+    assert base["base_vertical"][0] == pytest.approx(100.0, rel=1e-9)
+    assert abs(base["overturning_moment"][0]) < 1e-9 * 200.0

@@ -11,6 +11,7 @@ Modules (one concept each):
 * :mod:`.rigid` - ``rigid_impedance``: impedances of a rigid footing from its patches.
 * :mod:`.structure_weights` - the structure's CQ weights of a foundation model by compiled stepping.
 * :mod:`.pekeris` - Pekeris (1955) / Mooney / Kausel closed form of the step point-load response.
+* :mod:`.chao` - Chao (1960) / Kausel closed form of the step response to a horizontal point load.
 * :mod:`.impedances` - Veletsos & Verbic (1973) rational disc impedances.
 * :mod:`.cones` - Wolf (1994) cone models and cone-type coupled flexibility of patches.
 * :mod:`.fit` - AAA rational fits of tabulated data (``fit_rational``, ``read_table``).
@@ -38,6 +39,7 @@ _LAZY = {
     **dict.fromkeys(("RectangularPatches", "disc", "grid", "points", "strips"), "patches"),
     **dict.fromkeys(("rigid_impedance", "rigid_kinematics"), "rigid"),
     **dict.fromkeys(("arrival_times", "lamb_step_vertical", "pekeris_quarter"), "pekeris"),
+    **dict.fromkeys(("cerruti_surface", "chao_quarter", "lamb_step_coupled", "lamb_step_horizontal"), "chao"),
     **dict.fromkeys(("boussinesq", "mean_inverse_distance", "rectangle_corner_displacement"), "statics"),
     "step_response": "timedomain",
 }

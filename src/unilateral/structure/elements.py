@@ -21,7 +21,9 @@ Strain conventions (checked in ``tests/test_structure.py``):
   (``t = x`` for ``d = y``), and the tangential force ``T`` along ``t``.
 
 **Constraint unknowns.** An element carries any number of :class:`Unknown` s, each a column of
-``B``: a strain row of the element, its ``B`` entry ``b`` (+1 or -1), its resistance ``r`` and its
+``B``: a strain row of the element, its ``B`` entry ``b`` (+1 or -1; a facet of a polygonal
+friction cone in 3-D: the facet's direction cosines, one entry on each tangential strain, the
+second in :attr:`Unknown.extra`), its resistance ``r`` and its
 family (``"contact"``, ``"yield"`` or ``"friction"``, :mod:`unilateral.constraints`); the element's
 ``A`` couples its unknowns (kinematic hardening). With ``psi = B^T sigma - A v - r``:
 
@@ -31,7 +33,10 @@ family (``"contact"``, ``"yield"`` or ``"friction"``, :mod:`unilateral.constrain
   ``r = F_c``) on one strain keeps its force in ``-F_c <= sigma <= F_t``; ``v`` are the cumulative
   plastic multipliers, the plastic strain is ``v+ - v-``;
 - a slip pair (``"name.slip+"``, ``"name.slip-"``) on a tangential strain keeps
-  ``|T| <= mu N``, ``N`` the compression of its contact ``"name"`` (or a constant ``N`` in ``r``).
+  ``|T| <= mu N``, ``N`` the compression of its contact ``"name"`` (or a constant ``N`` in ``r``);
+- a facet of a polygonal friction cone (3-D, :func:`.elements3d.frictional`) keeps
+  ``d_k . T <= mu N`` for its unit direction ``d_k`` in the tangent plane: its column has the
+  entries ``d_k`` on the two tangential strains (``row``, ``b`` and one ``extra`` entry).
 """
 
 from __future__ import annotations
@@ -57,9 +62,12 @@ class Unknown:
     name : str
         The constraint's name (``"soil3"``, ``"soil3.slip+"``, ``"brace.plastic-"``).
     row : int
-        The element's strain (row of ``Element.a``) the unknown enters, with ``B`` entry ``b``.
+        The element's strain (row of ``Element.a``) the unknown enters, with ``B`` entry ``b``:
+        its primary strain (:attr:`Structure.constraint_strains
+        <unilateral.structure.Structure.constraint_strains>`, the force reported for the unknown).
     b : float
-        +1 or -1.
+        +1 or -1; a facet of a polygonal friction cone: its direction cosine on ``row`` (the
+        larger in magnitude of its two, see :func:`.elements3d.frictional`).
     r : float
         Resistance, >= 0 [force, or force length for a rotation]: a contact's capacity, a yield
         force or moment, a slider's ``mu N``.
@@ -77,6 +85,10 @@ class Unknown:
         rotation]: a yield link's or a hinge spring's ``k``, a slider's or a friction contact's
         stick stiffness. The yield deformation of a face is ``r / k``. None: rigid-plastic (a
         hinge without ``k``), or a contact.
+    extra : tuple of (int, float) pairs
+        Further ``(row, b)`` entries of the unknown's column of ``B`` on other strains of the
+        element (default none: one entry, ``(row, b)``): a facet of a polygonal friction cone
+        enters both tangential strains, ``(t1 row, cos th_k)`` and ``(t2 row, sin th_k)``.
     """
 
     name: str
@@ -88,6 +100,13 @@ class Unknown:
     mu: float = 0.0
     node: Hashable | None = None
     k: float | None = None
+    extra: tuple = ()
+
+    @property
+    def entries(self) -> tuple[tuple[int, float], ...]:
+        """Every ``(row, b)`` entry of the unknown's column of ``B``: ``(row, b)`` first, then
+        :attr:`extra`."""
+        return ((self.row, self.b), *self.extra)
 
 
 @dataclass(frozen=True)
@@ -132,7 +151,8 @@ class Element:
         """Every strain of the element passes through an unknown (soil, gap, cable, yield link,
         slider): its force is the constraint's, so it takes no stiffness-proportional damping.
         A beam with a plastic hinge is not unilateral."""
-        return bool(self.unknowns) and {u.row for u in self.unknowns} == set(range(self.E.shape[0]))
+        return bool(self.unknowns) and ({row for u in self.unknowns for row, _ in u.entries}
+                                    == set(range(self.E.shape[0])))
 
     @property
     def interaction(self) -> np.ndarray:

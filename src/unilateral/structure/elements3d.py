@@ -23,16 +23,17 @@ the strain conventions of :mod:`.elements`:
   the extension, positive when ``j`` moves away from ``i`` along ``d``; they are the 2-D
   :func:`.elements.directional` elements on the 3-D DOFs (``dof_names=DOF_NAMES``). A contact with
   friction (:func:`frictional`) adds the tangential strains ``t1 . (u_j - u_i)`` and
-  ``t2 . (u_j - u_i)`` along its tangent axes (:func:`tangents`) and their forces ``T1``, ``T2``.
+  ``t2 . (u_j - u_i)`` along its tangent axes (:func:`tangents`) and their forces ``T1``, ``T2``,
+  bounded by a polygonal friction cone of ``N`` facets (:func:`facet_directions`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
-from .elements import Element, Unknown, _relative, pair
+from .elements import Element, Unknown, _relative
 from .elements import vector as _vector
 
 DOF_NAMES = ("ux", "uy", "uz", "rx", "ry", "rz")
@@ -165,21 +166,71 @@ def tangents(where: str, terms, tangent=None) -> tuple[np.ndarray, np.ndarray]:
     return t1, np.cross(d, t1)
 
 
-def frictional(name, kind, i, j, terms, axes, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, capacity=0.0):
+def facet_directions(facets: int) -> np.ndarray:
+    """The unit outward normals ``d_k = (cos th_k, sin th_k)`` (facets, 2) of a polygonal friction
+    cone with ``facets`` facets, on the tangent axes ``(t1, t2)``: ``th_k = 2 pi k / facets``.
+
+    Facet 0 is normal to ``t1``; for an even ``facets`` facet ``k + facets/2`` is opposite to facet
+    ``k``. Components within 1e-12 of 0 or +-1 are made exact (``facets=4``: the axes ``+-t1``,
+    ``+-t2`` exactly).
+    """
+    th = 2.0 * np.pi * np.arange(facets) / facets
+    d = np.column_stack([np.cos(th), np.sin(th)])
+    d[np.abs(d) < 1e-12] = 0.0
+    unit = np.abs(np.abs(d) - 1.0) < 1e-12
+    d[unit] = np.sign(d[unit])
+    return d
+
+
+def facet_unknowns(name, facets, *, mu, k, rows=(1, 2)) -> tuple[Unknown, ...]:
+    """The slip multipliers of the ``facets`` facets (even, >= 4) of a polygonal friction cone.
+
+    Facet ``k`` (direction ``d_k``, :func:`facet_directions`) is an unknown of the
+    ``"friction"`` family on the compression of the contact ``name`` with coefficient ``mu``:
+    its column of ``B`` is ``cos th_k`` on the strain ``rows[0]`` (along ``t1``) and ``sin th_k`` on
+    ``rows[1]`` (along ``t2``): the primary entry (``row``, ``b``) on the larger of the two in
+    magnitude (``t1`` on a tie), the other in ``extra`` (left out when it is 0). Its friction
+    function is ``d_k . T - mu N`` (the step law's ``psi + mu psi_normal``).
+
+    The unknowns come in opposite pairs ``(k, k + facets/2)``, ``k = 0 .. facets/2 - 1``, in that
+    order: the pairs of :class:`~unilateral.constraints.Friction` (their columns are opposite,
+    never both active). Names: ``facets=4``: ``name.slip+``, ``name.slip-`` (``+-t1``),
+    ``name.slip2+``, ``name.slip2-`` (``+-t2``), the four-sided pyramid; else ``name.facet<k>``.
+
+    Any three facet columns are linearly dependent (they span the two tangential strains): a
+    pivoting basis with three facets of one contact is singular; in a solution at most two
+    adjacent facets slip (a vertex). The pair rule of the pivoting solvers keeps apart only
+    opposite facets (see :meth:`Frame3D.soil <unilateral.structure.Frame3D.soil>`).
+    """
+    d = facet_directions(facets)
+    half = facets // 2
+    names = ({0: "slip+", 2: "slip-", 1: "slip2+", 3: "slip2-"} if facets == 4
+             else {f: f"facet{f}" for f in range(facets)})
+    out = []
+    for f in (f for k in range(half) for f in (k, k + half)):
+        (c, s) = d[f]
+        (row, b), (other, b2) = ((rows[0], c), (rows[1], s)) if abs(c) >= abs(s) else ((rows[1], s), (rows[0], c))
+        out.append(Unknown(f"{name}.{names[f]}", row, float(b), 0.0, "friction", name, mu, None, k,
+                           ((other, float(b2)),) if b2 != 0.0 else ()))
+    return tuple(out)
+
+
+def frictional(name, kind, i, j, terms, axes, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, capacity=0.0, facets=4):
     """A contact along ``d`` (``terms``) with Coulomb friction in its tangent plane, on the axes
-    ``axes = (t1, t2)`` (:func:`tangents`): a four-sided friction pyramid.
+    ``axes = (t1, t2)`` (:func:`tangents`): a polygonal friction cone of ``facets`` facets.
 
     Strains ``[d . (u_j - u_i), t1 . (u_j - u_i), t2 . (u_j - u_i)]``, stiffness ``diag(k, kt, kt)``
     [force/length], Kelvin viscosity ``diag(c, ct, ct)``; unknowns: the contact ``name`` (row 0,
-    ``b = +1``, capacity ``r``), the slips ``name.slip+``, ``name.slip-`` along ``t1`` (row 1) and
-    ``name.slip2+``, ``name.slip2-`` along ``t2`` (row 2), each pair keeping its tangential force
-    ``|T1| <= mu N``, ``|T2| <= mu N`` (``N`` the compression of the contact ``name``).
+    ``b = +1``, capacity ``r``) and the slip multipliers ``lambda_k >= 0`` of the facets
+    (:func:`facet_unknowns`): facet ``k`` keeps ``d_k . T <= mu N`` (``T = (T1, T2)`` the tangential
+    force, ``N`` the compression of the contact ``name``) and slips by ``lambda_k d_k``. The polygon
+    circumscribes Coulomb's circle ``|T| <= mu N`` (its facets touch it). ``facets=4`` is the
+    four-sided pyramid: ``name.slip+``, ``name.slip-`` along ``t1`` (row 1) and ``name.slip2+``,
+    ``name.slip2-`` along ``t2`` (row 2), ``|T1| <= mu N``, ``|T2| <= mu N``.
     """
     rows = (terms, *(tuple((dof, float(x)) for dof, x in zip(TRANSLATIONS, t) if x != 0.0) for t in axes))
     dofs, a = _relative(i, j, rows, DOF_NAMES)
-    second = tuple(replace(u, name=u.name.replace(".slip", ".slip2"))
-                   for u in pair(name, 2, "friction", normal=name, mu=mu, k=kt))
-    unknowns = (Unknown(name, 0, 1.0, capacity), *pair(name, 1, "friction", normal=name, mu=mu, k=kt), *second)
+    unknowns = (Unknown(name, 0, 1.0, capacity), *facet_unknowns(name, facets, mu=mu, k=kt))
     E_v = np.diag([c, ct, ct]) if c > 0 or ct > 0 else None
     return FrictionContact(name, kind, dofs, a, np.diag([k, kt, kt]), np.array([theta, 0.0, 0.0]), E_v=E_v,
                            unknowns=unknowns)

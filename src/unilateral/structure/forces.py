@@ -373,11 +373,12 @@ def nodal_forces(structure, h: Histories) -> np.ndarray:
     return out
 
 
-def _onto_masters(structure, forces, on_ground) -> np.ndarray:
+def _onto_masters(structure, forces) -> np.ndarray:
     """Nodal forces (N+1, 3 n_nodes) with those of rigidly linked (slave) nodes added onto their
     master's rows: a support of the master carries them (``T_link^T f`` of
-    ``u_s = u_m + rz_m x (x_s - x_m)``), but for what the slaves' own ground elements take
-    (``on_ground``, same shape: those are ground reactions of their own)."""
+    ``u_s = u_m + rz_m x (x_s - x_m)``), the forces of the slaves' own ground elements included (the
+    link transmits the slave's whole nodal force; those elements are ground reactions of their own
+    besides)."""
     dofs, coords = structure.dofs, structure.coords
     if not dofs.masters:
         return forces
@@ -385,7 +386,7 @@ def _onto_masters(structure, forces, on_ground) -> np.ndarray:
     for slave, master in dofs.masters.items():
         s, m = dofs.full_index(slave, "ux"), dofs.full_index(master, "ux")
         dx, dy = np.asarray(coords[slave], dtype=float) - np.asarray(coords[master], dtype=float)
-        fx, fy, mz = (forces[:, s + k] - on_ground[:, s + k] for k in range(3))
+        fx, fy, mz = (forces[:, s + k] for k in range(3))
         out[:, m] += fx
         out[:, m + 1] += fy
         out[:, m + 2] += mz - dy * fx + dx * fy
@@ -427,12 +428,7 @@ def reactions(structure, h: Histories) -> dict:
             f[:, DOF_NAMES.index(dof)] -= s @ e.a[:, col]
         ground[e.name] = f
         at[e.name] = e.dofs[0][0]
-    forces = nodal_forces(structure, h)
-    on_ground = np.zeros_like(forces)           # what the ground elements take at each node
-    for e in _ground_elements(structure):
-        row = dofs.full_index(e.dofs[0][0], "ux")
-        on_ground[:, row:row + 3] -= ground[e.name]
-    forces = _onto_masters(structure, forces, on_ground)
+    forces = _onto_masters(structure, nodal_forces(structure, h))
     support = {}
     for node in dofs.nodes:
         for dof in DOF_NAMES:

@@ -188,10 +188,15 @@ class _Frame:
         E_v = _block_diagonal([np.zeros_like(e.E) if e.E_v is None else e.E_v for e in elements]) if kelvin else None
         theta = np.concatenate([e.theta for e in elements]) if elements else np.zeros(0)
         starts = np.cumsum([0] + [e.E.shape[0] for e in elements])
-        columns = [(int(starts[p]) + u.row, u) for p, e in enumerate(elements) for u in e.unknowns]
-        rows = np.array([row for row, _ in columns], dtype=int)
+        columns = [(int(starts[p]), u) for p, e in enumerate(elements) for u in e.unknowns]
+        rows = np.array([start + u.row for start, u in columns], dtype=int)     # each unknown's primary strain
         m = len(columns)
-        B = sp.csr_matrix(([u.b for _, u in columns], (rows, np.arange(m))), shape=(G.shape[1], m))
+        # one entry (row, b) per unknown, and the extra entries of an unknown on several strains
+        # (a facet of a polygonal friction cone: both tangential strains)
+        entries = np.array([(start + row, col, b) for col, (start, u) in enumerate(columns) for row, b in u.entries],
+                           dtype=float).reshape(-1, 3)
+        B = sp.csr_matrix((entries[:, 2], (entries[:, 0].astype(int), entries[:, 1].astype(int))),
+                          shape=(G.shape[1], m))
         r = np.array([u.r for _, u in columns])
         A = block_diag(*[e.interaction for e in elements if e.unknowns]) if m else np.zeros((0, 0))
         nodal_mass = np.array([self._mass.get(node, np.zeros(len(dofs.dof_names))) for node in dofs.nodes])
@@ -731,7 +736,9 @@ class Structure:
         contact has its element's name, the unknowns of slips and yield pairs
         ``"name.slip+"``, ``"name.slip-"``, ``"name.plastic+"``, ``"name.plastic-"``
     constraint_strains : (m,) int, the strain (row of ``G^T u``) each unknown enters (two unknowns
-        of a pair share one)
+        of a pair share one); an unknown on several strains (a facet of a polygonal friction cone,
+        :meth:`Frame3D.soil <unilateral.structure.Frame3D.soil>`): its primary strain
+        (:attr:`Unknown.row <unilateral.structure.elements.Unknown.row>`)
     nodal_mass : (n_nodes, 3) lumped ``(m, m, J)`` per node, in the order of ``dofs.nodes``
     elements : the :class:`~unilateral.structure.elements.Element` objects of the natural form,
         in strain order (empty for a structure built by hand)
