@@ -294,6 +294,12 @@ def test_a_support_of_a_master_node_carries_its_rigidly_linked_slaves():
     applied = 5.0 * r.sum()
     # the ground's force plus the applied load accelerates the masses
     assert np.abs(support["0.ux"][1:] + applied - inertia[1:]).max() < 1e-8 * applied
+    # the fast operator carries the slaves' forces to the master's support as reactions does
+    full = F.base_forces(st, F.reactions(st, h), (1.0, 0.5))
+    fast = F.BaseForceOperator.of(st, (1.0, 0.5))(F.StateRows.of(h.u, h.udot, h.v, h.vdot))
+    for key, expected in full.items():
+        np.testing.assert_allclose(fast[key], expected, rtol=0, atol=1e-10 * np.abs(expected).max(), err_msg=key)
+    assert np.abs(full["base_shear"]).max() > 0.5 * applied
 
 
 def test_a_slaves_ground_spring_loads_the_masters_support_through_the_link():
@@ -323,3 +329,6 @@ def test_a_slaves_ground_spring_loads_the_masters_support_through_the_link():
     base = F.base_forces(st, r, point=(0.0, 0.0))
     assert base["base_vertical"][0] == pytest.approx(100.0, rel=1e-9)
     assert abs(base["overturning_moment"][0]) < 1e-9 * 200.0
+    fast = F.BaseForceOperator.of(st, (0.0, 0.0))(F.StateRows.of(h.u, h.udot, h.v, h.vdot))
+    for key, expected in base.items():
+        np.testing.assert_allclose(fast[key], expected, rtol=0, atol=1e-9 * 200.0, err_msg=key)

@@ -617,7 +617,8 @@ def _ground_weights(structure, point) -> tuple[np.ndarray, np.ndarray]:
     """Weights ``P`` (ne, 3) and ``P_d`` (nd, 3) of the element stresses and dashpot forces in the base forces.
 
     A supported DOF's reaction is its row of :func:`nodal_forces` (``sigma_e a_e`` of the elements
-    at it); an element to the ground adds ``-sigma_e a_e`` at its node (:func:`reactions`). Each
+    at it, and of those at the nodes rigidly linked to it); an element to the ground adds
+    ``-sigma_e a_e`` at its node (:func:`reactions`). Each
     force component at ``(x, y)`` counts with ``arm = (1, 0, -(y - y0))`` (x), ``(0, 1, x - x0)``
     (y) or ``(0, 0, 1)`` (moment).
     """
@@ -625,6 +626,13 @@ def _ground_weights(structure, point) -> tuple[np.ndarray, np.ndarray]:
     W = np.zeros((dofs.T.shape[0], 3))
     for node, dof in dofs._restrained:
         W[dofs.full_index(node, dof)] = _arm(coords[node], dof, point)
+    # a rigidly linked slave's nodal forces reach its master's supports (_onto_masters)
+    for slave, master in dofs.masters.items():
+        s, m = dofs.full_index(slave, "ux"), dofs.full_index(master, "ux")
+        dx, dy = np.asarray(coords[slave], dtype=float) - np.asarray(coords[master], dtype=float)
+        W[s] += W[m] - dy * W[m + 2]
+        W[s + 1] += W[m + 1] + dx * W[m + 2]
+        W[s + 2] += W[m + 2]
     ground = {e.name for e in _ground_elements(structure)}
 
     def weights(e, rows):
