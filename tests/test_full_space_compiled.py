@@ -185,3 +185,19 @@ def test_large_sparse_model_forms_no_dense_n_by_m_array():
     assert sol.success and sol.stats["engine"] == "compiled" and sol.stats["lcp_space"] == "full"
     # what the solve allocates: O(n) vectors (histories, sparse operands, factors), O(m^2) for H
     assert peak < 0.5 * n * m * 8, f"peak {peak / 2**20:.2f} MiB against {n * m * 8 / 2**20:.2f} MiB for n x m"
+
+
+def test_rigid_contacts_take_the_condensed_lcp():
+    """``H = 0`` (rigid contacts): the full space would invert ``H_AA``; the condensed LCP is used."""
+    st, q, _ = winkler_beam(80, load="moving")
+    base = st.to_model()
+    model = ul.Model(M=base.M, K=base.K, F=sp.csc_matrix(base.F), H=np.zeros((base.m, base.m)), C=base.C,
+                     g=np.full(base.m, -1e-3))
+    assert model.m > 64 and model.sparse
+    sol = ul.solve(model, q, dt=2e-3, t_end=0.02, method="direct")
+    assert sol.success and sol.stats["lcp_space"] == "condensed"
+    assert np.all(np.isfinite(sol.u)) and np.all(sol.v >= 0)
+    from unilateral.initial import _static_full_space
+    from unilateral.lcp import get_lcp_solver
+
+    assert _static_full_space(model, st.gravity(9.81), get_lcp_solver("bpp")) is None

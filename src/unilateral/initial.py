@@ -129,17 +129,15 @@ def _static_state(model, q0, solver) -> InitialState:
 def _static_full_space(model, q0, solver):
     """The static state of a large sparse model with contacts by pivoting in the full space, or None.
 
-    For more than :data:`~unilateral.march.active_set.FULL_SPACE_MIN_M` constraints of the trivial
-    law and ``lcp="bpp"``: ``K u = q0 + F v`` with ``psi = F^T u - H v - g`` solved on the sparse
+    Where :func:`~unilateral.march.active_set.full_space_applies` and ``lcp="bpp"``: ``K u = q0 + F v`` with ``psi = F^T u - H v - g`` solved on the sparse
     ``K`` without the open constraints (:class:`~unilateral.march.active_set.ActiveSetSolver`,
     the same solution as the condensed LCP), so that ``F^T K^-1 F`` is never formed. None where
     it does not apply or does not converge (the condensed LCP then gives the solution or the
     reason there is none).
     """
-    from .march.active_set import FULL_SPACE_MIN_M, ActiveSetSolver
+    from .march.active_set import ActiveSetSolver, full_space_applies
 
-    if not (model.sparse and model.m > FULL_SPACE_MIN_M and model.law.trivial
-            and isinstance(solver, BlockPrincipalPivoting)):
+    if not (full_space_applies(model) and isinstance(solver, BlockPrincipalPivoting)):
         return None
     zero = np.zeros(model.m)
     try:

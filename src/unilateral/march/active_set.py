@@ -29,6 +29,17 @@ from ..linalg import Factorization
 #: Sparse models with more constraints than this solve the LCP in the full sparse space (with
 #: ``lcp="bpp"`` and constraints of the trivial law): the condensed ``W0`` would be large and dense.
 FULL_SPACE_MIN_M = 64
+def full_space_applies(model) -> bool:
+    """The full-space LCP applies to a sparse ``model`` with more than :data:`FULL_SPACE_MIN_M`
+    constraints of the trivial law whose ``H`` has no zero on its diagonal (the open constraints'
+    ``H_AA`` are inverted; a rigid contact, ``H = 0``, needs the condensed LCP)."""
+    if not (model.sparse and model.m > FULL_SPACE_MIN_M and model.law.trivial):
+        return False
+    H = model.H
+    diagonal = H.diagonal() if hasattr(H, "diagonal") and not isinstance(H, np.ndarray) else np.diag(H)
+    return bool(np.all(diagonal != 0.0))
+
+
 #: Factorisations kept (least recently used first out).
 CACHE_SIZE = 16
 _BLOCK_TRIES = 3

@@ -6,7 +6,7 @@ import functools
 
 from .. import _validate as V
 from ..lcp import BlockPrincipalPivoting
-from ..march.active_set import FULL_SPACE_MIN_M, march_direct_active_set
+from ..march.active_set import FULL_SPACE_MIN_M, full_space_applies, march_direct_active_set
 from ..march.jit import compiled_pays
 from ..march.direct import march_direct, march_direct_compiled
 from ..march.stepper import COMPILED_MAX_N
@@ -51,7 +51,7 @@ class Direct(Method):
         run.stats["n"] = model.n
         bpp = isinstance(run.solver, BlockPrincipalPivoting)
         ours = type(disc.rule).__module__ == "unilateral.rules"
-        full_space = model.sparse and model.m > FULL_SPACE_MIN_M and model.law.trivial and bpp
+        full_space = full_space_applies(model) and bpp
         # sparse models stepped in compiled code in the full space (envelope factorisation)
         sparse_ok = model.sparse and model.law.trivial and bpp and ours and (full_space or model.n > COMPILED_MAX_N)
         condensed_ok = not full_space and bpp and ours
