@@ -20,6 +20,7 @@ Strain and sign conventions of the elements are in :mod:`unilateral.structure.el
 from __future__ import annotations
 
 import numbers
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -33,7 +34,7 @@ from . import elements as el
 from .dofs import DofMap, node_list
 
 
-class _Frame:
+class _Frame(ABC):
     """What :class:`Frame2D` and :class:`~unilateral.structure.Frame3D` share: the node, name and tie
     checks, Rayleigh and modal damping, the directional elements and the assembly of the natural
     form, the mass and the damping matrices.
@@ -148,9 +149,9 @@ class _Frame:
                              "restrains nothing")
         return where, flags
 
+    @abstractmethod
     def _master(self, node):
         """The master of ``node`` if it is a slave (of a rigid link or a diaphragm), else None."""
-        raise NotImplementedError
 
     def _check_tie(self, where, master, slave, dofs) -> None:
         """The checks of tying ``dofs`` of ``slave`` to ``master`` (a rigid link or a diaphragm):
