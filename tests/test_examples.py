@@ -24,7 +24,7 @@ import unilateral
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SCRIPTS = ("bouncing_mass.py", "rocking_tower.py", "pounding_frames.py", "convergence_bdf2.py", "soil_kernels.py",
            "sliding_block.py")
-MODEL_FILES = ("liolios1990.toml", "pounding.toml", "winkler_beam.toml", "yielding_frame.toml")
+MODEL_FILES = ("liolios1990.toml", "pounding.toml", "winkler_beam.toml", "yielding_frame.toml", "building3d.toml")
 NUMBER = r"([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)"
 
 
@@ -37,8 +37,11 @@ def _run_script(name: str, cwd: Path) -> subprocess.CompletedProcess:
 @pytest.fixture(scope="module")
 def outputs(tmp_path_factory):
     """Stdout of every Python example (run two at a time, each in its own working directory)."""
+    # the folders are made here, in one thread: pytest's temporary-folder factory is not thread-safe
+    folders = {name: tmp_path_factory.mktemp(name.removesuffix(".py")) for name in SCRIPTS}
+
     def run(name):
-        return name, _run_script(name, tmp_path_factory.mktemp(name.removesuffix(".py")))
+        return name, _run_script(name, folders[name])
 
     with ThreadPoolExecutor(max_workers=2) as pool:
         done = dict(pool.map(run, SCRIPTS))
@@ -188,6 +191,18 @@ def test_winkler_beam_model_file(tmp_path):
     settlement = 0.625 * 9.80665 / 20e3                              # m g / k per node: uniform
     assert s["extra"]["figure"]["static"] == pytest.approx(-settlement, rel=1e-9)
     assert np.isfinite(s["max_lcp_error"]) and s["max_lcp_error"] < 1e-9
+
+
+def test_building3d_model_file(tmp_path):
+    """The building of building3d.py as a 3-D model file: the corner footings' outer patches open under
+    gravity (building3d.py: about 0.3 mm), both horizontal components load the base, the eccentric
+    mass twists it (tests/test_modelfile3d.py checks the file further)."""
+    s = _run_model("building3d.toml", tmp_path, 0.2)
+    assert s["steps"] == 40 and len(s["constraints"]) == 36
+    assert 2e-4 < max(c["max_v"] for c in s["constraints"].values()) < 5e-4
+    base = s["results"]["unilateral"]["base_forces"]
+    for key in ("Fx", "Fy", "Mz"):
+        assert max(abs(base[key]["max"]), abs(base[key]["min"])) > 1.0, key
 
 
 def test_yielding_frame_model_file(tmp_path):

@@ -164,17 +164,18 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
     extra_results = None
     if structure is None and model is not None:
         ds = _with_model_kinds(ds, model)
+    three_d = is_3d(structure)
     if structure is not None:
         ds = _with_node_displacements(ds, cases, structure, units)
         ds = _with_constraint_coords(ds, structure)
         if model is not None:
-            extra_results = _structure_results(structure, model, computed, load=load, units=units,
-                                               rule=rule or main.stats.get("rule", "bdf2"), point=point,
-                                               storeys=storeys)
+            results_of = _structure_results_3d if three_d else _structure_results
+            extra_results = results_of(structure, model, computed, load=load, units=units,
+                                       rule=rule or main.stats.get("rule", "bdf2"), point=point, storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
-    ds, response = _with_spectra(ds, structure, extra_results, spectra, dt=_time_step(main), units=units,
-                                 names=list(cases))
-    if model_figure and structure is not None:
+    ds, response = _with_spectra(ds, structure, None if three_d else extra_results, spectra, dt=_time_step(main),
+                                 units=units, names=list(cases))
+    if model_figure and structure is not None and not three_d:
         ds.attrs["model_drawing"] = _model_drawing(structure, extra_results, units, title).to_json()
     if formats and figure_process is not None:
         figure_process.submit(figure_view(ds), out, formats)
@@ -219,6 +220,8 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         from .spectra import spectra_summary
 
         result["spectra"] = spectra_summary(response)
+    if three_d:
+        result["notes"] = [NOT_IN_3D]
     write_json_atomic(out / "summary.json", result)
     result["figures"] = []
     if formats and figure_process is not None:
@@ -354,17 +357,64 @@ def _strip_unit(label: str) -> str:
     return label
 
 
+def is_3d(structure) -> bool:
+    """Whether ``structure`` is a 3-D frame (six DOFs per node, :class:`~unilateral.structure.Frame3D`)."""
+    return structure is not None and len(getattr(structure.dofs, "dof_names", ())) == 6
+
+
+#: The note in ``summary.json`` of a 3-D frame: the outputs that exist only for 2-D frames.
+NOT_IN_3D = ("3-D frame: results.nc holds the displacements of every node (ux, uy, uz, rx, ry, rz), the "
+             "constraints and the base forces Fx, Fy, Fz, Mx, My, Mz (base.csv); not written (2-D frames only): "
+             "element end forces, support and ground reactions, storey drifts, accelerations, the energy balance, "
+             "the modes, floor spectra and the model figure")
+
+
+def _load_samples(load, t):
+    """The applied load (N+1, n) at the times ``t``, or None without a load."""
+    if load is None:
+        return None
+    if isinstance(load, np.ndarray):
+        return np.asarray(load, dtype=float)[: len(t)]
+    if callable(getattr(load, "sample", None)):
+        return np.asarray(load.sample(t), dtype=float)
+    if callable(load):
+        return np.array([load(tk) for tk in t], dtype=float)
+    return None
+
+
+def _structure_results_3d(structure, model, cases, *, load, units, rule, point, storeys=None):
+    """The results of a 3-D frame for :func:`_with_results`: the base forces of
+    :func:`unilateral.structure.forces3d.base_forces` (``base_Fx`` ... ``base_Mz``, time) per case
+    about ``point`` (default: the centre of the base) and their peaks."""
+    from ..structure import forces3d as F3
+    from .results import _extreme
+
+    units = units or {}
+    force, length = units.get("force", ""), units.get("length", "")
+    main = max(cases.values(), key=lambda sol: len(sol.t))
+    samples = _load_samples(load, main.t)
+    point = F3.base_point(structure) if point is None else tuple(float(x) for x in point)
+    words = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
+             "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
+    variables, peaks = {}, {}
+    for case, sol in cases.items():
+        if sol.u is None or len(sol.t) < 2:
+            continue
+        h = F3.histories(structure, sol, rule, load0=None if samples is None else samples[0])
+        base = F3.base_forces(structure, F3.reactions(structure, h, sol), point)
+        for key, values in base.items():
+            unit = force if key.startswith("F") else f"{force} {length}".strip()
+            entry = variables.setdefault(f"base_{key}", (("time",), {}, {
+                "long_name": f"{words[key]}, the resultant of the ground's forces on the structure"
+                             + ("" if key.startswith("F") else " about base_point"), **({"units": unit} if unit else {})}))
+            entry[1][case] = np.asarray(values, dtype=float)
+        peaks[case] = {"base_forces": {key: _extreme(sol.t, values) for key, values in base.items()}}
+    return {"variables": variables, "coords": {}, "static": {}, "peaks": peaks, "attrs": {"base_point": list(point)}}
+
+
 def _structure_results(structure, model, cases, *, load, units, rule, point, storeys):
     main = max(cases.values(), key=lambda sol: len(sol.t))        # the longest time axis
-    samples = None
-    if load is not None:
-        t = main.t
-        if isinstance(load, np.ndarray):
-            samples = np.asarray(load, dtype=float)[: len(t)]
-        elif callable(getattr(load, "sample", None)):
-            samples = np.asarray(load.sample(t), dtype=float)
-        elif callable(load):
-            samples = np.array([load(tk) for tk in t], dtype=float)
+    samples = _load_samples(load, main.t)
     return structure_results(structure, model, cases, rule=rule, load_samples=samples,
                              ground_motions=ground_motions_of(structure, load), point=point,
                              storey_pairs=storeys, units=units)
@@ -469,6 +519,9 @@ def _save_case_tables(d, out, *, prefix, units):
     for name, unit in (("base_shear", force), ("base_vertical", force), ("overturning_moment", moment)):
         if name in d:
             columns[_head(name, unit)] = d[name].values
+    for key in ("Fx", "Fy", "Fz", "Mx", "My", "Mz"):            # a 3-D frame
+        if f"base_{key}" in d:
+            columns[_head(f"base_{key}", force if key.startswith("F") else moment)] = d[f"base_{key}"].values
     if "support_reaction" in d:
         for k, label in enumerate(d["support"].values):
             unit = moment if str(label).endswith("rz") else force
@@ -512,7 +565,7 @@ def csv_units(sol, units, ds=None) -> dict:
     force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
     out = {"time": time}
     for name in sol.dof_names or ():
-        out[name] = "rad" if str(name).endswith("rz") else length
+        out[name] = "rad" if str(name).endswith(("rx", "ry", "rz")) else length
     rotational = set()
     if ds is not None and "yield_deformation_unit" in ds:
         rotational = {str(e) for e, unit in zip(ds["yield_element"].values, ds["yield_deformation_unit"].values)
@@ -628,6 +681,14 @@ def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
             for label, values in p.get("frame_periods", {}).items():
                 lines.append(f"  {label}, alone (the gaps open): {', '.join(f'{T:.4g}' for T in values)}")
         head = f"{(labels or {}).get(case, case)}:"
+        if "base_forces" in p:                                  # a 3-D frame
+            parts = []
+            for key, b in p["base_forces"].items():
+                peak = b["max"] if abs(b["max"]) >= abs(b["min"]) else b["min"]
+                unit = force if key.startswith("F") else f"{force} {length}"
+                parts.append(f"{key} {peak:.4g} {unit}".rstrip())
+            lines.append(f"{head} peak base forces {', '.join(parts)}")
+            continue
         shear = p["base_shear"]
         peak = shear["max"] if abs(shear["max"]) >= abs(shear["min"]) else shear["min"]
         t_peak = shear["t_max"] if peak == shear["max"] else shear["t_min"]
@@ -731,6 +792,7 @@ def _with_unit(label, units, dof):
 
 def _with_node_displacements(ds, cases, structure, units):
     nodes = list(structure.dofs.nodes)
+    names = list(getattr(structure.dofs, "dof_names", COMPONENTS))
     data = np.stack([structure.dofs.nodal(sol.u) for sol in cases.values()])
     if "case" not in ds.dims:
         data = data[0]
@@ -739,5 +801,7 @@ def _with_node_displacements(ds, cases, structure, units):
         dims = ("case", "time", "node", "component")
     var = Variable(dims, data, {"long_name": "displacements of every node (supported and rigidly linked included)"})
     if units and "length" in units:
-        var.attrs["units"] = f"{units['length']} (ux, uy); rad (rz)"
-    return ds.assign_coords(node=[str(n) for n in nodes], component=list(COMPONENTS)).assign(node_displacement=var)
+        translations = ", ".join(name for name in names if name.startswith("u"))
+        rotations = ", ".join(name for name in names if name.startswith("r"))
+        var.attrs["units"] = f"{units['length']} ({translations}); rad ({rotations})"
+    return ds.assign_coords(node=[str(n) for n in nodes], component=names).assign(node_displacement=var)

@@ -233,7 +233,7 @@ def model_file_drawing(path) -> ModelDrawing:
     Raises
     ------
     unilateral.modelfile.ModelFileError
-        The file is invalid, or is a matrix-level model (no frame to draw).
+        The file is invalid, is a matrix-level model (no frame to draw) or a 3-D frame.
     """
     from ..analysis.modes import modes
     from ..modelfile import ModelFileError, load_model_file
@@ -242,6 +242,9 @@ def model_file_drawing(path) -> ModelDrawing:
     if spec.structure is None:
         raise ModelFileError(path, ["[matrices]: a matrix-level model has no frame to draw (the model figure "
                                     "needs nodes and elements)"])
+    if spec.document.DIMENSIONS == 3:
+        raise ModelFileError(path, ["frame.dimensions = 3: the model figure is drawn for 2-D frames only (not yet "
+                                    "for a 3-D frame)"])
     model = spec.model
     if spec.structure.foundation is not None:       # the footings on the soil's static springs
         try:

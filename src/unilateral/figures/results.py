@@ -288,12 +288,14 @@ def _constraint_data(ds):
 
 @_styled
 def constraints_figure(ds):
-    """Opening and compression of each unilateral element, or a map for many of them."""
+    """Opening and compression of each unilateral element, or a map along x for many of them (the
+    largest openings of a 3-D frame, whose elements a position along x does not tell apart)."""
     d = _constraint_data(ds)
     if d is None:
         return None
     m = d.sizes["constraint"]
-    if m > MAX_PANELS and "constraint_x" in d.coords:
+    three_d = "component" in ds.coords and "uz" in [str(c) for c in ds["component"].values]
+    if m > MAX_PANELS and "constraint_x" in d.coords and not three_d:
         return _contact_map(d)
     return _contact_panels(d)
 

@@ -1,7 +1,9 @@
 """Model files: a structure, its loads and the analysis settings in one TOML file.
 
 A model file describes either a 2-D frame (nodes, supports, rigid links, elements, unilateral
-elements, masses, damping) or a matrix-level model read from Matrix Market files, together with
+elements, masses, damping), a 3-D frame (``[frame] dimensions = 3``: the same sections read by
+the rules of :class:`~unilateral.structure.Frame3D`, and rigid diaphragms) or a matrix-level model
+read from Matrix Market files, together with
 its units, loads (gravity, nodal loads with time functions, ground-motion records) and analysis
 settings. The format is documented in ``docs/model-file.md``; its JSON schema, from
 :func:`model_file_schema`, in ``docs/model-file.schema.json``.

@@ -16,19 +16,19 @@ from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
-from pydantic import ValidationError
 
 from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Rectangular, Tabulated,
                      Triangular, length_factor, read_record)
 from ..loads.site_response import free_field
 from ..model import Model
-from ..structure import Frame2D, Structure
-from .checks import check_document, consistent_mass_factor, read_document
+from ..structure import Frame2D, Frame3D, Structure
+from .checks import check_document, consistent_mass_factor, is_3d, read_document, validate_document
 from .checks import read_toml  # noqa: F401 (the reader of study files too)
-from .errors import ModelFileError, Problems, key_path, translate
+from .errors import ModelFileError, Problems, key_path
 from .matrices import dof_index, read_matrix_model, read_vector
-from .schema import (TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap, HalfSinePulse, Hinge, ModelFile,
-                     RampLoad, RectangularPulse, Slider, Soil, Spring, TableLoad, TriangularPulse, YieldLink)
+from .schema import (TIME_UNITS, Bar, Beam, Beam3D, Cable, ConstantLoad, Dashpot, Dashpot3D, Gap, Gap3D,
+                     HalfSinePulse, Hinge, ModelFile, RampLoad, RectangularPulse, Slider, Soil, Soil3D, Spring,
+                     Spring3D, TableLoad, TriangularPulse, YieldLink)
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,10 +90,7 @@ def build_model_spec(data: dict, source) -> ModelSpec:
     """
     source = Path(source)
     try:
-        try:
-            document = ModelFile.model_validate(data)
-        except ValidationError as exc:
-            raise Problems(translate(exc, data, ModelFile)) from None
+        document = validate_document(data)
     except Problems as exc:
         raise ModelFileError(source, exc.problems) from None
     return _build_spec(document, source, source)
@@ -143,6 +140,8 @@ def _site_profile(document: ModelFile) -> tuple[list[dict], dict | None]:
 
 # ---------------------------------------------------------------------- the frame
 def _build_structure(document: ModelFile) -> Structure:
+    if is_3d(document):
+        return _build_structure_3d(document)
     fr = Frame2D()
     for k, node in enumerate(document.nodes):
         with _at(key_path(("nodes", k))):
@@ -162,16 +161,32 @@ def _build_structure(document: ModelFile) -> Structure:
         with _at(key_path(("masses", k))):
             fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass)
     for at, f in document.footings:
-        soil = {key: value for key, value in f.soil.model_dump().items() if value is not None}
-        if soil.get("rho") is not None:
-            soil["rho"] = soil["rho"] * to_mass
-        if soil.get("layers") is not None:
-            soil["layers"] = [{key: value * to_mass if key == "rho" else value for key, value in layer.items()
-                               if value is not None} for layer in soil["layers"]]
         with _at(key_path(at)):
-            fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=soil, patches=f.patches,
-                          nodes=f.nodes, horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
-                          J=f.J * to_mass, mu=f.mu)
+            fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=_footing_soil(f, to_mass),
+                          patches=f.patches, nodes=f.nodes, horizontal=f.horizontal, gap=f.gap,
+                          mass=f.mass * to_mass, J=f.J * to_mass, mu=f.mu)
+    _damping(fr, document)
+    if document.analysis.p_delta:                   # with [loads.gravity]: checks._analysis_problems
+        gravity = document.loads.gravity
+        with _at("analysis.p_delta"):
+            fr.p_delta(g=_gravity_value(document), direction=gravity.direction)
+    with _at("structure"):
+        return fr.build()
+
+
+def _footing_soil(f, to_mass: float) -> dict:
+    """The soil of a footing as a dict for ``Frame*.foundation``, densities in the consistent mass unit."""
+    soil = {key: value for key, value in f.soil.model_dump().items() if value is not None}
+    if soil.get("rho") is not None:
+        soil["rho"] = soil["rho"] * to_mass
+    if soil.get("layers") is not None:
+        soil["layers"] = [{key: value * to_mass if key == "rho" else value for key, value in layer.items()
+                           if value is not None} for layer in soil["layers"]]
+    return soil
+
+
+def _damping(fr, document: ModelFile) -> None:
+    """``[damping]`` of the frame being built."""
     rayleigh = document.damping.rayleigh if document.damping is not None else None
     if rayleigh is not None:
         with _at("damping.rayleigh"):
@@ -183,12 +198,62 @@ def _build_structure(document: ModelFile) -> Structure:
     if modal is not None:
         with _at("damping.modal"):
             fr.modal_damping(modal.zeta, modal.modes)
-    if document.analysis.p_delta:                   # with [loads.gravity]: checks._analysis_problems
-        gravity = document.loads.gravity
-        with _at("analysis.p_delta"):
-            fr.p_delta(g=_gravity_value(document), direction=gravity.direction)
+
+
+def _build_structure_3d(document: ModelFile) -> Structure:
+    """The :class:`~unilateral.structure.Frame3D` of a ``[frame] dimensions = 3`` document."""
+    fr = Frame3D()
+    for k, node in enumerate(document.nodes):
+        with _at(key_path(("nodes", k))):
+            fr.node(node.id, node.x, node.y, node.z)
+    for k, support in enumerate(document.supports):
+        with _at(key_path(("supports", k))):
+            fr.support(support.node, **{dof: getattr(support, dof) for dof in ("ux", "uy", "uz", "rx", "ry", "rz")})
+    for k, link in enumerate(document.rigid_links):
+        with _at(key_path(("rigid_links", k))):
+            fr.rigid_link(link.master, link.slave)
+    for k, diaphragm in enumerate(document.rigid_diaphragms):
+        with _at(key_path(("rigid_diaphragms", k))):
+            fr.rigid_diaphragm(diaphragm.master, diaphragm.slaves)
+    to_mass = consistent_mass_factor(document.units)
+    for section in ("elements", "unilateral"):
+        for k, element in enumerate(getattr(document, section)):
+            with _at(key_path((section, k))):
+                _add_element_3d(fr, element, to_mass)
+    for k, mass in enumerate(document.masses):
+        with _at(key_path(("masses", k))):
+            fr.mass(mass.node, mass.m * to_mass, Jx=mass.Jx * to_mass, Jy=mass.Jy * to_mass, Jz=mass.Jz * to_mass)
+    for at, f in document.footings:
+        with _at(key_path(at)):
+            fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=_footing_soil(f, to_mass),
+                          patches=(3, 3) if f.patches is None else f.patches if isinstance(f.patches, int)
+                          else tuple(f.patches), horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
+                          Jx=f.Jx * to_mass, Jy=f.Jy * to_mass)
+    _damping(fr, document)
     with _at("structure"):
         return fr.build()
+
+
+def _add_element_3d(fr: Frame3D, e, to_mass=1.0) -> None:
+    facets = {} if getattr(e, "facets", None) is None else {"facets": e.facets}
+    match e:
+        case Beam3D():
+            fr.beam(e.name, e.node_i, e.node_j, E=e.E, A=e.A, Iy=e.Iy, Iz=e.Iz, G=e.G, J=e.J, vecxz=e.vecxz,
+                    axial_strain=e.axial_strain, rho=None if e.rho is None else e.rho * to_mass)
+        case Bar():
+            fr.bar(e.name, e.node_i, e.node_j, e.E, e.A, axial_strain=e.axial_strain)
+        case Spring3D():
+            fr.spring(e.name, e.node_i, e.k, j=e.node_j, direction=e.direction)
+        case Dashpot3D():
+            fr.dashpot(e.name, e.node_i, e.c, j=e.node_j, direction=e.direction)
+        case Soil3D():
+            fr.soil(e.name, e.node, e.k, c=e.c, direction=e.direction, gap=e.gap, capacity=e.capacity, mu=e.mu,
+                    kt=e.kt, ct=e.ct, **facets)
+        case Gap3D():
+            fr.gap(e.name, e.node_i, e.node_j, e.k, gap=e.gap, c=e.c, direction=e.direction, mu=e.mu, kt=e.kt,
+                   ct=e.ct, **facets)
+        case Cable():
+            fr.cable(e.name, e.node_i, e.node_j, e.E, e.A, slack=e.slack, capacity=e.capacity)
 
 
 def _gravity_value(document: ModelFile) -> float:
@@ -239,11 +304,14 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
     for k, load in enumerate(document.loads.distributed):
         parts = ("loads", "distributed", k)
         with _at(key_path((*parts, "beam"))):
-            vector = structure.distributed_load(load.beam, wx=load.wx, wy=load.wy)
+            w = {key: getattr(load, key) for key in ("wx", "wy", "wz") if hasattr(load, key)}
+            vector = structure.distributed_load(load.beam, **w)
         terms.append((vector, _time_function(load.time_function, (*parts, "time_function"), folder)))
     for k, motion in enumerate(document.loads.ground_motion):
         parts = ("loads", "ground_motion", k)
-        if structure is not None:
+        if structure is not None and is_3d(document):
+            r = structure.influence(motion.direction)
+        elif structure is not None:
             r = np.array([1.0 if dof == motion.direction else 0.0 for _, dof in structure.dofs.free])
         else:
             r = read_vector((*parts, "influence"), motion.influence, folder, model.n)
@@ -253,7 +321,7 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
             record = read_record(folder / motion.file, **options)
         acceleration = record.acceleration
         if motion.at != "surface":              # the free-field surface motion of [site]
-            wave = motion.wave or ("P" if motion.direction == "uy" else "S")
+            wave = motion.wave or ("P" if motion.direction == ("uz" if is_3d(document) else "uy") else "S")
             layers, base = _site_profile(document)
             with _at(key_path((*parts, "at"))):
                 acceleration = free_field(acceleration, record.dt / seconds, layers, base, at=motion.at,
@@ -288,7 +356,7 @@ def _frame_nodal_vector(structure: Structure, loads, indices) -> np.ndarray:
     movable = np.diff(sp.csr_matrix(dofs.T).indptr) > 0
     rows, values, owners = [], [], []
     for k in indices:
-        for dof in ("ux", "uy", "rz"):
+        for dof in dofs.dof_names:
             value = getattr(loads[k], dof)
             if value:
                 rows.append(dofs.full_index(loads[k].node, dof))
@@ -298,7 +366,7 @@ def _frame_nodal_vector(structure: Structure, loads, indices) -> np.ndarray:
     if stuck:
         load = loads[stuck[0]]
         with _at(key_path(("loads", "nodal", stuck[0]))):
-            structure.nodal_load(load.node, ux=load.ux or 0.0, uy=load.uy or 0.0, rz=load.rz or 0.0)
+            structure.nodal_load(load.node, **{dof: getattr(load, dof) or 0.0 for dof in dofs.dof_names})
     return dofs.gather(np.bincount(np.asarray(rows, dtype=int), weights=values, minlength=dofs.T.shape[0]))
 
 
@@ -326,6 +394,6 @@ def _figure(document: ModelFile) -> dict | None:
     figure = document.output.figure
     if figure is None:
         return None
-    unit = "rad" if figure.dof == "rz" else document.units.length
+    unit = "rad" if figure.dof.startswith("r") else document.units.length
     label = figure.label or f"{figure.dof} of node {figure.node} ({unit})"
     return {"node": figure.node, "dof": figure.dof, "label": label}

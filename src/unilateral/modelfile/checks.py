@@ -28,8 +28,8 @@ from pydantic.fields import FieldInfo
 from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
 from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
                      translate, value_problem)
-from .schema import (FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Gap, Hinge, ModelFile, Node, Soil,
-                     YieldLink, iter_fields)
+from .schema import (DOFS_3D, FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Beam3D, Gap, Gap3D, Hinge,
+                     ModelFile, Node, Node3D, Soil, Soil3D, YieldLink, iter_fields, model_class)
 
 _TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
 
@@ -134,11 +134,27 @@ def _path_of(node, value, parts=()) -> tuple | None:
 
 def read_document(source: Path) -> ModelFile:
     """The validated document of the model file ``source``; every problem of the file raises :class:`Problems`."""
-    data = read_toml(source)
+    return validate_document(read_toml(source))
+
+
+def validate_document(data: dict) -> ModelFile:
+    """The validated document of the parsed model file ``data``: a :class:`~.schema.ModelFile3D` for
+    ``[frame] dimensions = 3``, else a :class:`ModelFile`; its problems raise :class:`Problems`."""
+    root = model_class(data)
     try:
-        return ModelFile.model_validate(data)
+        return root.model_validate(data)
     except ValidationError as exc:
-        raise Problems(translate(exc, data, ModelFile)) from None
+        raise Problems(translate(exc, data, root)) from None
+
+
+def is_3d(document: ModelFile) -> bool:
+    """Whether ``document`` describes a 3-D frame (``[frame] dimensions = 3``)."""
+    return document.DIMENSIONS == 3
+
+
+def frame_dofs(document: ModelFile) -> tuple[str, ...]:
+    """The nodal DOFs of the document's frame."""
+    return DOFS_3D if is_3d(document) else ("ux", "uy", "rz")
 
 
 # ---------------------------------------------------------------------- cross checks
@@ -151,7 +167,7 @@ def check_document(document: ModelFile, folder: Path) -> None:
                 + _reference_problems(document, folder) + _record_problems(document)
                 + _foundation_problems(document) + _unilateral_problems(document)
                 + _link_problems(document) + _beam_load_problems(document) + _analysis_problems(document)
-                + _output_problems(document))
+                + _output_problems(document) + _diaphragm_problems(document))
     if problems:
         raise Problems(problems)
 
@@ -160,20 +176,21 @@ def _mode_problems(document: ModelFile) -> list[str]:
     """A frame and a matrix-level model take different sections and load keys."""
     loads = document.loads
     if document.matrices is None:
-        problems = [] if document.nodes else [missing_section(("nodes",), Node)]
+        problems = [] if document.nodes else [missing_section(("nodes",), Node3D if is_3d(document) else Node)]
         problems += [value_problem(("loads", "nodal", k, "dof"), load.dof,
                                    "DOF loads are for matrix-level models (give node with ux, uy, rz)")
-                     for k, load in enumerate(loads.nodal) if load.dof is not None]
+                     for k, load in enumerate(loads.nodal) if getattr(load, "dof", None) is not None]
         for k, motion in enumerate(loads.ground_motion):
             if motion.direction is None:
                 problems.append(f"{key_path(('loads', 'ground_motion', k, 'direction'))}: missing key "
-                                '(a frame needs direction = "ux" or "uy")')
+                                + ('(a 3-D frame needs direction = "ux", "uy" or "uz")' if is_3d(document)
+                                   else '(a frame needs direction = "ux" or "uy")'))
             if motion.influence is not None:
                 problems.append(value_problem(("loads", "ground_motion", k, "influence"), motion.influence,
                                               "only for matrix-level models (a frame uses direction)"))
         return problems
     needs_frame = "not allowed with [matrices] (a matrix-level model has no frame)"
-    problems = [f"{name}: {needs_frame}" for name in FRAME_SECTIONS if getattr(document, name)]
+    problems = [f"{name}: {needs_frame}" for name in FRAME_SECTIONS if getattr(document, name, None)]
     if loads.gravity is not None:
         problems.append("loads.gravity: needs a frame (give the weight of a matrix-level model as a "
                         "constant [[loads.nodal]] load)")
@@ -315,11 +332,11 @@ def _site_problems(document: ModelFile) -> list[str]:
 def _unilateral_problems(document: ModelFile) -> list[str]:
     """Keys of ``[[unilateral]]`` entries that go together: friction, yield forces, hinges on beams."""
     problems = []
-    beams = [e.name for e in document.elements if isinstance(e, Beam)]
+    beams = [e.name for e in document.elements if isinstance(e, Beam | Beam3D)]
     hinged = {}
     for k, e in enumerate(document.unilateral):
         at = ("unilateral", k)
-        if isinstance(e, Soil | Gap):
+        if isinstance(e, Soil | Gap | Soil3D | Gap3D):
             problems += _friction_problems(at, e)
         elif isinstance(e, YieldLink):
             problems += _yield_force_problems(at, e)
@@ -337,8 +354,9 @@ def _unilateral_problems(document: ModelFile) -> list[str]:
 def _friction_problems(at, e) -> list[str]:
     """A contact with friction needs ``kt``; ``kt`` and ``ct`` need ``mu``."""
     if e.mu is None:
+        keys = ("kt", "ct", "facets") if hasattr(e, "facets") else ("kt", "ct")
         return [value_problem((*at, key), getattr(e, key), "a friction parameter: give the friction coefficient "
-                              "mu too, or remove it") for key in ("kt", "ct") if getattr(e, key)]
+                              "mu too, or remove it") for key in keys if getattr(e, key)]
     if e.kt is None:
         return [f"{key_path((*at, 'kt'))}: missing key (friction, mu = {toml_value(e.mu)}, needs the stick "
                 "stiffness kt [F/L] > 0)"]
@@ -370,6 +388,8 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
     """The problems of one footing ``f`` at key path ``at``."""
     problems = []
     ids = [node.id for node in document.nodes]
+    if is_3d(document):
+        return problems + _soil_problems(document, at, f, _patch_count_3d(f.patches))
     for k, node in enumerate(f.nodes or ()):
         if node not in set(ids):
             problems.append(value_problem((*at, "nodes", k), node, f"no node {toml_value(node)} (nodes are "
@@ -391,8 +411,20 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
     if f.horizontal != "soil" and f.mu is not None:
         problems.append(value_problem((*at, "mu"), f.mu, f'only for horizontal = "soil" (now '
                                       f'{toml_value(f.horizontal)}): remove it, or let the footing slide'))
+    return problems + _soil_problems(document, at, f, len(f.nodes) if f.nodes is not None else (f.patches or 3))
+
+
+def _patch_count_3d(patches) -> int:
+    """The number of patches of a 3-D footing's ``patches`` (``[nx, ny]``, one integer for both, default 3 x 3)."""
+    if patches is None:
+        return 9
+    return patches * patches if isinstance(patches, int) else patches[0] * patches[1]
+
+
+def _soil_problems(document: ModelFile, at: tuple, f, m: int) -> list[str]:
+    """The keys of the soil of the footing ``f`` (at ``at``, ``m`` patches) that go together."""
+    problems = []
     soil, where = f.soil, (*at, "soil")
-    m = len(f.nodes) if f.nodes is not None else (f.patches or 3)
     if soil.model != "layered" and (soil.layers is not None or soil.base != "halfspace"):
         problems.append(value_problem((*where, "layers" if soil.layers is not None else "base"),
                                       soil.layers if soil.layers is not None else soil.base,
@@ -497,7 +529,7 @@ def _link_problems(document: ModelFile) -> list[str]:
     supported = {}                                      # node -> (its restrained DOFs, the first support)
     for k, support in enumerate(document.supports):
         dofs, first = supported.get(support.node, (set(), ("supports", k)))
-        supported[support.node] = (dofs | {dof for dof in ("ux", "uy", "rz") if getattr(support, dof)}, first)
+        supported[support.node] = (dofs | {dof for dof in frame_dofs(document) if getattr(support, dof)}, first)
     problems, master_of, ids = [], {}, {node.id for node in document.nodes}
     for k, link in enumerate(document.rigid_links):
         at = ("rigid_links", k, "slave")
@@ -511,7 +543,7 @@ def _link_problems(document: ModelFile) -> list[str]:
         if link.slave in supported:                     # in the words of Frame2D.rigid_link
             dofs, first = supported[link.slave]
             problems.append(f"{key_path(at[:2])}: rigid_link({link.master!r}, {link.slave!r}): slave node "
-                            f"{link.slave!r} is supported ({', '.join(d for d in ('ux', 'uy', 'rz') if d in dofs)}) "
+                            f"{link.slave!r} is supported ({', '.join(d for d in frame_dofs(document) if d in dofs)}) "
                             f"by {key_path(first)}; support the master node instead")
         root = link.master
         while root in master_of and root != link.slave:
@@ -527,6 +559,9 @@ def _link_problems(document: ModelFile) -> list[str]:
 def _output_problems(document: ModelFile) -> list[str]:
     """``[output] floor_spectra``: nodes of the frame, each once."""
     spectra = document.output.floor_spectra
+    if is_3d(document) and spectra:
+        return [value_problem(("output", "floor_spectra"), spectra, "floor response spectra are for 2-D frames "
+                              "only (not yet for [frame] dimensions = 3): remove it")]
     if document.matrices is not None:
         return ["output.floor_spectra: needs a frame (a matrix-level model has no nodes)"] if spectra else []
     ids = [node.id for node in document.nodes]
@@ -545,7 +580,7 @@ def _beam_load_problems(document: ModelFile) -> list[str]:
     """``[[loads.distributed]]`` on a beam of ``[[elements]]``."""
     if document.matrices is not None:
         return []
-    beams = [e.name for e in document.elements if isinstance(e, Beam)]
+    beams = [e.name for e in document.elements if isinstance(e, Beam | Beam3D)]
     return [value_problem(("loads", "distributed", k, "beam"), load.beam, f"no beam {toml_value(load.beam)} in "
                           f"[[elements]] (beams are {compact_ids(beams)})") + did_you_mean(load.beam, beams)
             for k, load in enumerate(document.loads.distributed) if load.beam not in beams]
@@ -553,10 +588,28 @@ def _beam_load_problems(document: ModelFile) -> list[str]:
 
 def _analysis_problems(document: ModelFile) -> list[str]:
     """``[analysis]`` keys that need other sections."""
+    if is_3d(document) and document.analysis.p_delta:
+        return ["analysis.p_delta = true: P-Delta is for 2-D frames only (not yet for [frame] dimensions = 3): "
+                "remove it or set it false"]
     if document.matrices is None and document.analysis.p_delta and document.loads.gravity is None:
         return ["analysis.p_delta = true: needs [loads.gravity] (the axial forces of P-Delta are those of the "
                 "gravity load)"]
     return []
+
+
+def _diaphragm_problems(document: ModelFile) -> list[str]:
+    """``[[rigid_diaphragms]]`` of a 3-D frame: slaves that are nodes, other than the master."""
+    ids = [node.id for node in document.nodes]
+    known, problems = set(ids), []
+    for k, diaphragm in enumerate(getattr(document, "rigid_diaphragms", ())):
+        for j, slave in enumerate(diaphragm.slaves):
+            at = ("rigid_diaphragms", k, "slaves", j)
+            if slave not in known:
+                problems.append(value_problem(at, slave, f"no node {toml_value(slave)} (nodes are {compact_ids(ids)})")
+                                + did_you_mean(slave, ids))
+            elif slave == diaphragm.master:
+                problems.append(value_problem(at, slave, "the master node itself: give the other nodes of the floor"))
+    return problems
 
 
 def consistent_mass_factor(units) -> float:

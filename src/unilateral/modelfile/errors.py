@@ -210,7 +210,7 @@ def _message(error: dict, site: _Site, root: type[BaseModel]) -> str:
     if kind == "missing":
         return _missing(site)
     if kind in ("union_tag_invalid", "union_tag_not_found"):
-        return _bad_tag(site, error)
+        return _bad_tag(site, error, root)
     if kind == "literal_error":
         valid = [str(v) for v in get_args(_unwrap(site.annotation)[0])]
         title = site.field.title if site.field is not None and site.field.title else "value"
@@ -234,6 +234,12 @@ def _unknown_key(site: _Site, root: type[BaseModel]) -> str:
         return (f"{path}: unknown key ({key} is a top-level section, but in TOML a key after a table header "
                 f"belongs to that table ({table}); move {key} = ... above the first table header, "
                 f"or write [{key}] / [[{key}]])")
+    from .schema import dimension_hint
+
+    other = None if site.parent is None else dimension_hint(site.parent, key)
+    if other is not None:
+        shown = "" if site.value is _ABSENT or isinstance(site.value, dict | list) else f" = {toml_value(site.value)}"
+        return f"{path}{shown}: {other}"
     what = "section" if len(site.parts) == 1 else "key"
     typo = _typo_of(site)
     hint = "" if typo is None else f"did you mean {toml_value(typo)}? "
@@ -260,7 +266,7 @@ def _missing(site: _Site) -> str:
     return f"{key_path(site.parts)}: missing key (required keys: {', '.join(required)})"
 
 
-def _bad_tag(site: _Site, error: dict) -> str:
+def _bad_tag(site: _Site, error: dict, root=None) -> str:
     annotation, infos = _unwrap(site.annotation)
     valid = sorted(_union_members(annotation))
     titles = [info.title for info in infos] + [site.field.title if site.field is not None else None]
@@ -270,6 +276,11 @@ def _bad_tag(site: _Site, error: dict) -> str:
         return f"{path}: missing key (valid {title}s: {', '.join(valid)})"
     tag = error["ctx"]["tag"]
     tag = site.value.get("type", tag) if isinstance(site.value, dict) else tag
+    from .schema import TWO_D_ONLY_TYPES
+
+    if getattr(root, "DIMENSIONS", 2) == 3 and tag in TWO_D_ONLY_TYPES:
+        return (f"{path} = {toml_value(tag)}: {TWO_D_ONLY_TYPES[tag]} are for 2-D frames only (this file declares "
+                f"[frame] dimensions = 3; valid {title}s: {', '.join(valid)})")
     return f"{path} = {toml_value(tag)}: unknown {title} (valid: {', '.join(valid)})" + did_you_mean(tag, valid)
 
 

@@ -5,6 +5,10 @@ rejects ``inf`` and ``nan``. Numbers are in the units declared in ``[units]``; m
 ``force time^2 / length``. Cross references (nodes that exist, unique names, files that exist)
 are checked after validation, in :mod:`unilateral.modelfile.checks`.
 
+A 3-D frame (``[frame] dimensions = 3``) is validated against :class:`ModelFile3D`, whose tables
+of the frame are those of :class:`~unilateral.structure.Frame3D` (:func:`model_class` chooses);
+a key of the other dimension is reported as such (:func:`dimension_hint`).
+
 Fields that name a node carry the marker :data:`NODE_REF` in their metadata, fields that name a
 file :data:`FILE_REF`; :func:`iter_fields` walks a validated document for such checks.
 """
@@ -699,10 +703,20 @@ class Foundation(Table):
     soil: FoundationSoil
 
 
+class FrameKind(Table):
+    """[frame]: the kind of frame the file describes."""
+
+    dimensions: Literal[2, 3] = Field(2, title="number of dimensions", description=(
+        "2: a plane frame in x, y (DOFs ux, uy, rz; the default); 3: a space frame in x, y, z (DOFs ux, uy, "
+        "uz, rx, ry, rz; z up): see \"3-D frames\" in docs/model-file.md."))
+
+
 class ModelFile(Table):
     """A unilateral model file: a 2-D frame (nodes, elements, ...) or matrices, loads, analysis."""
 
+    DIMENSIONS: ClassVar[int] = 2
     units: Units
+    frame: FrameKind | None = None
     nodes: list[Node] = []
     supports: list[Support] = []
     rigid_links: list[RigidLink] = []
@@ -744,8 +758,305 @@ class ModelFile(Table):
         return self
 
 
-FRAME_SECTIONS = ("nodes", "supports", "rigid_links", "elements", "unilateral", "masses", "damping",
-                  "foundation", "foundations")
+FRAME_SECTIONS = ("frame", "nodes", "supports", "rigid_links", "rigid_diaphragms", "elements", "unilateral", "masses",
+                  "damping", "foundation", "foundations")
+
+
+# ---------------------------------------------------------------------- 3-D frames ([frame] dimensions = 3)
+DOFS_3D = ("ux", "uy", "uz", "rx", "ry", "rz")
+"""The nodal DOFs of a 3-D frame (:class:`~unilateral.structure.Frame3D`)."""
+TWO_D_ONLY_TYPES = {"yield": "yield links", "hinge": "plastic hinges", "slider": "sliders"}
+"""Unilateral element types of 2-D frames only."""
+
+
+def _vector3(value):
+    ok = (isinstance(value, list) and len(value) == 3
+          and all(isinstance(x, int | float) and not isinstance(x, bool) for x in value))
+    if not ok or not all(abs(x) < float("inf") for x in value) or not any(value):
+        raise PydanticCustomError("vector", "expected a nonzero vector [dx, dy, dz] of three numbers")
+    return tuple(float(x) for x in value)
+
+
+def _direction3(value):
+    if isinstance(value, str):
+        if value not in DOFS_3D:
+            raise PydanticCustomError("direction", 'expected "ux", "uy", "uz", "rx", "ry", "rz" or a vector '
+                                      "[dx, dy, dz]")
+        return value
+    return _vector3(value)
+
+
+Vector3 = Annotated[tuple[float, float, float], PlainValidator(_vector3),
+                    WithJsonSchema({"type": "array", "items": _NUMBER_SCHEMA, "minItems": 3, "maxItems": 3})]
+Direction3 = Annotated[str | tuple[float, float, float], PlainValidator(_direction3), WithJsonSchema({"anyOf": [
+    {"enum": list(DOFS_3D)}, {"type": "array", "items": _NUMBER_SCHEMA, "minItems": 3, "maxItems": 3}]})]
+
+
+class Node3D(Table):
+    """[[nodes]] of a 3-D frame: a node and its coordinates [length] (z up)."""
+
+    EXAMPLE: ClassVar[str] = "[[nodes]] id = 1, x = 0.0, y = 0.0, z = 0.0"
+    id: NodeId
+    x: float
+    y: float
+    z: float
+
+
+class Support3D(Table):
+    """[[supports]] of a 3-D frame: restrained DOFs of a node (true = restrained; default: a pin)."""
+
+    node: NodeRef
+    ux: bool = True
+    uy: bool = True
+    uz: bool = True
+    rx: bool = False
+    ry: bool = False
+    rz: bool = False
+
+    @model_validator(mode="after")
+    def _restrains_something(self):
+        if not any(getattr(self, dof) for dof in DOFS_3D):
+            raise PydanticCustomError("support", "ux, uy, uz, rx, ry and rz are all false: the support restrains "
+                                      "nothing (set one of them true, or remove the support)")
+        return self
+
+
+class RigidDiaphragm(Table):
+    """[[rigid_diaphragms]]: a rigid floor in the plane z = z of master: the ux, uy, rz of every slave
+    follow the master's in-plane rigid motion (the slaves keep uz, rx, ry)."""
+
+    master: NodeRef
+    slaves: list[NodeId] = Field(min_length=1, description="The other nodes of the floor, at the master's z.")
+
+
+class Mass3D(Table):
+    """[[masses]] of a 3-D frame: lumped mass m on ux, uy, uz [mass], rotary inertias Jx, Jy, Jz on rx,
+    ry, rz [mass length^2]."""
+
+    node: NodeRef
+    m: NonNegative
+    Jx: NonNegative = 0.0
+    Jy: NonNegative = 0.0
+    Jz: NonNegative = 0.0
+
+
+class Beam3D(_TwoNodes):
+    """Elastic 3-D beam-column (Euler-Bernoulli bending about the local y' and z', St Venant torsion)."""
+
+    type: Literal["beam"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef
+    E: Positive = Field(description="Young's modulus [force/length^2].")
+    A: Positive = Field(description="Cross-section area [length^2].")
+    Iy: Positive = Field(description="Second moment of area about the local y' axis [length^4].")
+    Iz: Positive = Field(description="Second moment of area about the local z' axis [length^4].")
+    G: Positive = Field(description="Shear modulus [force/length^2].")
+    J: Positive = Field(description="Torsion constant [length^4].")
+    vecxz: Vector3 | None = Field(None, description=(
+        "A vector in the local x'-z' plane (fixes the section's orientation); default: global z, or global x "
+        "for a vertical member."))
+    axial_strain: float = Field(0.0, description="Imposed (e.g. thermal) axial strain.")
+    rho: NonNegative | None = Field(None, description=(
+        "Mass density: the beam's mass rho A L, half at each end node (with [loads.gravity], its self-weight)."))
+
+
+class Spring3D(_TwoNodes):
+    """Linear spring of a 3-D frame from node_i to the ground (no node_j) or to node_j."""
+
+    type: Literal["spring"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef | None = None
+    k: Positive = Field(description="Stiffness [force/length] ([force length] along rx, ry, rz).")
+    direction: Direction3 = "uz"
+
+
+class Dashpot3D(_TwoNodes):
+    """Linear dashpot of a 3-D frame, from node_i to the ground or to node_j."""
+
+    type: Literal["dashpot"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef | None = None
+    c: Positive = Field(description="Viscosity [force time/length].")
+    direction: Direction3 = "uz"
+
+
+Element3D = Annotated[Union[Beam3D, Bar, Spring3D, Dashpot3D], Field(discriminator="type", title="element type")]
+
+_FACETS = Field(None, description=(
+    "With mu: the number of facets of the friction cone (an even integer >= 4; default 4)."))
+
+
+class Soil3D(Table):
+    """Tensionless soil under a node of a 3-D frame (default direction uz)."""
+
+    type: Literal["soil"]
+    name: Name
+    node: NodeRef
+    k: Positive = Field(description="Stiffness [force/length].")
+    c: NonNegative = Field(0.0, description="Viscosity of the dashpot in parallel [force time/length].")
+    direction: Direction3 = Field("uz", description="Direction in which the node separates from the soil.")
+    gap: float = Field(0.0, description="Initial gap [length]; negative: an initial penetration.")
+    capacity: NonNegative = Field(0.0, description="Tension carried before separating [force].")
+    mu: NonNegative | None = Field(None, description="Coulomb friction coefficient (none: no friction).")
+    kt: Positive | None = Field(None, description="Stick stiffness along the soil [force/length]; required with mu.")
+    ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
+    facets: Annotated[int, Field(ge=4)] | None = _FACETS
+
+
+class Gap3D(_TwoNodes):
+    """Pounding link of a 3-D frame between node_i and node_j."""
+
+    type: Literal["gap"]
+    name: Name
+    node_i: NodeRef
+    node_j: NodeRef
+    k: Positive = Field(description="Contact stiffness [force/length].")
+    gap: float = Field(0.0, description="Clearance that must close before contact [length].")
+    c: NonNegative = Field(0.0, description="Contact viscosity [force time/length].")
+    direction: Direction3 | None = Field(None, description="Default: from node_i towards node_j.")
+    mu: NonNegative | None = Field(None, description="Coulomb friction coefficient (none: no friction).")
+    kt: Positive | None = Field(None, description="Stick stiffness across the gap [force/length]; required with mu.")
+    ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
+    facets: Annotated[int, Field(ge=4)] | None = _FACETS
+
+
+Unilateral3D = Annotated[Union[Soil3D, Gap3D, Cable], Field(discriminator="type", title="unilateral element type")]
+
+
+class Foundation3D(Table):
+    """[[foundations]] of a 3-D frame: a rigid rectangular footing centred on node, on an nx x ny grid of
+    unilateral contact patches on a soil medium."""
+
+    EXAMPLE: ClassVar[str] = ('[[foundations]] node = 2, width = 2.5, length = 2.5, patches = [3, 3], '
+                              'soil = { model = "halfspace", Vs = 200.0, nu = 0.33, rho = 2.0 }')
+    name: Name = "footing"
+    node: NodeRef = Field(description="The footing's node (its centre, at the base): uz, rx, ry.")
+    width: Positive = Field(description="Plan dimension along x [L].")
+    length: Positive = Field(description="Plan dimension along y [L].")
+    patches: Annotated[int, Field(ge=1, le=20)] | Annotated[list[Annotated[int, Field(ge=1, le=400)]], Field(
+        min_length=2, max_length=2)] | None = Field(None, description=(
+            "[nx, ny] patches along x and y (one integer: both; default [3, 3]; at most 400 in all)."))
+    horizontal: Literal["support", "none"] = Field("support", title="horizontal restraint", description=(
+        "support: ux, uy, rz of node supported; none: the frame holds the footing in plan."))
+    gap: float = Field(0.0, description="Opening at u = 0 with the soil unloaded [L]; negative: a penetration.")
+    mass: NonNegative = Field(0.0, description="The footing's own mass on ux, uy, uz of node [M].")
+    Jx: NonNegative = Field(0.0, description="Its rotary inertia on rx of node [M L^2].")
+    Jy: NonNegative = Field(0.0, description="Its rotary inertia on ry of node [M L^2].")
+    soil: FoundationSoil
+
+
+class Gravity3D(Table):
+    """[loads.gravity] of a 3-D frame: gravity on the masses, along -z by default."""
+
+    g: GravityValue = Field(description='Acceleration [length/time^2], or "standard" (9.80665 m/s^2).')
+    direction: Vector3 = (0.0, 0.0, -1.0)
+
+
+class NodalLoad3D(Table):
+    """[[loads.nodal]] of a 3-D frame: forces and moments at a node times a time function."""
+
+    node: NodeRef
+    ux: float | None = Field(None, description="Force along x [force].")
+    uy: float | None = Field(None, description="Force along y [force].")
+    uz: float | None = Field(None, description="Force along z [force].")
+    rx: float | None = Field(None, description="Moment about x, right-hand positive [force length].")
+    ry: float | None = Field(None, description="Moment about y [force length].")
+    rz: float | None = Field(None, description="Moment about z [force length].")
+    time_function: TimeFunction = ConstantLoad(type="constant")
+
+
+class DistributedLoad3D(Table):
+    """[[loads.distributed]] of a 3-D frame: a uniform load on a beam along global x, y, z, as its
+    fixed-end nodal forces and moments, times a time function."""
+
+    beam: Annotated[str, Field(min_length=1, description="Name of the beam in [[elements]].")]
+    wx: float = Field(0.0, description="Load along x [force/length].")
+    wy: float = Field(0.0, description="Load along y [force/length].")
+    wz: float = Field(0.0, description="Load along z [force/length].")
+    time_function: TimeFunction = ConstantLoad(type="constant")
+
+
+class GroundMotion3D(GroundMotion):
+    """[[loads.ground_motion]] of a 3-D frame: one component of the ground motion (give one record per
+    direction for several components)."""
+
+    direction: Literal["ux", "uy", "uz"] | None = Field(None, title="ground motion direction",
+                                                        description="The direction of the ground motion.")
+
+
+class Loads3D(Table):
+    """[loads] of a 3-D frame: gravity, nodal loads and ground motions, added up."""
+
+    gravity: Gravity3D | None = None
+    nodal: list[NodalLoad3D] = []
+    distributed: list[DistributedLoad3D] = []
+    ground_motion: list[GroundMotion3D] = []
+
+
+class Figure3D(Figure):
+    """The displacement history drawn in the main figure (a 3-D frame's DOF)."""
+
+    dof: Literal[DOFS_3D] = Field("uz", title="DOF")
+
+
+class Output3D(Output):
+    """[output] of a 3-D frame."""
+
+    figure: Figure3D | None = None
+    overturning_about: Annotated[list[float], Field(min_length=3, max_length=3)] | None = Field(None, description=(
+        "The point [x, y, z] the base moments Mx, My, Mz are taken about (default: the centre of the base)."))
+
+
+class ModelFile3D(ModelFile):
+    """A unilateral model file of a 3-D frame ([frame] dimensions = 3)."""
+
+    DIMENSIONS: ClassVar[int] = 3
+    nodes: list[Node3D] = []
+    supports: list[Support3D] = []
+    rigid_diaphragms: list[RigidDiaphragm] = []
+    elements: list[Element3D] = []
+    unilateral: list[Unilateral3D] = []
+    masses: list[Mass3D] = []
+    foundation: Foundation3D | None = None
+    foundations: list[Foundation3D] = Field([], description=(
+        "Several footings: on a half-space they share it (give each the same soil), elsewhere uncoupled."))
+    loads: Loads3D = Loads3D()
+    output: Output3D = Output3D()
+
+
+#: The table of a 2-D frame and that of a 3-D frame in the same place (both ways).
+COUNTERPARTS = {Node: Node3D, Support: Support3D, Mass: Mass3D, Beam: Beam3D, Spring: Spring3D, Dashpot: Dashpot3D,
+                Soil: Soil3D, Gap: Gap3D, Foundation: Foundation3D, Gravity: Gravity3D, NodalLoad: NodalLoad3D,
+                DistributedLoad: DistributedLoad3D, Loads: Loads3D, Figure: Figure3D, Output: Output3D,
+                ModelFile: ModelFile3D}
+COUNTERPARTS |= {three: two for two, three in COUNTERPARTS.items()}
+THREE_D_TABLES = frozenset({
+    Node3D, Support3D, Mass3D, Beam3D, Spring3D, Dashpot3D, Soil3D, Gap3D, Foundation3D, Gravity3D, NodalLoad3D,
+    DistributedLoad3D, Loads3D, Figure3D, Output3D, ModelFile3D, RigidDiaphragm, GroundMotion3D})
+
+
+def model_class(data) -> type[ModelFile]:
+    """The root table of a parsed model file: :class:`ModelFile3D` for ``[frame] dimensions = 3``, else
+    :class:`ModelFile` (which reports a bad ``[frame]``)."""
+    frame = data.get("frame") if isinstance(data, dict) else None
+    dimensions = frame.get("dimensions") if isinstance(frame, dict) else None
+    three = isinstance(dimensions, int | float) and not isinstance(dimensions, bool) and dimensions == 3
+    return ModelFile3D if three else ModelFile
+
+
+def dimension_hint(table, key: str) -> str | None:
+    """What is wrong with the unknown ``key`` of ``table`` if it is a key of the same table in the other
+    dimension (a 2-D key in a 3-D frame, or the reverse), else None."""
+    other = COUNTERPARTS.get(table)
+    if other is None or key not in other.model_fields or key in table.model_fields:
+        return None
+    valid = ", ".join(table.model_fields)
+    if table in THREE_D_TABLES:
+        return f"a key of 2-D frames only (this file declares [frame] dimensions = 3; valid keys here: {valid})"
+    return f"a key of 3-D frames only (declare [frame] dimensions = 3; valid keys of a 2-D frame here: {valid})"
 
 
 # ---------------------------------------------------------------------- helpers
@@ -771,8 +1082,13 @@ def iter_fields(table: BaseModel, parts: tuple = ()) -> Iterator[tuple[tuple, An
 
 
 def model_file_schema() -> dict:
-    """JSON schema (draft 2020-12) of the model file, a TOML document read as JSON."""
-    return {"$schema": "https://json-schema.org/draft/2020-12/schema", **ModelFile.model_json_schema()}
+    """JSON schema (draft 2020-12) of the model file, a TOML document read as JSON: a 2-D frame or
+    matrices (:class:`ModelFile`), or a 3-D frame (:class:`ModelFile3D`, ``[frame] dimensions = 3``)."""
+    from pydantic.json_schema import models_json_schema
+
+    refs, defs = models_json_schema([(ModelFile, "validation"), (ModelFile3D, "validation")])
+    return {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "unilateral model file",
+            "anyOf": [refs[(ModelFile, "validation")], refs[(ModelFile3D, "validation")]], **defs}
 
 
 def write_schema(path) -> Path:
