@@ -127,7 +127,15 @@ def test_the_run_of_a_3d_portal_writes_the_2d_base_forces(tmp_path):
     assert set(summary["results"]["unilateral"]["base_forces"]) == {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}
     header = (tmp_path / "portal_3d" / "base.csv").read_text().splitlines()[0]
     assert header == ("time [s],base_Fx [kN],base_Fy [kN],base_Fz [kN],base_Mx [kN m],base_My [kN m],"
-                      "base_Mz [kN m]")
+                      "base_Mz [kN m],drift_ratio_x:0-3 [1],drift_ratio_y:0-3 [1]")
+    # the storey's drift along x at its two corners: the largest of the 2-D drifts of the two columns
+    u = three["node_displacement"].sel(component="ux").values               # (case, time, node)
+    nodes = list(three["node"].values)
+    top = [nodes.index(n) for n in ("2", "3")]
+    bottom = [nodes.index(n) for n in ("1", "4")]
+    corners = np.abs(u[:, :, top] - u[:, :, bottom]).max(axis=2) / 3.0
+    np.testing.assert_allclose(three["drift_ratio_x"].values[:, :, 0], corners, rtol=0, atol=1e-12)
+    assert np.abs(three["drift_ratio_y"].values).max() <= 1e-12 and corners.max() > 1e-4
     assert "2.ry [rad]" in (tmp_path / "portal_3d" / "displacements.csv").read_text().splitlines()[0]
 
 
@@ -257,3 +265,11 @@ def test_the_building_model_file_runs_from_the_command_line(tmp_path):
         assert np.abs(ds[key].sel(case="unilateral").values).max() > 1.0, key
     roof = ds["node_displacement"].sel(case="unilateral", node="1003", component="rz").values
     assert np.abs(roof).max() > 0.0
+    # drift ratios per storey and direction, the largest over the plan's corners: the roof's corner
+    # (12, 12) against the floor below, along y, is one of them
+    assert list(ds["storey"].values) == ["0-3.5", "3.5-7", "7-10.5"]
+    u = ds["node_displacement"].sel(case="unilateral", component="uy")
+    corner = np.abs(u.sel(node="322").values - u.sel(node="222").values) / 3.5
+    drift_y = ds["drift_ratio_y"].sel(case="unilateral", storey="7-10.5").values
+    assert np.all(drift_y >= corner - 1e-15) and drift_y.max() > 0
+    assert "peak drift ratio" in result.output

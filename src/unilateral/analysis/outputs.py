@@ -364,8 +364,9 @@ def is_3d(structure) -> bool:
 
 #: The note in ``summary.json`` of a 3-D frame: the outputs that exist only for 2-D frames.
 NOT_IN_3D = ("3-D frame: results.nc holds the displacements of every node (ux, uy, uz, rx, ry, rz), the "
-             "constraints and the base forces Fx, Fy, Fz, Mx, My, Mz (base.csv); not written (2-D frames only): "
-             "element end forces, support and ground reactions, storey drifts, accelerations, the energy balance, "
+             "constraints, the base forces Fx, Fy, Fz, Mx, My, Mz (base.csv) and the interstorey drift ratios "
+             "along x and y (the largest over the plan's corners); not written "
+             "(2-D frames only): element end forces, support and ground reactions, accelerations, the energy balance, "
              "the modes, floor spectra and the model figure")
 
 
@@ -387,7 +388,7 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
     :func:`unilateral.structure.forces3d.base_forces` (``base_Fx`` ... ``base_Mz``, time) per case
     about ``point`` (default: the centre of the base) and their peaks."""
     from ..structure import forces3d as F3
-    from .results import _extreme
+    from .results import _abs_peak, _extreme
 
     units = units or {}
     force, length = units.get("force", ""), units.get("length", "")
@@ -396,7 +397,7 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
     point = F3.base_point(structure) if point is None else tuple(float(x) for x in point)
     words = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
              "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
-    variables, peaks = {}, {}
+    variables, peaks, coords = {}, {}, {}
     for case, sol in cases.items():
         if sol.u is None or len(sol.t) < 2:
             continue
@@ -409,7 +410,18 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
                              + ("" if key.startswith("F") else " about base_point"), **({"units": unit} if unit else {})}))
             entry[1][case] = np.asarray(values, dtype=float)
         peaks[case] = {"base_forces": {key: _extreme(sol.t, values) for key, values in base.items()}}
-    return {"variables": variables, "coords": {}, "static": {}, "peaks": peaks, "attrs": {"base_point": list(point)}}
+        drifts = F3.storey_drifts(structure, h)
+        if drifts:
+            coords["storey"] = list(drifts)
+            for axis in "xy":
+                entry = variables.setdefault(f"drift_ratio_{axis}", (("time", "storey"), {}, {
+                    "long_name": f"interstorey drift ratio along {axis}, the largest over the plan's corners",
+                    "units": "1"}))
+                entry[1][case] = np.column_stack([d[f"max_ratio_{axis}"] for d in drifts.values()])
+            peaks[case]["drift_ratio"] = {f"{label} {axis}": _abs_peak(sol.t, d[f"max_ratio_{axis}"])
+                                          for label, d in drifts.items() for axis in "xy"}
+    return {"variables": variables, "coords": coords, "static": {}, "peaks": peaks,
+            "attrs": {"base_point": list(point)}}
 
 
 def _structure_results(structure, model, cases, *, load, units, rule, point, storeys):
@@ -529,6 +541,10 @@ def _save_case_tables(d, out, *, prefix, units):
     if "drift_ratio" in d:
         for k, label in enumerate(d["storey"].values):
             columns[_head(f"drift_ratio:{label}", "1")] = d["drift_ratio"].values[:, k]
+    for axis in "xy":                                           # a 3-D frame
+        if f"drift_ratio_{axis}" in d:
+            for k, label in enumerate(d["storey"].values):
+                columns[_head(f"drift_ratio_{axis}:{label}", "1")] = d[f"drift_ratio_{axis}"].values[:, k]
     for name in d.data_vars:
         if str(name).startswith("energy_"):
             columns[_head(str(name), "1" if str(name) == "energy_relative_error" else moment)] = d[name].values
@@ -688,6 +704,10 @@ def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
                 unit = force if key.startswith("F") else f"{force} {length}"
                 parts.append(f"{key} {peak:.4g} {unit}".rstrip())
             lines.append(f"{head} peak base forces {', '.join(parts)}")
+            if p.get("drift_ratio"):
+                label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
+                lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}, at a corner) "
+                             f"at t = {d['t']:.4g} {time}".rstrip())
             continue
         shear = p["base_shear"]
         peak = shear["max"] if abs(shear["max"]) >= abs(shear["min"]) else shear["min"]
