@@ -273,3 +273,25 @@ def test_the_building_model_file_runs_from_the_command_line(tmp_path):
     drift_y = ds["drift_ratio_y"].sel(case="unilateral", storey="7-10.5").values
     assert np.all(drift_y >= corner - 1e-15) and drift_y.max() > 0
     assert "peak drift ratio" in result.output
+
+
+def test_the_model_figure_of_a_3d_file_draws_its_members_ties_and_footings(tmp_path):
+    """``unilateral plot --model`` on a 3-D file: model.png in perspective, from a drawing that holds
+    every member, the diaphragms' ties, the supports and the footings' patches."""
+    from click.testing import CliRunner
+
+    from unilateral.cli import main
+    from unilateral.figures.model import model_file_drawing
+
+    example = ROOT / "examples" / "building3d.toml"
+    drawing = model_file_drawing(example)
+    spec = load_model_file(example)
+    st = spec.structure
+    beams = [e for e in st.elements if e.kind.startswith("beam")]
+    assert len([m for m in drawing.members if m[0] == "beam"]) == len(beams) > 0
+    assert len(drawing.ties) == len(st.dofs.ties) > 0
+    assert [name for name, *_ in drawing.footings] == [f.name for f in st.foundation.footings]
+    assert sum(len(centres) for _, _, centres, _ in drawing.footings) == st.foundation.m == 36
+    result = CliRunner().invoke(main, ["plot", "--model", str(example), "--out", str(tmp_path / "fig")])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "fig" / "model.png").stat().st_size > 10_000

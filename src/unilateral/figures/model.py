@@ -29,25 +29,12 @@ from pathlib import Path
 
 import numpy as np
 
-#: Style of each element kind: legend label, colour, line style, line width.
-KIND_STYLES = {
-    "beam": ("beam", "0.15", "-", 2.0),
-    "bar": ("bar", "C0", "-", 1.0),
-    "rigid_link": ("rigid link", "0.6", "-", 3.5),
-    "spring": ("spring", "C2", (0, (4, 2)), 1.1),
-    "dashpot": ("dashpot", "C8", "-.", 1.1),
-    "cable": ("cable (tension only)", "C1", (0, (1, 1.5)), 1.4),
-    "gap": ("gap (pounding link)", "C3", (0, (3, 1, 1, 1)), 1.4),
-    "soil": ("soil spring (compression only)", "C5", "-", 1.3),
-    "yield": ("yielding link", "C4", "-", 1.5),
-    "slider": ("slider", "C9", "-", 1.5),
-}
+from .styles import GROUND_SYMBOL, KIND_STYLES
+
 #: The kinds of ``[[unilateral]]`` elements (and ``"hinge"``).
 UNILATERAL_KINDS = ("gap", "cable", "soil", "yield", "slider", "hinge")
 #: How many mode shapes are drawn.
 MODE_COUNT = 3
-#: Length of the symbol of an element to the ground, as a fraction of the structure's size.
-GROUND_SYMBOL = 0.06
 #: Font size of the names, points.
 NAME_SIZE = 6.0
 
@@ -126,6 +113,10 @@ class ModelDrawing:
         data["modes"] = [(float(period), {str(node): tuple(d) for node, d in shape.items()})
                          for period, shape in data.get("modes", ())]
         return cls(**data)
+
+    def figure(self):
+        """The figure of :func:`model_figure`."""
+        return model_figure(self)
 
     @property
     def unilateral_names(self) -> list[str]:
@@ -227,13 +218,14 @@ def _footing(f) -> Footing:
                    patch_names=tuple(str(name) for name in f.contact_names))
 
 
-def model_file_drawing(path) -> ModelDrawing:
-    """The :class:`ModelDrawing` of a model file, with the modes of its bilateral structure.
+def model_file_drawing(path):
+    """The :class:`ModelDrawing` of a model file, with the modes of its bilateral structure; for a
+    3-D frame its :class:`~unilateral.figures.model3d.ModelDrawing3D`.
 
     Raises
     ------
     unilateral.modelfile.ModelFileError
-        The file is invalid, is a matrix-level model (no frame to draw) or a 3-D frame.
+        The file is invalid or is a matrix-level model (no frame to draw).
     """
     from ..analysis.modes import modes
     from ..modelfile import ModelFileError, load_model_file
@@ -242,9 +234,11 @@ def model_file_drawing(path) -> ModelDrawing:
     if spec.structure is None:
         raise ModelFileError(path, ["[matrices]: a matrix-level model has no frame to draw (the model figure "
                                     "needs nodes and elements)"])
-    if spec.document.DIMENSIONS == 3:
-        raise ModelFileError(path, ["frame.dimensions = 3: the model figure is drawn for 2-D frames only (not yet "
-                                    "for a 3-D frame)"])
+    if spec.document.DIMENSIONS == 3:                 # in perspective, without the modes
+        from .model3d import model_drawing_3d
+
+        return model_drawing_3d(spec.structure, units=spec.units,
+                                title=spec.analysis.get("title") or Path(path).stem)
     model = spec.model
     if spec.structure.foundation is not None:       # the footings on the soil's static springs
         try:
@@ -258,15 +252,16 @@ def model_file_drawing(path) -> ModelDrawing:
 
 
 # ---------------------------------------------------------------------- drawing
-def draw_model(drawing: ModelDrawing, out_dir, formats=("png",)) -> list[Path]:
-    """Draw ``drawing`` as ``model.<format>`` into ``out_dir``; return the files written."""
+def draw_model(drawing, out_dir, formats=("png",)) -> list[Path]:
+    """Draw ``drawing`` (a :class:`ModelDrawing` or a 3-D one) as ``model.<format>`` into ``out_dir``;
+    return the files written."""
     from .plots import save_figure
 
     if not formats:
         return []
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    return save_figure(model_figure(drawing), out / "model", formats)
+    return save_figure(drawing.figure(), out / "model", formats)
 
 
 def model_figure(drawing: ModelDrawing):
