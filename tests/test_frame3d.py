@@ -601,3 +601,36 @@ def test_loads_of_the_3d_structure_check_their_arguments():
         st.distributed_load("col", wz="1")
     with pytest.raises(ValueError, match="dof='uw' is not valid"):
         st.dofs.full_index(2, "uw")
+
+
+def test_a_yielding_link_and_a_slider_in_3d_act_as_in_2d():
+    """A mass on a yielding link (hardening) and one on a slider, pushed along x beyond yield and
+    beyond the friction force: the same plastic and slip histories in 2-D and 3-D."""
+    def frame(dim):
+        fr = Frame2D() if dim == 2 else Frame3D()
+        xyz = (lambda x: (x, 0.0)) if dim == 2 else (lambda x: (x, 0.0, 0.0))
+        fr.node("a", *xyz(0.0))
+        fr.node("b", *xyz(2.0))
+        fr.support("a", **({"ux": False, "uy": True} if dim == 2 else {"ux": False, "uy": True, "uz": True}))
+        fr.support("b", **({"ux": False, "uy": True} if dim == 2 else {"ux": False, "uy": True, "uz": True}))
+        fr.mass("a", 2.0)
+        fr.mass("b", 1.0)
+        fr.yield_link("y", "a", k=1e3, Fy=50.0, hardening=0.05, direction="ux")
+        fr.slider("s", "b", mu=0.3, N=100.0, k=2e3, direction="ux")
+        return fr.build()
+
+    st2, st3 = frame(2), frame(3)
+    assert st3.constraint_names == st2.constraint_names == ("y.plastic+", "y.plastic-", "s.slip+", "s.slip-")
+    runs = []
+    for st in (st2, st3):
+        push = st.nodal_load("a", ux=1.0) * 120.0 + st.nodal_load("b", ux=1.0) * 60.0
+        q = lambda t, push=push: push * np.sin(2 * np.pi * 1.0 * t)     # noqa: E731
+        runs.append(ul.solve(st.to_model(), q, dt=2e-3, t_end=1.5, method="direct", rule="trapezoidal"))
+    two, three = runs
+    assert two.v.max() > 1e-3                                   # it yields and slides
+    np.testing.assert_allclose(three.v, two.v, rtol=0, atol=1e-12 * np.abs(two.v).max())
+    np.testing.assert_allclose(three.psi, two.psi, rtol=0, atol=1e-12 * np.abs(two.psi).max())
+    fr = Frame3D()
+    fr.node(1, 0.0, 0.0, 0.0)
+    with pytest.raises(ValueError, match="not a sliding direction"):
+        fr.slider("s", 1, mu=0.3, N=10.0, k=1.0, direction="rx")

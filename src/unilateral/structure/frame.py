@@ -216,6 +216,59 @@ class _Frame(ABC):
             coords={node: x.copy() for node, x in self._coords.items()}, rayleigh=self._rayleigh,
         )
 
+    # ------------------------------------------------------------------ plasticity and friction
+    def yield_link(self, name, node_i, node_j=None, *, k, Fy=None, Fy_t=None, Fy_c=None, direction="ux",
+                   hardening=0.0) -> None:
+        """Zero-length elastic-plastic spring from ``node_i`` to the ground (``node_j=None``) or to
+        ``node_j``, along ``direction`` (as :meth:`spring`).
+
+        Force ``sigma = k (e - v+ + v-)`` (tension positive) with ``-Fy_c <= sigma - Hk (v+ - v-) <= Fy_t``:
+        the plastic multipliers ``"name.plastic+"`` (tension) and ``"name.plastic-"`` (compression)
+        grow only while their face yields; the plastic deformation is ``v+ - v-``. Linear kinematic
+        hardening ``Hk = hardening k`` gives the post-yield stiffness ``k h / (1 + h)``.
+
+        Parameters
+        ----------
+        k : elastic stiffness, force/length (force length/rad along a rotation), > 0
+        Fy : yield force both ways, force (force length along a rotation), > 0; or
+        Fy_t, Fy_c : yield forces in tension and compression, > 0 (e.g. a buckling-restrained
+            brace, ``Fy_c > Fy_t``)
+        hardening : ``h = Hk / k >= 0`` (0: perfectly plastic)
+        """
+        where, ends, terms = self._ends("yield_link", name, node_i, node_j, direction, ("node_i", "node_j"))
+        k = _real(where, "k", k, ">0")
+        r = _yield_forces(where, Fy, Fy_t, Fy_c)
+        A = el.kinematic_hardening(_hardening(where, hardening) * k)
+        self._add(el.directional(name, "yield", *ends, terms, k, unknowns=el.pair(name, 0, "yield", r=r, k=k), A=A,
+                                 dof_names=self._dof_names))
+
+    def slider(self, name, node, *, mu, N, k, direction="ux") -> None:
+        """Flat sliding bearing under ``node``: a stick spring ``k`` in series with Coulomb
+        friction under the constant normal force ``N``.
+
+        A :meth:`yield_link` to the ground with ``Fy = mu N`` both ways, whose slips
+        ``"name.slip+"``, ``"name.slip-"`` form a friction family with a constant normal force
+        (:class:`~unilateral.constraints.Friction` with ``normal=None``; its law is that of a yield
+        pair, and results report it as friction). ``N`` does not follow the vertical response;
+        support or connect the node vertically by other elements.
+
+        Parameters
+        ----------
+        mu : friction coefficient, >= 0
+        N : normal (compressive) force, force, > 0
+        k : stick stiffness, force/length, > 0
+        direction : ``"ux"`` (default), another translation or a vector: the sliding direction
+        """
+        where, ends, terms = self._ends("slider", name, node, None, direction, ("node", None))
+        if any(dof.startswith("r") for dof in dict(terms)):
+            raise ValueError(f"{where}: direction={direction!r} is not a sliding direction; use a translation "
+                             "('ux', 'uy', ...) or a vector")
+        k, mu = _real(where, "k", k, ">0"), _real(where, "mu", mu, ">=0")
+        force = mu * _real(where, "N", N, ">0")
+        self._add(el.directional(name, "slider", *ends, terms, k,
+                                 unknowns=el.pair(name, 0, "friction", r=(force, force), mu=mu, k=k),
+                                 dof_names=self._dof_names))
+
     # ------------------------------------------------------------------ helpers
     def _damping(self, dofs, M, K=None):
         """Attached dashpots plus Rayleigh damping plus modal damping, or None.
@@ -488,54 +541,9 @@ class Frame2D(_Frame):
                            capacity=_real(where, "capacity", capacity, ">=0")))
 
     # ------------------------------------------------------------------ plasticity and friction
-    def yield_link(self, name, node_i, node_j=None, *, k, Fy=None, Fy_t=None, Fy_c=None, direction="ux",
-                   hardening=0.0) -> None:
-        """Zero-length elastic-plastic spring from ``node_i`` to the ground (``node_j=None``) or to
-        ``node_j``, along ``direction`` (as :meth:`spring`).
-
-        Force ``sigma = k (e - v+ + v-)`` (tension positive) with ``-Fy_c <= sigma - Hk (v+ - v-) <= Fy_t``:
-        the plastic multipliers ``"name.plastic+"`` (tension) and ``"name.plastic-"`` (compression)
-        grow only while their face yields; the plastic deformation is ``v+ - v-``. Linear kinematic
-        hardening ``Hk = hardening k`` gives the post-yield stiffness ``k h / (1 + h)``.
-
-        Parameters
-        ----------
-        k : elastic stiffness, force/length (force length/rad along ``"rz"``), > 0
-        Fy : yield force both ways, force (force length along ``"rz"``), > 0; or
-        Fy_t, Fy_c : yield forces in tension and compression, > 0 (e.g. a buckling-restrained
-            brace, ``Fy_c > Fy_t``)
-        hardening : ``h = Hk / k >= 0`` (0: perfectly plastic)
-        """
-        where, ends, terms = self._ends("yield_link", name, node_i, node_j, direction, ("node_i", "node_j"))
-        k = _real(where, "k", k, ">0")
-        r = _yield_forces(where, Fy, Fy_t, Fy_c)
-        A = el.kinematic_hardening(_hardening(where, hardening) * k)
-        self._add(el.directional(name, "yield", *ends, terms, k, unknowns=el.pair(name, 0, "yield", r=r, k=k), A=A))
-
-    def slider(self, name, node, *, mu, N, k, direction="ux") -> None:
-        """Flat sliding bearing under ``node``: a stick spring ``k`` in series with Coulomb
-        friction under the constant normal force ``N``.
-
-        A :meth:`yield_link` to the ground with ``Fy = mu N`` both ways, whose slips
-        ``"name.slip+"``, ``"name.slip-"`` form a friction family with a constant normal force
-        (:class:`~unilateral.constraints.Friction` with ``normal=None``; its law is that of a yield
-        pair, and results report it as friction). ``N`` does not follow the vertical response;
-        support or connect the node vertically by other elements.
-
-        Parameters
-        ----------
-        mu : friction coefficient, >= 0
-        N : normal (compressive) force, force, > 0
-        k : stick stiffness, force/length, > 0
-        direction : ``"ux"`` (default), ``"uy"`` or a vector: the sliding direction
-        """
-        where, ends, terms = self._ends("slider", name, node, None, direction, ("node", None))
-        if "rz" in dict(terms):
-            raise ValueError(f"{where}: direction='rz' is not a sliding direction; use 'ux', 'uy' or a vector")
-        k, mu = _real(where, "k", k, ">0"), _real(where, "mu", mu, ">=0")
-        force = mu * _real(where, "N", N, ">0")
-        self._add(el.directional(name, "slider", *ends, terms, k,
-                                 unknowns=el.pair(name, 0, "friction", r=(force, force), mu=mu, k=k)))
+    # The plasticity and friction of :class:`_Frame`, listed as this class's own (the API reference).
+    yield_link = _Frame.yield_link
+    slider = _Frame.slider
 
     def hinge(self, name, beam, end, *, My, k=None, hardening=0.0) -> None:
         """Plastic hinge at the end ``"i"`` or ``"j"`` of the beam ``beam`` (define the beam first).

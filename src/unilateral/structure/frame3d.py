@@ -57,8 +57,9 @@ class Frame3D(_Frame):
     Coulomb friction on contacts (``mu`` of :meth:`soil` and :meth:`gap`) is a polygonal friction
     cone of ``facets`` facets in the tangent plane (default 4: a four-sided pyramid), circumscribing
     Coulomb's circle. Rigid footings in plan on a soil medium (:meth:`foundation`: a grid of
-    contact patches, rocking about both axes). Not (yet) in 3-D: yield links, hinges, sliders,
-    flexible footings and footings that slide, P-Delta.
+    contact patches, rocking about both axes). Yielding links and sliders (:meth:`yield_link`,
+    :meth:`slider`) along any direction, as in 2-D. Not (yet) in 3-D: plastic hinges, flexible
+    footings and footings that slide, P-Delta.
     """
 
     _dof_names = el3.DOF_NAMES
@@ -200,6 +201,8 @@ class Frame3D(_Frame):
     rayleigh = _Frame.rayleigh
     rayleigh_from_ratios = _Frame.rayleigh_from_ratios
     modal_damping = _Frame.modal_damping
+    yield_link = _Frame.yield_link
+    slider = _Frame.slider
 
     # ------------------------------------------------------------------ bilateral elements
     def beam(self, name, i, j, *, E, A, Iy, Iz, G, J, vecxz=None, axial_strain=0.0, rho=None) -> None:
