@@ -166,7 +166,7 @@ WRONG_3D = {
     "2-D type": (lambda d: d | {"unilateral": d["unilateral"] + [{"type": "hinge", "name": "h", "beam": "g",
                                                                    "end": "i", "My": 100.0}]},
                  'unilateral[2].type = "hinge": plastic hinges are for 2-D frames only (this file declares [frame] '
-                 "dimensions = 3; valid unilateral element types: cable, gap, soil)"),
+                 "dimensions = 3; valid unilateral element types: cable, gap, slider, soil, yield)"),
     "p-delta": (_change(analysis__p_delta=True), "analysis.p_delta = true: P-Delta is for 2-D frames only"),
     "dimensions": (_change(frame__dimensions=4),
                    "frame.dimensions = 4: unknown number of dimensions (valid: 2, 3)"),
@@ -295,3 +295,34 @@ def test_the_model_figure_of_a_3d_file_draws_its_members_ties_and_footings(tmp_p
     result = CliRunner().invoke(main, ["plot", "--model", str(example), "--out", str(tmp_path / "fig")])
     assert result.exit_code == 0, result.output
     assert (tmp_path / "fig" / "model.png").stat().st_size > 10_000
+
+
+def test_yield_links_and_sliders_in_a_3d_file(tmp_path):
+    """A 3-D file's yielding link and slider build the Frame3D elements along their directions; the run
+    yields and slides."""
+    text = """
+units = { length = "m", force = "kN", time = "s" }
+frame = { dimensions = 3 }
+nodes = [{ id = 1, x = 0.0, y = 0.0, z = 0.0 }, { id = 2, x = 2.0, y = 0.0, z = 0.0 }]
+supports = [{ node = 1, ux = false, uy = false }, { node = 2, ux = false, uy = false }]
+masses = [{ node = 1, m = 2.0 }, { node = 2, m = 1.0 }]
+elements = [
+    { type = "spring", name = "keep1", node_i = 1, k = 1e3, direction = [1.0, -1.0, 0.0] },
+    { type = "spring", name = "keep2", node_i = 2, k = 1e3, direction = "ux" },
+]
+unilateral = [
+    { type = "yield", name = "y", node = 1, k = 1e3, Fy = 50.0, hardening = 0.05, direction = [1.0, 1.0, 0.0] },
+    { type = "slider", name = "s", node = 2, mu = 0.3, N = 100.0, k = 2e3, direction = "uy" },
+]
+loads.nodal = [
+    { node = 1, ux = 80.0, uy = 80.0, time_function = { type = "ramp", t_ramp = 1.0 } },
+    { node = 2, uy = 60.0, time_function = { type = "ramp", t_ramp = 1.0 } },
+]
+analysis = { t_end = 1.0, dt = 0.005, method = "direct" }
+"""
+    path = tmp_path / "yield3d.toml"
+    path.write_text(text)
+    spec = load_model_file(path)
+    assert spec.structure.constraint_names == ("y.plastic+", "y.plastic-", "s.slip+", "s.slip-")
+    sol = ul.solve(spec.model, spec.load, dt=0.005, t_end=1.0, method="direct")
+    assert sol.success and sol.v[:, :2].max() > 1e-3 and sol.v[:, 2:].max() > 1e-3

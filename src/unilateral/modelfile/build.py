@@ -27,8 +27,8 @@ from .checks import read_toml  # noqa: F401 (the reader of study files too)
 from .errors import ModelFileError, Problems, key_path
 from .matrices import dof_index, read_matrix_model, read_vector
 from .schema import (TIME_UNITS, Bar, Beam, Beam3D, Cable, ConstantLoad, Dashpot, Dashpot3D, Gap, Gap3D,
-                     HalfSinePulse, Hinge, ModelFile, RampLoad, RectangularPulse, Slider, Soil, Soil3D, Spring,
-                     Spring3D, TableLoad, TriangularPulse, YieldLink)
+                     HalfSinePulse, Hinge, ModelFile, RampLoad, RectangularPulse, Slider, Slider3D, Soil, Soil3D,
+                     Spring, Spring3D, TableLoad, TriangularPulse, YieldLink, YieldLink3D)
 
 
 @dataclass(frozen=True, eq=False)
@@ -254,6 +254,11 @@ def _add_element_3d(fr: Frame3D, e, to_mass=1.0) -> None:
                    ct=e.ct, **facets)
         case Cable():
             fr.cable(e.name, e.node_i, e.node_j, e.E, e.A, slack=e.slack, capacity=e.capacity)
+        case YieldLink3D():
+            fr.yield_link(e.name, e.node, e.node_j, k=e.k, Fy=e.Fy, Fy_t=e.Fy_t, Fy_c=e.Fy_c, direction=e.direction,
+                          hardening=e.hardening)
+        case Slider3D():
+            fr.slider(e.name, e.node, mu=e.mu, N=e.N, k=e.k, direction=e.direction)
 
 
 def _gravity_value(document: ModelFile) -> float:

@@ -765,7 +765,7 @@ FRAME_SECTIONS = ("frame", "nodes", "supports", "rigid_links", "rigid_diaphragms
 # ---------------------------------------------------------------------- 3-D frames ([frame] dimensions = 3)
 DOFS_3D = ("ux", "uy", "uz", "rx", "ry", "rz")
 """The nodal DOFs of a 3-D frame (:class:`~unilateral.structure.Frame3D`)."""
-TWO_D_ONLY_TYPES = {"yield": "yield links", "hinge": "plastic hinges", "slider": "sliders"}
+TWO_D_ONLY_TYPES = {"hinge": "plastic hinges"}
 """Unilateral element types of 2-D frames only."""
 
 
@@ -923,7 +923,20 @@ class Gap3D(_TwoNodes):
     facets: Annotated[int, Field(ge=4)] | None = _FACETS
 
 
-Unilateral3D = Annotated[Union[Soil3D, Gap3D, Cable], Field(discriminator="type", title="unilateral element type")]
+class YieldLink3D(YieldLink):
+    """Zero-length elastic-plastic spring of a 3-D frame from node to the ground or to node_j."""
+
+    direction: Direction3 = "ux"
+
+
+class Slider3D(Slider):
+    """Flat sliding bearing under a node of a 3-D frame: Coulomb friction mu N behind a stick spring k."""
+
+    direction: Direction3 = Field("ux", description="Sliding direction.")
+
+
+Unilateral3D = Annotated[Union[Soil3D, Gap3D, Cable, YieldLink3D, Slider3D],
+                         Field(discriminator="type", title="unilateral element type")]
 
 
 class Foundation3D(Table):
