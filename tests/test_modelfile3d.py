@@ -126,8 +126,15 @@ def test_the_run_of_a_3d_portal_writes_the_2d_base_forces(tmp_path):
     assert "element end forces" in summary["notes"][0]
     assert set(summary["results"]["unilateral"]["base_forces"]) == {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}
     header = (tmp_path / "portal_3d" / "base.csv").read_text().splitlines()[0]
-    assert header == ("time [s],base_Fx [kN],base_Fy [kN],base_Fz [kN],base_Mx [kN m],base_My [kN m],"
-                      "base_Mz [kN m],drift_ratio_x:0-3 [1],drift_ratio_y:0-3 [1]")
+    assert header.startswith("time [s],base_Fx [kN],base_Fy [kN],base_Fz [kN],base_Mx [kN m],base_My [kN m],"
+                             "base_Mz [kN m],reaction:1.ux [kN],")
+    assert header.endswith(",drift_ratio_x:0-3 [1],drift_ratio_y:0-3 [1]") and "reaction:1.rx [kN m]" in header
+    # the supports in the plane react as in 2-D (3-D uz is 2-D uy)
+    for label2, label3 in (("1.ux", "1.ux"), ("4.ux", "4.ux")):
+        if label2 in list(two["support"].values):
+            np.testing.assert_allclose(three["support_reaction"].sel(support=label3).values,
+                                       two["support_reaction"].sel(support=label2).values, rtol=0,
+                                       atol=1e-8 * np.abs(shear).max())
     # the storey's drift along x at its two corners: the largest of the 2-D drifts of the two columns
     u = three["node_displacement"].sel(component="ux").values               # (case, time, node)
     nodes = list(three["node"].values)
@@ -273,6 +280,15 @@ def test_the_building_model_file_runs_from_the_command_line(tmp_path):
     drift_y = ds["drift_ratio_y"].sel(case="unilateral", storey="7-10.5").values
     assert np.all(drift_y >= corner - 1e-15) and drift_y.max() > 0
     assert "peak drift ratio" in result.output
+    # the reactions: the ground's forces through the footing patches and the supports sum to the base forces
+    ground = ds["ground_reaction"].sel(case="unilateral")
+    support = ds["support_reaction"].sel(case="unilateral")
+    labels = [str(label) for label in ds["support"].values]
+    for component, dof in (("Fx", "ux"), ("Fy", "uy"), ("Fz", "uz")):
+        total = ground.sel(force_component=component).values.sum(axis=1)
+        total = total + sum(support.values[:, k] for k, label in enumerate(labels) if label.endswith("." + dof))
+        expected = ds[f"base_{component}"].sel(case="unilateral").values
+        np.testing.assert_allclose(total, expected, rtol=0, atol=1e-9 * max(1.0, np.abs(expected).max()))
 
 
 def test_the_model_figure_of_a_3d_file_draws_its_members_ties_and_footings(tmp_path):

@@ -364,9 +364,9 @@ def is_3d(structure) -> bool:
 
 #: The note in ``summary.json`` of a 3-D frame: the outputs that exist only for 2-D frames.
 NOT_IN_3D = ("3-D frame: results.nc holds the displacements of every node (ux, uy, uz, rx, ry, rz), the "
-             "constraints, the base forces Fx, Fy, Fz, Mx, My, Mz (base.csv) and the interstorey drift ratios "
-             "along x and y (the largest over the plan's corners); not written "
-             "(2-D frames only): element end forces, support and ground reactions, accelerations, the energy balance, "
+             "constraints, the base forces Fx, Fy, Fz, Mx, My, Mz (base.csv), the support and ground reactions and "
+             "the interstorey drift ratios along x and y (the largest over the plan's corners); not written "
+             "(2-D frames only): element end forces, accelerations, the energy balance, "
              "the modes, floor spectra and the model figure")
 
 
@@ -402,7 +402,23 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
         if sol.u is None or len(sol.t) < 2:
             continue
         h = F3.histories(structure, sol, rule, load0=None if samples is None else samples[0])
-        base = F3.base_forces(structure, F3.reactions(structure, h, sol), point)
+        reaction = F3.reactions(structure, h, sol)
+        base = F3.base_forces(structure, reaction, point)
+        moment = f"{force} {length}".strip()
+        if reaction["support"]:
+            coords["support"] = list(reaction["support"])
+            entry = variables.setdefault("support_reaction", (("time", "support"), {}, {
+                "long_name": "force (moment about rx, ry, rz) of the support on the structure at node.dof",
+                **({"units": f"{force} or {moment}"} if force else {})}))
+            entry[1][case] = np.column_stack(list(reaction["support"].values()))
+        grounded = {**reaction["ground_elements"], **reaction.get("footings", {})}
+        if grounded:
+            coords["ground_element"] = list(grounded)
+            coords["force_component"] = list(F3.BASE_COMPONENTS)
+            entry = variables.setdefault("ground_reaction", (("time", "ground_element", "force_component"), {}, {
+                "long_name": "force and moment of the ground on the structure through the element or the footing "
+                             "patch, at its node", **({"units": f"{force} (F); {moment} (M)"} if force else {})}))
+            entry[1][case] = np.stack(list(grounded.values()), axis=1)
         for key, values in base.items():
             unit = force if key.startswith("F") else f"{force} {length}".strip()
             entry = variables.setdefault(f"base_{key}", (("time",), {}, {
@@ -536,7 +552,7 @@ def _save_case_tables(d, out, *, prefix, units):
             columns[_head(f"base_{key}", force if key.startswith("F") else moment)] = d[f"base_{key}"].values
     if "support_reaction" in d:
         for k, label in enumerate(d["support"].values):
-            unit = moment if str(label).endswith("rz") else force
+            unit = moment if str(label).rsplit(".", 1)[-1].startswith("r") else force
             columns[_head(f"reaction:{label}", unit)] = d["support_reaction"].values[:, k]
     if "drift_ratio" in d:
         for k, label in enumerate(d["storey"].values):
