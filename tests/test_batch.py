@@ -603,3 +603,65 @@ t_end = 2.0
     bad = write_study(tmp_path, body.format(skip=""), name="bad.toml")
     table = run_study(bad, tmp_path / "out_bad", synchronous=True, progress=False, figures=False).table
     assert table["status"].values[0] == "error" and "skip_header" in table["message"].values[0]
+
+
+def test_a_study_of_a_3d_frame(tmp_path):
+    """A 3-D model file in a study: uplift, a roof displacement along y, the storey drift ratio between
+    two floors (elevations along z), the base shear as the peak horizontal resultant of
+    ``forces3d.base_forces`` (equal to the run's); the energy error is not available in 3-D (NaN,
+    with a note)."""
+    import shutil
+
+    from unilateral.batch.worker import FrameOperators, FrameResults
+    from unilateral.structure import forces3d as F3
+
+    shutil.copy(ROOT / "examples" / "building3d.toml", tmp_path / "building3d.toml")
+    (tmp_path / "records" / "ida").mkdir(parents=True)
+    for record in record_files(2):
+        shutil.copy(record, tmp_path / "records" / "ida" / record.name)
+    record = record_files(1)[0]
+    study = tmp_path / "study.toml"
+    study.write_text(f"""
+[[models]]
+file = "building3d.toml"
+[records]
+files = ["{record.as_posix()}"]
+direction = "ux"
+[scaling]
+values = [1.0]
+[analysis]
+t_end = 0.6
+[[quantities]]
+name = "uplift"
+type = "uplift"
+[[quantities]]
+name = "roof_uy"
+type = "displacement"
+node = 1003
+dof = "uy"
+[[quantities]]
+name = "drift"
+type = "drift"
+pairs = [[1003, 1002]]
+[[quantities]]
+name = "shear"
+type = "base_shear"
+[[quantities]]
+name = "energy"
+type = "energy_error"
+""")
+    result = run_study(study, tmp_path / "out", synchronous=True, progress=False, figures=False)
+    table = result.table
+    assert list(table["status"].values) == ["ok"], table["message"].values
+    assert float(table["shear"].values[0]) > 0 and float(table["drift"].values[0]) > 0
+    assert np.isnan(table["energy"].values[0])
+    assert "not available for a 3-D frame" in next((tmp_path / "out" / "results").glob("*.json")).read_text()
+    # the base shear of the study is the peak horizontal resultant of the 3-D base forces
+    spec = load_model_file(tmp_path / "building3d.toml")
+    st = spec.structure
+    sol = ul.solve(spec.model, spec.load, dt=spec.analysis["dt"], t_end=0.2, method="cq")
+    h = F3.histories(st, sol, "bdf2", load0=spec.load.sample(sol.t[:1])[0])
+    base = F3.base_forces(st, F3.reactions(st, h, sol), F3.base_point(st))
+    frame = FrameResults(sol, FrameOperators(st), spec.load, "bdf2")
+    assert frame.three_d and frame.peak_base_shear() == pytest.approx(np.abs(np.hypot(base["Fx"], base["Fy"])).max(),
+                                                                      rel=1e-12)

@@ -151,7 +151,8 @@ class Quantity(Table):
     over: Literal["max", "each"] = Field("max", title="combination", description=(
         "uplift, contact_force: max over the elements (one column), or each (one column per element)."))
     node: NodeId | None = Field(None, description="displacement, residual: the node.")
-    dof: str | None = Field(None, description='"ux", "uy", "rz" (frames) or a DOF name (matrix-level models).')
+    dof: str | None = Field(None, description=('"ux", "uy", "rz" (2-D frames), "ux" ... "rz" (3-D frames) or a DOF '
+                                               'name (matrix-level models).'))
     pairs: list[Annotated[list[NodeId], Field(min_length=2, max_length=2)]] | None = Field(None, description=(
         "drift: [upper, lower] node pairs, one storey each; the peak over the pairs."))
     ratio: bool = Field(True, description="drift: divided by the storey height (difference of y).")

@@ -365,7 +365,7 @@ def _check_quantities(doc: StudyFile, variants) -> None:
         spec = variant.spec
         where = f"in model {variant.model} ({variant.path.name})"
         ids = [node.id for node in spec.document.nodes]
-        ys = {node.id: node.y for node in spec.document.nodes}
+        ys = {node.id: getattr(node, "z", node.y) for node in spec.document.nodes}      # elevations
         for k, q in enumerate(doc.quantities):
             for j, name in enumerate(q.elements or []):
                 if name not in variant.constraint_names:
@@ -393,12 +393,14 @@ def _check_quantities(doc: StudyFile, variants) -> None:
             if q.type in ("displacement", "residual") and q.node is None and q.dof is not None:
                 problems.append(f"{key_path(('quantities', k, 'node'))}: missing key (a frame needs the node of "
                                 f"dof {toml_value(q.dof)})")
-            if q.dof is not None and q.dof not in ("ux", "uy", "rz"):
+            node_dofs = list(spec.structure.dofs.dof_names)
+            if q.dof is not None and q.dof not in node_dofs:
                 problems.append(value_problem(("quantities", k, "dof"), q.dof, 'unknown DOF of a frame node '
-                                              '(valid: ux, uy, rz)') + did_you_mean(q.dof, ["ux", "uy", "rz"]))
+                                              f'(valid: {", ".join(node_dofs)})') + did_you_mean(q.dof, node_dofs))
             for j, pair in enumerate(q.pairs or []):
                 if q.ratio and all(n in ys for n in pair) and ys[pair[0]] == ys[pair[1]]:
-                    problems.append(value_problem(("quantities", k, "pairs", j), pair, f"both nodes at y = "
+                    axis = "z" if len(node_dofs) == 6 else "y"
+                    problems.append(value_problem(("quantities", k, "pairs", j), pair, f"both nodes at {axis} = "
                                                   f"{ys[pair[0]]:g} {where}: no storey height for the drift ratio "
                                                   "(give ratio = false for the drift itself)"))
     columns = quantity_columns(doc, variants)

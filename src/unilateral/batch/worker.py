@@ -30,6 +30,8 @@ NOTES = {
     "base_shear": "not available: the model is not a frame (no elements to take the ground forces from)",
     "energy_error": "not available: the model is not a frame (no elements to take the energies from)",
 }
+#: The note of ``energy_error`` for a 3-D frame.
+NOT_IN_3D = "not available for a 3-D frame (the energy balance is written for 2-D frames only)"
 
 
 class AnalysisTimeout(Exception):
@@ -124,7 +126,8 @@ def model_variant(source: dict):
     localize_files(data, source["files"])
     spec = build_model_spec(data, Path(source["path"]))
     vector = _ground_vector(spec, source["ground_motion"], source["influence"])
-    ys = {node.id: node.y for node in spec.document.nodes}
+    # elevations (of the drift ratios): y in a plane frame, z in a space frame
+    ys = {node.id: getattr(node, "z", node.y) for node in spec.document.nodes}
     _CACHE_STATS["model_builds"] += 1
     frame = None if spec.structure is None else FrameOperators(spec.structure)
     _MODEL_CACHE[source["digest"]] = (spec, vector, ys, frame)
@@ -211,6 +214,8 @@ def collect(quantity: dict, sol, spec, ys: dict, frame: FrameResults | None = No
     if kind in ("base_shear", "energy_error"):
         if frame is None:
             return {name: math.nan}, [f"{name}: {NOTES[kind]}"]
+        if kind == "energy_error" and frame.three_d:
+            return {name: math.nan}, [f"{name}: {NOT_IN_3D}"]
         return {name: frame.peak_base_shear() if kind == "base_shear" else frame.energy_error()}, notes
     raise ValueError(f"unknown quantity type {kind!r}")
 
@@ -276,9 +281,24 @@ class FrameResults:
             sol = structural_solution(sol, self.foundation.first)
         return StateRows.of_solution(sol, self.rule)
 
+    @property
+    def three_d(self) -> bool:
+        """Whether the frame is a 3-D one (six DOFs per node)."""
+        return len(self.operators.structure.dofs.dof_names) == 6
+
     def peak_base_shear(self) -> float:
-        """Peak |sum of the x forces of the ground| (force unit of the model)."""
-        return _peak(self.operators.base_forces.base_shear(self.state))
+        """Peak |sum of the x forces of the ground| (force unit of the model); of a 3-D frame, the
+        peak of the horizontal resultant ``sqrt(Fx^2 + Fy^2)``
+        (:func:`unilateral.structure.forces3d.base_forces`)."""
+        if not self.three_d:
+            return _peak(self.operators.base_forces.base_shear(self.state))
+        from ..structure import forces3d as F3
+
+        structure, sol = self.operators.structure, self.sol
+        load0 = self.load.sample(sol.t[:1])[0] if hasattr(self.load, "sample") else None
+        h = F3.histories(structure, sol, self.rule, load0=load0)
+        base = F3.base_forces(structure, F3.reactions(structure, h, sol), F3.base_point(structure))
+        return _peak(np.hypot(base["Fx"], base["Fy"]))
 
     def energy_error(self) -> float:
         """Largest relative error of the energy balance over the run."""
