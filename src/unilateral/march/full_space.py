@@ -22,13 +22,12 @@ import scipy.sparse as sp
 from numba import njit
 
 from . import envelope
-from .compiled import REASSOCIATE, _advance, _matvec_add, _rule_history
-from .direct import PROGRESS_CHUNK, _chunked, direct_outputs
+from .compiled import _BLOCK_TRIES, REASSOCIATE, _advance, _matvec_add, _rule_history
+from .direct import _chunked, direct_outputs
 from .step_log import StepLog
 
 #: Loads of at most this many entries (steps x DOFs) are evaluated at once (a chunk of steps).
 CHUNK_ENTRIES = 1_000_000
-_BLOCK_TRIES = 3
 
 
 # ---------------------------------------------------------------------- compiled kernels
