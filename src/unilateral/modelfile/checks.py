@@ -28,8 +28,8 @@ from pydantic.fields import FieldInfo
 from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
 from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
                      translate, value_problem)
-from .schema import (DOFS_3D, FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Beam3D, Gap, Gap3D, Hinge,
-                     ModelFile, Node, Node3D, Soil, Soil3D, YieldLink, iter_fields, model_class)
+from .schema import (DOFS_3D, FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Beam3D, Gap, Hinge, ModelFile,
+                     Node, Node3D, Soil, YieldLink, iter_fields, model_class)
 
 _TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
 
@@ -336,7 +336,7 @@ def _unilateral_problems(document: ModelFile) -> list[str]:
     hinged = {}
     for k, e in enumerate(document.unilateral):
         at = ("unilateral", k)
-        if isinstance(e, Soil | Gap | Soil3D | Gap3D):
+        if isinstance(e, Soil | Gap):                   # (their 3-D forms are subclasses)
             problems += _friction_problems(at, e)
         elif isinstance(e, YieldLink):
             problems += _yield_force_problems(at, e)

@@ -861,25 +861,16 @@ class Beam3D(_TwoNodes):
         "Mass density: the beam's mass rho A L, half at each end node (with [loads.gravity], its self-weight)."))
 
 
-class Spring3D(_TwoNodes):
+class Spring3D(Spring):
     """Linear spring of a 3-D frame from node_i to the ground (no node_j) or to node_j."""
 
-    type: Literal["spring"]
-    name: Name
-    node_i: NodeRef
-    node_j: NodeRef | None = None
     k: Positive = Field(description="Stiffness [force/length] ([force length] along rx, ry, rz).")
     direction: Direction3 = "uz"
 
 
-class Dashpot3D(_TwoNodes):
+class Dashpot3D(Dashpot):
     """Linear dashpot of a 3-D frame, from node_i to the ground or to node_j."""
 
-    type: Literal["dashpot"]
-    name: Name
-    node_i: NodeRef
-    node_j: NodeRef | None = None
-    c: Positive = Field(description="Viscosity [force time/length].")
     direction: Direction3 = "uz"
 
 
@@ -889,37 +880,17 @@ _FACETS = Field(None, description=(
     "With mu: the number of facets of the friction cone (an even integer >= 4; default 4)."))
 
 
-class Soil3D(Table):
+class Soil3D(Soil):
     """Tensionless soil under a node of a 3-D frame (default direction uz)."""
 
-    type: Literal["soil"]
-    name: Name
-    node: NodeRef
-    k: Positive = Field(description="Stiffness [force/length].")
-    c: NonNegative = Field(0.0, description="Viscosity of the dashpot in parallel [force time/length].")
     direction: Direction3 = Field("uz", description="Direction in which the node separates from the soil.")
-    gap: float = Field(0.0, description="Initial gap [length]; negative: an initial penetration.")
-    capacity: NonNegative = Field(0.0, description="Tension carried before separating [force].")
-    mu: NonNegative | None = Field(None, description="Coulomb friction coefficient (none: no friction).")
-    kt: Positive | None = Field(None, description="Stick stiffness along the soil [force/length]; required with mu.")
-    ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
     facets: Annotated[int, Field(ge=4)] | None = _FACETS
 
 
-class Gap3D(_TwoNodes):
+class Gap3D(Gap):
     """Pounding link of a 3-D frame between node_i and node_j."""
 
-    type: Literal["gap"]
-    name: Name
-    node_i: NodeRef
-    node_j: NodeRef
-    k: Positive = Field(description="Contact stiffness [force/length].")
-    gap: float = Field(0.0, description="Clearance that must close before contact [length].")
-    c: NonNegative = Field(0.0, description="Contact viscosity [force time/length].")
     direction: Direction3 | None = Field(None, description="Default: from node_i towards node_j.")
-    mu: NonNegative | None = Field(None, description="Coulomb friction coefficient (none: no friction).")
-    kt: Positive | None = Field(None, description="Stick stiffness across the gap [force/length]; required with mu.")
-    ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
     facets: Annotated[int, Field(ge=4)] | None = _FACETS
 
 
