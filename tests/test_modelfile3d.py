@@ -280,6 +280,16 @@ def test_the_building_model_file_runs_from_the_command_line(tmp_path):
     drift_y = ds["drift_ratio_y"].sel(case="unilateral", storey="7-10.5").values
     assert np.all(drift_y >= corner - 1e-15) and drift_y.max() > 0
     assert "peak drift ratio" in result.output
+    # the bilateral periods: those the example script computes by its own static condensation (the file's
+    # sections are written to 6 digits)
+    import importlib.util
+
+    module = importlib.util.spec_from_file_location("building3d_script", ROOT / "examples" / "building3d.py")
+    script = importlib.util.module_from_spec(module)
+    module.loader.exec_module(script)
+    periods, _ = script.modes(spec.structure, spec.model)
+    np.testing.assert_allclose(ds["mode_period"].values[:6], periods[:6], rtol=1e-5)
+    assert "periods of the bilateral structure" in result.output
     # the reactions: the ground's forces through the footing patches and the supports sum to the base forces
     ground = ds["ground_reaction"].sel(case="unilateral")
     support = ds["support_reaction"].sel(case="unilateral")

@@ -365,9 +365,9 @@ def is_3d(structure) -> bool:
 #: The note in ``summary.json`` of a 3-D frame: the outputs that exist only for 2-D frames.
 NOT_IN_3D = ("3-D frame: results.nc holds the displacements of every node (ux, uy, uz, rx, ry, rz), the "
              "constraints, the base forces Fx, Fy, Fz, Mx, My, Mz (base.csv), the support and ground reactions and "
-             "the interstorey drift ratios along x and y (the largest over the plan's corners); not written "
-             "(2-D frames only): element end forces, accelerations, the energy balance, "
-             "the modes, floor spectra and the model figure")
+             "the interstorey drift ratios along x and y (the largest over the plan's corners) and the modes of "
+             "the bilateral structure; not written (2-D frames only): element end forces, accelerations, the "
+             "energy balance, floor spectra and the model figure")
 
 
 def _load_samples(load, t):
@@ -388,7 +388,7 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
     :func:`unilateral.structure.forces3d.base_forces` (``base_Fx`` ... ``base_Mz``, time) per case
     about ``point`` (default: the centre of the base) and their peaks."""
     from ..structure import forces3d as F3
-    from .results import _abs_peak, _extreme
+    from .results import _abs_peak, _extreme, bilateral_modes
 
     units = units or {}
     force, length = units.get("force", ""), units.get("length", "")
@@ -436,7 +436,8 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
                 entry[1][case] = np.column_stack([d[f"max_ratio_{axis}"] for d in drifts.values()])
             peaks[case]["drift_ratio"] = {f"{label} {axis}": _abs_peak(sol.t, d[f"max_ratio_{axis}"])
                                           for label, d in drifts.items() for axis in "xy"}
-    return {"variables": variables, "coords": coords, "static": {}, "peaks": peaks,
+    _, static = bilateral_modes(structure, model, peaks, coords, time_unit=units.get("time", ""))
+    return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"base_point": list(point)}}
 
 

@@ -207,33 +207,45 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             peaks[case]["energy"] |= {key: float(energy[key][-1]) for key in FAMILY_ENERGY if key in energy_keys}
         if inelastic:
             peaks[case] |= inelastic.peaks(t, h, histories, None if energy is None else energy["unknown_work"])
-    static = {}
-    if foundation is not None:              # the bilateral structure: on the soil's static springs
-        try:
-            model = model.static_model()
-        except ValueError:                  # a soil without static flexibility (creep): no modes
-            model = None
-    if model is not None and model.n <= MODES_MAX_N:
-        info = modes(model, count=10, influence={"x": structure.influence("ux"), "y": structure.influence("uy")})
-        if info["period"].size:
-            coords["mode"] = np.arange(1, info["period"].size + 1)
-            static["mode_period"] = (("mode",), info["period"], {"long_name": "period of the bilateral structure",
-                                                                  "units": T})
-            static["mode_frequency"] = (("mode",), info["frequency"], {"long_name": "frequency", "units": f"1/{T}"})
-            static["mode_shape"] = (("mode", "dof"), info["shape"],
-                                    {"long_name": "mode shape (largest component 1)"})
-            for name, values in info["effective_mass"].items():
-                total = info["total_mass"][name]
-                static[f"mode_mass_ratio_{name}"] = (("mode",), values / total if total else values,
-                                                     {"long_name": f"effective modal mass ratio along {name}"})
-            for p in peaks.values():
-                p["periods"] = info["period"].tolist()
+    model, static = bilateral_modes(structure, model, peaks, coords, time_unit=T)
+    if model is not None:
         apart = _frame_periods(structure, model)
         for p in peaks.values():
             if apart:
                 p["frame_periods"] = apart
     return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"overturning_point": list(point)}}
+
+
+def bilateral_modes(structure, model, peaks: dict, coords: dict, *, time_unit="", directions=("x", "y")):
+    """The modes of the bilateral structure (a footing on the soil's static springs): ``(model, static)``
+    with ``static`` the variables ``mode_period``, ``mode_frequency``, ``mode_shape`` and
+    ``mode_mass_ratio_<direction>`` (the coordinate ``mode`` added to ``coords``, the periods to
+    every case of ``peaks``); ``model`` is None (and ``static`` empty) where there are none (a soil
+    without static flexibility) or the model is too large (:data:`MODES_MAX_N`)."""
+    static = {}
+    if getattr(structure, "foundation", None) is not None:     # the bilateral structure: on static springs
+        try:
+            model = model.static_model()
+        except ValueError:                  # a soil without static flexibility (creep): no modes
+            return None, static
+    if model.n > MODES_MAX_N:
+        return model, static
+    info = modes(model, count=10, influence={d: structure.influence(f"u{d}") for d in directions})
+    if info["period"].size:
+        coords["mode"] = np.arange(1, info["period"].size + 1)
+        static["mode_period"] = (("mode",), info["period"], {"long_name": "period of the bilateral structure",
+                                                              "units": time_unit})
+        static["mode_frequency"] = (("mode",), info["frequency"], {"long_name": "frequency",
+                                                                    "units": f"1/{time_unit}"})
+        static["mode_shape"] = (("mode", "dof"), info["shape"], {"long_name": "mode shape (largest component 1)"})
+        for name, values in info["effective_mass"].items():
+            total = info["total_mass"][name]
+            static[f"mode_mass_ratio_{name}"] = (("mode",), values / total if total else values,
+                                                 {"long_name": f"effective modal mass ratio along {name}"})
+        for p in peaks.values():
+            p["periods"] = info["period"].tolist()
+    return model, static
 
 
 def _frame_periods(structure, model, count=3) -> dict:
