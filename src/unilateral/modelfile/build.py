@@ -139,27 +139,26 @@ def _site_profile(document: ModelFile) -> tuple[list[dict], dict | None]:
 
 
 # ---------------------------------------------------------------------- the frame
+def _each(document, section: str, action) -> None:
+    """``action(table)`` for each table of ``section`` of ``document``, with its key path as the
+    context of the errors it raises (``elements[2]: ...``)."""
+    for k, table in enumerate(getattr(document, section)):
+        with _at(key_path((section, k))):
+            action(table)
+
+
 def _build_structure(document: ModelFile) -> Structure:
     if is_3d(document):
         return _build_structure_3d(document)
     fr = Frame2D()
-    for k, node in enumerate(document.nodes):
-        with _at(key_path(("nodes", k))):
-            fr.node(node.id, node.x, node.y)
-    for k, support in enumerate(document.supports):
-        with _at(key_path(("supports", k))):
-            fr.support(support.node, ux=support.ux, uy=support.uy, rz=support.rz)
-    for k, link in enumerate(document.rigid_links):
-        with _at(key_path(("rigid_links", k))):
-            fr.rigid_link(link.master, link.slave)
     to_mass = consistent_mass_factor(document.units)
+    _each(document, "nodes", lambda node: fr.node(node.id, node.x, node.y))
+    _each(document, "supports", lambda support: fr.support(support.node, ux=support.ux, uy=support.uy,
+                                                           rz=support.rz))
+    _each(document, "rigid_links", lambda link: fr.rigid_link(link.master, link.slave))
     for section in ("elements", "unilateral"):
-        for k, element in enumerate(getattr(document, section)):
-            with _at(key_path((section, k))):
-                _add_element(fr, element, to_mass)
-    for k, mass in enumerate(document.masses):
-        with _at(key_path(("masses", k))):
-            fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass)
+        _each(document, section, lambda element: _add_element(fr, element, to_mass))
+    _each(document, "masses", lambda mass: fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass))
     for at, f in document.footings:
         with _at(key_path(at)):
             fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=_footing_soil(f, to_mass),
@@ -203,26 +202,16 @@ def _damping(fr, document: ModelFile) -> None:
 def _build_structure_3d(document: ModelFile) -> Structure:
     """The :class:`~unilateral.structure.Frame3D` of a ``[frame] dimensions = 3`` document."""
     fr = Frame3D()
-    for k, node in enumerate(document.nodes):
-        with _at(key_path(("nodes", k))):
-            fr.node(node.id, node.x, node.y, node.z)
-    for k, support in enumerate(document.supports):
-        with _at(key_path(("supports", k))):
-            fr.support(support.node, **{dof: getattr(support, dof) for dof in ("ux", "uy", "uz", "rx", "ry", "rz")})
-    for k, link in enumerate(document.rigid_links):
-        with _at(key_path(("rigid_links", k))):
-            fr.rigid_link(link.master, link.slave)
-    for k, diaphragm in enumerate(document.rigid_diaphragms):
-        with _at(key_path(("rigid_diaphragms", k))):
-            fr.rigid_diaphragm(diaphragm.master, diaphragm.slaves)
     to_mass = consistent_mass_factor(document.units)
+    _each(document, "nodes", lambda node: fr.node(node.id, node.x, node.y, node.z))
+    _each(document, "supports", lambda support: fr.support(support.node, **{dof: getattr(support, dof) for dof in
+                                                                            ("ux", "uy", "uz", "rx", "ry", "rz")}))
+    _each(document, "rigid_links", lambda link: fr.rigid_link(link.master, link.slave))
+    _each(document, "rigid_diaphragms", lambda diaphragm: fr.rigid_diaphragm(diaphragm.master, diaphragm.slaves))
     for section in ("elements", "unilateral"):
-        for k, element in enumerate(getattr(document, section)):
-            with _at(key_path((section, k))):
-                _add_element_3d(fr, element, to_mass)
-    for k, mass in enumerate(document.masses):
-        with _at(key_path(("masses", k))):
-            fr.mass(mass.node, mass.m * to_mass, Jx=mass.Jx * to_mass, Jy=mass.Jy * to_mass, Jz=mass.Jz * to_mass)
+        _each(document, section, lambda element: _add_element_3d(fr, element, to_mass))
+    _each(document, "masses", lambda mass: fr.mass(mass.node, mass.m * to_mass, Jx=mass.Jx * to_mass,
+                                                   Jy=mass.Jy * to_mass, Jz=mass.Jz * to_mass))
     for at, f in document.footings:
         with _at(key_path(at)):
             fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=_footing_soil(f, to_mass),
