@@ -87,7 +87,7 @@ def test_bad_3d_footings_are_refused_naming_the_argument():
     fr.node(1, 0.0, 0.0, 0.0)
     with pytest.raises(ValueError, match="patches=.*nx, ny"):
         fr.foundation("f", 1, width=2.0, length=2.0, patches=(2, 0), soil=HALF)
-    with pytest.raises(ValueError, match="horizontal='soil' is not valid for a 3-D footing"):
+    with pytest.raises(ValueError, match="horizontal='soil' needs mu"):
         fr.foundation("f", 1, width=2.0, length=2.0, patches=2, soil=HALF, horizontal="soil")
     with pytest.raises(ValueError, match="width"):
         fr.foundation("f", 1, width=-2.0, length=2.0, patches=2, soil=HALF)

@@ -247,12 +247,13 @@ def test_the_push_at_a_vertex_slides_along_it_and_the_lemke_solver_agrees():
     np.testing.assert_allclose(lemke.v, sol.v, atol=1e-8 * np.abs(sol.v).max())
 
 
-def test_a_sudden_large_push_on_many_facets_solves_with_lemke():
-    """Many facets violated at once (a sudden push of 20 mu N, 16 facets): Lemke's method solves
-    every step (block pivoting may meet a singular basis of three facets, see Frame3D.soil), and
-    the block slides along ``P - proj(P)``."""
+@pytest.mark.parametrize("lcp", ["bpp", "lemke"])
+def test_a_sudden_large_push_on_many_facets(lcp):
+    """Many facets violated at once (a sudden push of 20 mu N, 16 facets): block principal pivoting
+    (the default: at most two facets of a cone active, any three being dependent) and Lemke's
+    method solve every step, and the block slides along ``P - proj(P)``."""
     N, alpha, P = 16, 0.37, 20 * COULOMB
-    sol = push(block(N, kt=1e3), P, alpha, ramp=1e-9, t_end=3.0, dt=0.01, lcp="lemke")
+    sol = push(block(N, kt=1e3), P, alpha, ramp=1e-9, t_end=3.0, dt=0.01, lcp=lcp)
     success(sol)
     load = P * np.array([np.cos(alpha), np.sin(alpha)])
     expected = load - projection(load, N)

@@ -170,10 +170,12 @@ WRONG_3D = {
     "missing 3-D key": (_change(elements__1__G=None),
                         "elements[1].G: missing key (required keys: type, name, node_i, node_j, E, A, Iy, Iz, G, J)"),
     "2-D mass": (_change(masses__0__J=1.0), "masses[0].J = 1.0: a key of 2-D frames only"),
-    "2-D type": (lambda d: d | {"unilateral": d["unilateral"] + [{"type": "hinge", "name": "h", "beam": "g",
-                                                                   "end": "i", "My": 100.0}]},
-                 'unilateral[2].type = "hinge": plastic hinges are for 2-D frames only (this file declares [frame] '
-                 "dimensions = 3; valid unilateral element types: cable, gap, slider, soil, yield)"),
+    "hinge without Mz": (lambda d: d | {"unilateral": d["unilateral"] + [{"type": "hinge", "name": "h", "beam": "g",
+                                                                           "end": "i", "My": 100.0}]},
+                         "unilateral[2].Mz: missing key (required keys: type, name, beam, end, My, Mz)"),
+    "2-D type": (lambda d: d | {"unilateral": d["unilateral"] + [{"type": "hing", "name": "h"}]},
+                 'unilateral[2].type = "hing": unknown unilateral element type (valid: cable, gap, hinge, slider, '
+                 "soil, yield)"),
     "p-delta": (_change(analysis__p_delta=True), "analysis.p_delta = true: P-Delta is for 2-D frames only"),
     "dimensions": (_change(frame__dimensions=4),
                    "frame.dimensions = 4: unknown number of dimensions (valid: 2, 3)"),
@@ -189,8 +191,7 @@ WRONG_3D = {
                         "rigid_diaphragms[0]: rigid_diaphragm(2, ...): slaves[0]=1 is at z=0, not in the plane z=3"),
     "nothing held": (_change(supports__0={"node": 1, "ux": False, "uy": False, "uz": False}),
                      "supports[0]: ux, uy, uz, rx, ry and rz are all false: the support restrains nothing"),
-    "spectra": (_change(output__floor_spectra=[2]), "output.floor_spectra = [2]: floor response spectra are for "
-                                                    "2-D frames only"),
+    "spectra": (_change(output__floor_spectra=[9]), "output.floor_spectra[0] = 9: no node 9 (nodes are 1..4)"),
 }
 
 

@@ -263,11 +263,19 @@ def test_modal_compiled_equals_python():
         ul.solve(model, rocking_load(), dt=DT, t_end=0.01, method="modal", modal_options={"order": 1})
 
 
+class _OwnBDF2(type(ul.get_rule("bdf2"))):
+    """BDF2 as a rule class of the user's own (not one of unilateral.rules)."""
+
+
 def test_auto_method_is_reported_with_its_reason():
     auto = ul.solve(rocking_model(), rocking_load(), dt=DT, t_end=0.2)
-    assert auto.stats["method"] == "modal" and "fastest" in auto.stats["method_reason"]
-    direct = ul.solve(rocking_model(), rocking_load(), dt=DT, t_end=0.2, method="direct")
-    assert rel(auto.v, direct.v) <= 1e-8
+    assert auto.stats["method"] == "direct" and "small model" in auto.stats["method_reason"]
+    assert "fastest" in auto.stats["method_reason"] and auto.stats["engine"] == "compiled"
+    modal = ul.solve(rocking_model(), rocking_load(), dt=DT, t_end=0.2, method="modal")
+    assert rel(auto.v, modal.v) <= 1e-8
+    own = ul.solve(rocking_model(), rocking_load(), dt=DT, t_end=0.2, rule=_OwnBDF2(2))
+    assert own.stats["method"] == "modal" and "rule of its own" in own.stats["method_reason"]
+    assert rel(own.v, modal.v) <= 1e-12
     assert ul.solve(rocking_model(), rocking_load(), dt=DT, t_end=0.2, rule="hht").stats["method"] == "direct"
     km = ul.KernelModel(ul.MatrixKernel(rocking_model()), np.zeros((101, 3)) - 1.0)
     assert ul.solve(km, dt=DT, t_end=0.2).stats["method"] == "cq"
@@ -277,10 +285,11 @@ def test_auto_falls_back_to_direct_when_the_poles_are_refused():
     """A critically damped oscillator has a defective double pole: no pole-residue form."""
     model = ul.Model(M=[[1.0]], K=[[100.0]], C=[[20.0]], F=[[100.0]], H=[[100.0]])
     load = lambda t: np.array([-10.0 + 30.0 * (0.0 < t <= 0.2)])
-    auto = ul.solve(model, load, dt=1e-3, t_end=0.5)
+    auto = ul.solve(model, load, dt=1e-3, t_end=0.5, rule=_OwnBDF2(2))      # auto would take modal
     assert auto.success and auto.stats["method"] == "direct"
     assert "modal refused" in auto.stats["method_reason"]
-    np.testing.assert_array_equal(auto.v, ul.solve(model, load, dt=1e-3, t_end=0.5, method="direct").v)
+    np.testing.assert_array_equal(auto.v, ul.solve(model, load, dt=1e-3, t_end=0.5, method="direct",
+                                                   rule=_OwnBDF2(2)).v)
     with pytest.raises(ValueError):
         ul.solve(model, load, dt=1e-3, t_end=0.5, method="modal")
 

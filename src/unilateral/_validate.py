@@ -86,8 +86,15 @@ def check_finite(name: str, data) -> None:
         raise ValueError(f"{name} contains {float(data[where])!r} at index {where}; all entries must be finite")
 
 
+#: Sparse matrices with at most this many entries are checked in dense form (scipy's sparse
+#: arithmetic costs tens of microseconds a call whatever the size).
+SMALL_DENSE_SIZE = 64 * 64
+
+
 def check_symmetric(name: str, A) -> None:
     """Raise ``ValueError`` if ``A`` is not symmetric to ``SYMMETRY_RTOL`` relative."""
+    if sp.issparse(A) and A.shape[0] * A.shape[1] <= SMALL_DENSE_SIZE:
+        A = A.toarray()         # a small sparse matrix: dense arithmetic costs microseconds
     diff = A - A.T
     if sp.issparse(diff):
         err = abs(diff).max() if diff.nnz else 0.0

@@ -39,9 +39,10 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
     method : str, Method subclass or Method instance
         A name of :data:`unilateral.methods.METHODS`, or ``"auto"`` (default): the fastest
         correct method for the model at hand, reported in ``stats["method"]`` with the reason in
-        ``stats["method_reason"]`` (:func:`unilateral.methods.choose_method`): ``"modal"`` for
-        small models with a CQ rule and the default LCP solver, ``"direct"`` otherwise (and when
-        the pole decomposition is refused), ``"cq"`` for a :class:`KernelModel`,
+        ``stats["method_reason"]`` (:func:`unilateral.methods.choose_method`): ``"direct"`` for a
+        :class:`Model` (compiled stepping: dense for small models, in the full sparse space for
+        large ones; ``"modal"`` for a small model with a rule object of the user's own),
+        ``"modal"`` or ``"cq"`` for a foundation on a soil, ``"cq"`` for a :class:`KernelModel`,
         ``"time-kernel"`` for a :class:`TimeKernelModel`.
         ``"cq"``: the convolutional LCP of Liolios (1990), eq. (27), with convolution-quadrature
         weights of ``Lambda(s)``, one LCP per step. ``"modal"``: the same CLCP with the history

@@ -11,26 +11,32 @@ tables end there, and in ``results.nc`` its values after that are NaN.
                            node displacements ``case x time x node x component``) and, for a
                            frame, the structure's results of :mod:`unilateral.analysis.results`
                            (end forces, reactions, base shear, overturning moment, drifts,
-                           accelerations, energies, modes), each with ``long_name`` and ``units``
+                           accelerations, energies, modes), each with ``long_name`` and ``units``;
+                           a 3-D frame's: :data:`NOT_IN_3D` (its note in ``summary.json``)
 ``displacements.csv``      the unilateral case, one column per DOF (``bilateral_...`` likewise)
 ``constraints.csv``        ``v`` (uplift, plastic multiplier, slip) and ``psi`` per constraint unknown
                            (every CSV header states its unit: ``time [s]``, ``3.ux [m]``,
                            ``psi:soil2 [kN]``; ``[1]``: dimensionless)
-``element_forces.csv``     end forces ``name:N_i [kN]`` ... ``name:M_j [kN m]`` per element (frames)
+``element_forces.csv``     end forces ``name:N_i [kN]`` ... ``name:M_j [kN m]`` per element (frames;
+                           3-D: ``name:N_i`` ... ``name:Mz_j``, :func:`unilateral.structure.forces3d.end_forces`)
 ``base.csv``               base shear, base vertical force, overturning moment, drifts, energies
 ``spectra.csv``            with a ground motion and spectra asked for (``spectra=``): the
                            pseudo-acceleration spectrum of the ground motion and the floor
                            spectra of the chosen nodes per case (:mod:`unilateral.analysis.spectra`)
 ``yield_and_slip.csv``     plastic deformation and force of each yield element, slip, tangential
-                           and normal force of each friction element (frames that have them);
-                           these three, like the displacements, for every case
-                           (``bilateral_element_forces.csv``, ...)
+                           and normal force of each friction element (frames that have them;
+                           a 3-D hinge or friction cone: one column per component,
+                           ``plastic_deformation:H:roty [rad]``, ``slip:s1:t2 [m]``, and its
+                           ``yield_ratio:H [1]``); these three, like the displacements, for every
+                           case (``bilateral_element_forces.csv``, ...)
 ``summary.json``           the key figures (static state, peaks with their times, periods,
                            energy balance, LCP error, run time)
 figures                    :mod:`unilateral.figures.results`, drawn from the Dataset written
                            to ``results.nc`` (``unilateral plot`` draws the same files); with
                            ``model_figure``, ``model.png`` of the structure and its modes
-                           (:mod:`unilateral.figures.model`; ``results.nc`` holds the drawing)
+                           (:mod:`unilateral.figures.model`; ``results.nc`` holds the drawing;
+                           a 3-D frame's is drawn in perspective, without modes, by
+                           :mod:`unilateral.figures.model3d`, and not held in ``results.nc``)
 =========================  ================================================================
 
 The Dataset is a :class:`unilateral.io.dataset.Dataset`, written by h5netcdf without xarray, and
@@ -173,22 +179,27 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
             extra_results = results_of(structure, model, computed, load=load, units=units,
                                        rule=rule or main.stats.get("rule", "bdf2"), point=point, storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
-    ds, response = _with_spectra(ds, structure, None if three_d else extra_results, spectra, dt=_time_step(main),
-                                 units=units, names=list(cases))
+    ds, responses = _with_spectra(ds, structure, extra_results, spectra, dt=_time_step(main), units=units,
+                                  names=list(cases), three_d=three_d)
+    response = responses[0] if responses else None
     if model_figure and structure is not None and not three_d:
         ds.attrs["model_drawing"] = _model_drawing(structure, extra_results, units, title).to_json()
     if formats and figure_process is not None:
         figure_process.submit(figure_view(ds), out, formats)
     save_netcdf(ds, out / "results.nc")
     for name, sol in computed.items():
-        save_csv(sol, out, prefix="" if name == main_name else f"{name}_", column_units=csv_units(sol, units, ds))
+        save_csv(sol, out, prefix="" if name == main_name else f"{name}_", column_units=csv_units(sol, units, structure))
     if extra_results is not None:
         _save_result_tables(ds, out, main_name=main_name, rows={name: len(sol.t) for name, sol in computed.items()},
                             units=units)
     if response is not None:
         from .spectra import spectra_columns
 
-        write_text_atomic(out / "spectra.csv", _csv(spectra_columns(response, units)))
+        columns = {}
+        for each in responses:              # a 3-D frame: every column names its direction
+            columns |= _with_direction(spectra_columns(each, {}), each["direction"], units) if three_d else \
+                spectra_columns(each, units)
+        write_text_atomic(out / "spectra.csv", _csv(columns))
 
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
     extra |= summary_extra or {}
@@ -220,6 +231,8 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         from .spectra import spectra_summary
 
         result["spectra"] = spectra_summary(response)
+        if three_d:
+            result["spectra"]["by_direction"] = {each["direction"]: spectra_summary(each) for each in responses}
     if three_d:
         result["notes"] = [NOT_IN_3D]
     write_json_atomic(out / "summary.json", result)
@@ -230,7 +243,24 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         from ..figures.results import draw_figures
 
         result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]
+    if formats and model_figure and three_d:    # drawn here: results.nc holds no 3-D drawing to redraw it from
+        from ..figures.model import draw_model
+        from ..figures.model3d import model_drawing_3d
+
+        drawing = model_drawing_3d(structure, units=units, title=title)
+        result["figures"] += [str(p) for p in draw_model(drawing, out, formats)]
     return result
+
+
+def _with_direction(columns: dict, direction: str, units) -> dict:
+    """The columns of ``spectra.csv`` (:func:`unilateral.analysis.spectra.spectra_columns` without units)
+    of a 3-D frame: ``Sa:ground:ux [m/s^2]``, ``Sa:<case>:<node>:ux [m/s^2]`` (the period's column as is)."""
+    time, length = ((units or {}).get(k, "") for k in ("time", "length"))
+    unit = f" [{length}/{time}^2]" if length and time else ""
+    out = {}
+    for k, (name, values) in enumerate(columns.items()):
+        out[(f"period [{time}]" if time else "period") if k == 0 else f"{name}:{direction}{unit}"] = values
+    return out
 
 
 def _time_step(sol) -> float:
@@ -239,17 +269,27 @@ def _time_step(sol) -> float:
     return float(dt) if dt else float(sol.t[1] - sol.t[0])
 
 
-def _with_spectra(ds, structure, extra_results, spectra, *, dt, units, names):
-    """``(ds, response)``: the Dataset with the response spectra of :func:`unilateral.analysis.spectra.run_spectra`
-    and those spectra; ``(ds, None)`` without ``spectra`` settings, structure results or a ground motion."""
+def _with_spectra(ds, structure, extra_results, spectra, *, dt, units, names, three_d=False):
+    """``(ds, responses)``: the Dataset with the response spectra of :func:`unilateral.analysis.spectra.run_spectra`
+    and those spectra (a list: one direction for a 2-D frame; for a 3-D frame one per horizontal
+    direction of its ground motions, :func:`unilateral.analysis.spectra.directions`, the first as
+    ``ground_spectrum`` and ``floor_spectrum``, the next as ``ground_spectrum_uy`` and ``floor_spectrum_uy``);
+    ``(ds, [])`` without ``spectra`` settings, structure results or a ground motion."""
     if spectra is None or extra_results is None:
-        return ds, None
-    from .spectra import run_spectra
+        return ds, []
+    from .spectra import directions, run_spectra
 
-    response = run_spectra(structure, extra_results, spectra, dt)
-    if response is None:
-        return ds, None
-    return _with_results(ds, _spectra_results(response, units), "case" in ds.dims, names), response
+    responses = [run_spectra(structure, extra_results, spectra, dt, direction)
+                 for direction in (directions(extra_results) if three_d else [None])]
+    responses = [response for response in responses if response is not None]
+    for k, response in enumerate(responses):
+        res = _spectra_results(response, units)
+        if k:
+            suffix = f"_{response['direction']}"
+            res["static"] = {f"{name}{suffix}": value for name, value in res["static"].items()}
+            res["variables"] = {f"{name}{suffix}": value for name, value in res["variables"].items()}
+        ds = _with_results(ds, res, "case" in ds.dims, names)
+    return ds, responses
 
 
 def _spectra_results(response: dict, units) -> dict:
@@ -362,20 +402,41 @@ def is_3d(structure) -> bool:
     return structure is not None and len(getattr(structure.dofs, "dof_names", ())) == 6
 
 
-#: The note in ``summary.json`` of a 3-D frame: the outputs that exist only for 2-D frames.
+#: The note in ``summary.json`` of a 3-D frame: what its run writes, and the outputs that exist only for 2-D frames.
 NOT_IN_3D = ("3-D frame: results.nc holds the displacements of every node (ux, uy, uz, rx, ry, rz), the "
-             "constraints, the base forces Fx, Fy, Fz, Mx, My, Mz (base.csv), the support and ground reactions and "
-             "the interstorey drift ratios along x and y (the largest over the plan's corners) and the modes of "
-             "the bilateral structure; not written (2-D frames only): element end forces, accelerations, the "
-             "energy balance, floor spectra and the model figure")
+             "constraints, the accelerations (relative to the ground and, under ground motions, absolute, of every "
+             "free DOF), the element end forces in local axes (N, Vy, Vz, T, My, Mz at each end; element_forces.csv), "
+             "the base forces Fx, Fy, Fz, Mx, My, Mz, the support and ground reactions, the interstorey drift ratios "
+             "along x and y (the largest over the plan's corners), the energy balance (base.csv), the response "
+             "spectra along x and y (spectra.csv), the modes of the bilateral structure and the yield and slip "
+             "histories of hinges, yield links, friction contacts and sliders (results.nc, yield_and_slip.csv, "
+             "summary.json; a hinge's plastic rotations and end moments about y' and z', a friction cone's slip and "
+             "tangential force along t1 and t2, with the component dimension yield_component or "
+             "friction_component; the hysteresis figure along the component of the larger peak); model.png is "
+             "drawn without modes, and unilateral plot does not redraw it. Not written (2-D frames only): the "
+             "constraints' deformations, the interstorey drifts themselves and the residual drift, the base shear "
+             "of each separate frame and its periods, and the base forces figure; a 3-D model file cannot ask for "
+             "floor_spectra yet (the model file's check refuses them)")
 
 
-def _load_samples(load, t):
-    """The applied load (N+1, n) at the times ``t``, or None without a load."""
+def _load_samples(load, t, dt=None):
+    """The applied load (N+1, n) the run used at the times ``t`` (step ``dt``, default ``t[1] - t[0]``),
+    or None without a load.
+
+    A :class:`~unilateral.loads.LoadHistory` gives the samples the time-stepping used, its hat-function
+    averages (:meth:`~unilateral.loads.LoadHistory.grid_samples`, row 0 one-sided at ``t = 0+``, as
+    :mod:`unilateral.methods.common` and the batch's energy balance take them), not its point values:
+    with these the accelerations of the rule satisfy the equations of motion at every step (the
+    initial acceleration is that of row 0) and the work of the loads is the work the run put in.
+    """
     if load is None:
         return None
     if isinstance(load, np.ndarray):
         return np.asarray(load, dtype=float)[: len(t)]
+    if callable(getattr(load, "grid_samples", None)) and len(t) > 1:
+        step = float(dt) if dt else float(t[1] - t[0])
+        if np.allclose(np.diff(t), step, rtol=1e-9, atol=0.0):
+            return np.asarray(load.grid_samples(step, len(t) - 1)[0], dtype=float)
     if callable(getattr(load, "sample", None)):
         return np.asarray(load.sample(t), dtype=float)
     if callable(load):
@@ -384,24 +445,51 @@ def _load_samples(load, t):
 
 
 def _structure_results_3d(structure, model, cases, *, load, units, rule, point, storeys=None):
-    """The results of a 3-D frame for :func:`_with_results`: the base forces of
-    :func:`unilateral.structure.forces3d.base_forces` (``base_Fx`` ... ``base_Mz``, time) per case
-    about ``point`` (default: the centre of the base) and their peaks."""
+    """The results of a 3-D frame for :func:`_with_results`, per case: the base forces of
+    :func:`unilateral.structure.forces3d.base_forces` (``base_Fx`` ... ``base_Mz``, time) about
+    ``point`` (default: the centre of the base), the support and ground reactions, the drift ratios,
+    the accelerations (``acceleration``, ``absolute_acceleration``, ``ground_acceleration``), the end
+    forces of :func:`unilateral.structure.forces3d.end_forces` (``end_force``, ``axial_force``), the
+    histories of the yield and friction elements (:mod:`unilateral.analysis.inelastic`: hinges and
+    friction cones with the components ``roty``, ``rotz`` and ``t1``, ``t2``) and, with a load, the
+    energy balance (``energy_*``), and their peaks."""
     from ..structure import forces3d as F3
-    from .results import _abs_peak, _extreme, bilateral_modes
+    from .inelastic import Inelastic
+    from .results import (_abs_peak, _energy_keys, _extreme, _kind, _put, acceleration_peaks, acceleration_results,
+                          bilateral_modes, energy_peaks, energy_results, ground_motions_of)
 
     units = units or {}
-    force, length = units.get("force", ""), units.get("length", "")
+    force, length, time = units.get("force", ""), units.get("length", ""), units.get("time", "")
+    acc_unit = f"{length}/{time}^2" if length and time else ""
+    moment = f"{force} {length}".strip()
     main = max(cases.values(), key=lambda sol: len(sol.t))
-    samples = _load_samples(load, main.t)
+    samples = _load_samples(load, main.t, main.stats.get("dt"))
+    motions = ground_motions_of(structure, load)
     point = F3.base_point(structure) if point is None else tuple(float(x) for x in point)
     words = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
              "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
     variables, peaks, coords = {}, {}, {}
+    energy_keys = _energy_keys(structure)
+    inelastic = Inelastic(structure, units)
+    coords |= inelastic.coords()
     for case, sol in cases.items():
         if sol.u is None or len(sol.t) < 2:
             continue
         h = F3.histories(structure, sol, rule, load0=None if samples is None else samples[0])
+        acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
+        _node_accelerations(variables, structure, h, motions, case=case, unit=acc_unit)
+        ends = F3.end_forces(structure, h)
+        names = list(ends)
+        coords["element"] = names
+        coords["element_kind"] = ("element", [_kind(structure, name) for name in names])
+        coords["end_component"] = list(F3.END_COMPONENTS)
+        end = np.stack([ends[name] for name in names], axis=1)
+        _put(variables, "end_force", ("time", "element", "end_component"), case, end,
+             "end forces and moments on the element in its local axes x' (i->j), y', z' (N, Vy, Vz along them; T, "
+             "My, Mz about them, right-hand positive)", f"{force} (N, V); {moment} (T, M)".strip())
+        axial = np.where(np.any(end[:, :, 6] != 0, axis=0), end[:, :, 6], end[:, :, 9])
+        _put(variables, "axial_force", ("time", "element"), case, axial,
+             "element force along its axis, tension positive (moment of a rotational spring)", force)
         reaction = F3.reactions(structure, h, sol)
         base = F3.base_forces(structure, reaction, point)
         moment = f"{force} {length}".strip()
@@ -425,7 +513,23 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
                 "long_name": f"{words[key]}, the resultant of the ground's forces on the structure"
                              + ("" if key.startswith("F") else " about base_point"), **({"units": unit} if unit else {})}))
             entry[1][case] = np.asarray(values, dtype=float)
-        peaks[case] = {"base_forces": {key: _extreme(sol.t, values) for key, values in base.items()}}
+        peaks[case] = {"base_forces": {key: _extreme(sol.t, values) for key, values in base.items()},
+                       "end_forces": {name: {comp: _abs_peak(h.t, f[:, k]) for k, comp in enumerate(F3.END_COMPONENTS)
+                                             if np.any(f[:, k])} for name, f in ends.items()}}
+        if motions:
+            peaks[case]["absolute_acceleration"] = acceleration_peaks(structure, h, motions, ("ux", "uy", "uz"))
+        energy = None
+        if samples is not None:
+            fnd = structure.foundation
+            energy = energy_results(variables, structure, h, samples, case=case,
+                                    contact=None if fnd is None else fnd.contact_load(structure, sol),
+                                    keys=energy_keys, unit=moment)
+            peaks[case]["energy"] = energy_peaks(h.t, energy, energy_keys)
+        if inelastic:                           # the frame's own unknowns (h: without the footings')
+            histories = inelastic.histories(h, structure.element_deformations(h.u, h.v)[0])
+            for name, (dims, values, long_name, unit) in histories.items():
+                _put(variables, name, dims, case, values, long_name, unit)
+            peaks[case] |= inelastic.peaks(h.t, h, histories, None if energy is None else energy["unknown_work"])
         drifts = F3.storey_drifts(structure, h)
         if drifts:
             coords["storey"] = list(drifts)
@@ -441,9 +545,31 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
             "attrs": {"base_point": list(point)}}
 
 
+def _node_accelerations(variables, structure, h, motions, *, case, unit):
+    """``node_acceleration`` (time, node, component) of a 3-D frame: the accelerations of the rule of every
+    node's six DOFs relative to the ground (supported DOFs 0, rigidly linked nodes following their
+    masters) and, under ground motions, ``node_absolute_acceleration``: plus the ground's translation
+    ``sum a_g,k d_k`` on the ``ux``, ``uy``, ``uz`` of every node (a supported node moves with the ground)."""
+    from .results import _put
+
+    relative = structure.dofs.nodal(h.uddot)                    # (N+1, nodes, 6)
+    _put(variables, "node_acceleration", ("time", "node", "component"), case, relative,
+         "acceleration of every node relative to the ground (of the time rule)", f"{unit} (ux, uy, uz); rad/s^2 "
+         "(rx, ry, rz)" if unit else "")
+    if motions:
+        absolute = relative.copy()
+        for direction, a_g in motions:
+            d = np.zeros(relative.shape[2])
+            d[list(structure.dofs.dof_names).index(direction)] = 1.0
+            absolute += np.asarray(a_g(h.t), dtype=float)[:, None, None] * d
+        _put(variables, "node_absolute_acceleration", ("time", "node", "component"), case, absolute,
+             "absolute acceleration of every node: relative plus the ground's", f"{unit} (ux, uy, uz); rad/s^2 "
+             "(rx, ry, rz)" if unit else "")
+
+
 def _structure_results(structure, model, cases, *, load, units, rule, point, storeys):
     main = max(cases.values(), key=lambda sol: len(sol.t))        # the longest time axis
-    samples = _load_samples(load, main.t)
+    samples = _load_samples(load, main.t, main.stats.get("dt"))
     return structure_results(structure, model, cases, rule=rule, load_samples=samples,
                              ground_motions=ground_motions_of(structure, load), point=point,
                              storey_pairs=storeys, units=units)
@@ -517,7 +643,7 @@ def _with_model_kinds(ds, model):
 
 
 #: Columns of ``yield_and_slip.csv``: the variables of :mod:`unilateral.analysis.inelastic`.
-INELASTIC_COLUMNS = {"yield_element": ("plastic_deformation", "yield_force"),
+INELASTIC_COLUMNS = {"yield_element": ("plastic_deformation", "yield_force", "yield_ratio"),
                      "friction_element": ("slip", "friction_force", "normal_force")}
 
 
@@ -542,7 +668,7 @@ def _save_case_tables(d, out, *, prefix, units):
         columns = {_head("time", time): t}
         for k, name in enumerate(d["element"].values):
             for c, comp in enumerate(d["end_component"].values):
-                columns[_head(f"{name}:{comp}", moment if str(comp).startswith("M") else force)] = end[:, k, c]
+                columns[_head(f"{name}:{comp}", moment if str(comp).startswith(("M", "T")) else force)] = end[:, k, c]
         write_text_atomic(out / f"{prefix}element_forces.csv", _csv(columns))
     columns = {_head("time", time): t}
     for name, unit in (("base_shear", force), ("base_vertical", force), ("overturning_moment", moment)):
@@ -558,19 +684,28 @@ def _save_case_tables(d, out, *, prefix, units):
     if "drift_ratio" in d:
         for k, label in enumerate(d["storey"].values):
             columns[_head(f"drift_ratio:{label}", "1")] = d["drift_ratio"].values[:, k]
-    for axis in "xy":                                           # a 3-D frame
-        if f"drift_ratio_{axis}" in d:
-            for k, label in enumerate(d["storey"].values):
-                columns[_head(f"drift_ratio_{axis}:{label}", "1")] = d[f"drift_ratio_{axis}"].values[:, k]
     for name in d.data_vars:
         if str(name).startswith("energy_"):
             columns[_head(str(name), "1" if str(name) == "energy_relative_error" else moment)] = d[name].values
+    for axis in "xy":                                           # a 3-D frame: its drift ratios last
+        if f"drift_ratio_{axis}" in d:
+            for k, label in enumerate(d["storey"].values):
+                columns[_head(f"drift_ratio_{axis}:{label}", "1")] = d[f"drift_ratio_{axis}"].values[:, k]
     write_text_atomic(out / f"{prefix}base.csv", _csv(columns))
     columns = {_head("time", time): t}
     for dim, names in INELASTIC_COLUMNS.items():
         for name in (name for name in names if name in d):
+            values = d[name].values
             for k, label in enumerate(d[dim].values):
-                columns[_head(f"{name}:{label}", _inelastic_unit(d, name, k, units))] = d[name].values[:, k]
+                unit = _inelastic_unit(d, name, k, units)
+                if values.ndim == 2:
+                    columns[_head(f"{name}:{label}", unit)] = values[:, k]
+                    continue
+                parts = [str(c) for c in d[dim.replace("element", "component_name")].values[k]]
+                for j, part in enumerate(parts):       # a 3-D frame: each component (one: as in 2-D)
+                    if part:
+                        head = f"{name}:{label}:{part}" if sum(map(bool, parts)) > 1 else f"{name}:{label}"
+                        columns[_head(head, unit)] = values[:, k, j]
     if len(columns) > 1:
         write_text_atomic(out / f"{prefix}yield_and_slip.csv", _csv(columns))
 
@@ -583,6 +718,8 @@ def _head(name: str, unit: str) -> str:
 def _inelastic_unit(d, name, k, units) -> str:
     """The unit of column ``k`` of ``name`` in ``yield_and_slip.csv``: rotations of hinges in rad."""
     force, length = units.get("force", ""), units.get("length", "")
+    if name == "yield_ratio":
+        return "1"
     rotational = name in ("plastic_deformation", "yield_force") and "yield_deformation_unit" in d and \
         str(d["yield_deformation_unit"].values[k]) == "rad"
     if name in ("plastic_deformation", "slip"):
@@ -590,21 +727,20 @@ def _inelastic_unit(d, name, k, units) -> str:
     return f"{force} {length}".strip() if rotational else force
 
 
-def csv_units(sol, units, ds=None) -> dict:
+def csv_units(sol, units, structure=None) -> dict:
     """Units of the columns of ``displacements.csv`` and ``constraints.csv`` (:func:`unilateral.io.save_csv`):
-    ``time``, DOFs (``.rz``: rad), ``v``, ``psi``, ``psiL`` (a hinge's plastic rotation in rad, its
-    moment in force x length)."""
+    ``time``, DOFs (``.rz``: rad), ``v``, ``psi``, ``psiL`` (the multipliers of a hinge or of a
+    link along a rotation of ``structure``: rad, their moments in force x length)."""
+    from .inelastic import rotational_unknowns
+
     units = units or {}
     force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
     out = {"time": time}
     for name in sol.dof_names or ():
         out[name] = "rad" if str(name).endswith(("rx", "ry", "rz")) else length
-    rotational = set()
-    if ds is not None and "yield_deformation_unit" in ds:
-        rotational = {str(e) for e, unit in zip(ds["yield_element"].values, ds["yield_deformation_unit"].values)
-                      if str(unit) == "rad"}
+    rotational = rotational_unknowns(structure) if structure is not None else set()
     for c in sol.constraint_names or ():
-        hinge = str(c).rpartition(".")[0] in rotational
+        hinge = c in rotational
         out[f"v:{c}"] = "rad" if hinge else length
         for key in ("psi", "psiL"):
             out[f"{key}:{c}"] = f"{force} {length}".strip() if hinge else force
@@ -644,6 +780,9 @@ def report(result: dict) -> str:
         text += "\n\n" + "\n".join(_result_lines(results, units, labels))
     if result.get("spectra"):
         text += "\n" + _spectra_line(result["spectra"], units)
+        for direction, each in result["spectra"].get("by_direction", {}).items():     # a 3-D frame's other directions
+            if direction != result["spectra"]["direction"]:
+                text += "\n" + _spectra_line(each, units)
     for name, case in extra.get("cases", {}).items():
         if not case["success"]:
             text += (f"\n{case_name(name, labels)} case FAILED at t = {case.get('t_reached', float('nan')):.4g} "
@@ -725,6 +864,9 @@ def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
                 label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
                 lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}, at a corner) "
                              f"at t = {d['t']:.4g} {time}".rstrip())
+            lines += [f"{' ' * len(head)} {line}" for line in _family_lines(p, units)]
+            if p.get("energy"):
+                lines.append(_energy_line(p["energy"], head, force, length))
             continue
         shear = p["base_shear"]
         peak = shear["max"] if abs(shear["max"]) >= abs(shear["min"]) else shear["min"]
@@ -754,11 +896,15 @@ def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
             lines.append(f"{' ' * len(head)} note: {p['linear_members_note']}")
         lines += [f"{' ' * len(head)} {line}" for line in _family_lines(p, units)]
         if p.get("energy"):
-            e = p["energy"]
-            terms = " + ".join(f"{e[key]:.4g} ({word})" for key, word in DISSIPATED if key in e)
-            lines.append(f"{' ' * len(head)} energy balance: relative error {e['max_relative_error']:.2g}, "
-                         f"input work {e['input_work']:.4g}, dissipated {terms} [{force} {length}]")
+            lines.append(_energy_line(p["energy"], head, force, length))
     return lines
+
+
+def _energy_line(e: dict, head: str, force: str, length: str) -> str:
+    """``energy balance: relative error ..., input work ..., dissipated ...`` of a case's peaks ``e``."""
+    terms = " + ".join(f"{e[key]:.4g} ({word})" for key, word in DISSIPATED if key in e)
+    return (f"{' ' * len(head)} energy balance: relative error {e['max_relative_error']:.2g}, "
+            f"input work {e['input_work']:.4g}, dissipated {terms} [{force} {length}]")
 
 
 #: The dissipation terms of the energy balance in the terminal summary.

@@ -25,6 +25,13 @@ variable                  dims                                   content
 ``mode_period``,          mode; mode, dof                        bilateral periods and shapes
 ``mode_shape``, ...
 ========================  =====================================  ===================================
+
+A 3-D frame's results (:func:`unilateral.analysis.outputs._structure_results_3d`) share the
+accelerations (:func:`acceleration_results`), the energy balance (:func:`energy_results`, the
+arithmetic of :mod:`unilateral.analysis.energy` is that of the natural form, free of the dimension)
+and the yield and friction elements' histories (:class:`~unilateral.analysis.inelastic.Inelastic`:
+a 3-D hinge's and a friction cone's with the dimension ``yield_component`` or ``friction_component``);
+its ``end_force`` has the twelve components of :func:`unilateral.structure.forces3d.end_forces`.
 """
 
 from __future__ import annotations
@@ -49,10 +56,12 @@ FAMILY_ENERGY = {"plastic_work": "yield", "friction_work": "friction"}
 
 
 def ground_motions_of(structure, load) -> list:
-    """``[(direction, a_g)]`` of the ground-motion terms ``(-M r, a_g)`` of a LoadHistory."""
+    """``[(direction, a_g)]`` of the ground-motion terms ``(-M r, a_g)`` of a LoadHistory (directions
+    ``ux``, ``uy`` and, for a 3-D frame, ``uz``)."""
     out = []
+    names = getattr(structure.dofs, "dof_names", ("ux", "uy", "rz"))
     for vector, f in getattr(load, "terms", ()):
-        for direction in ("ux", "uy"):
+        for direction in (d for d in ("ux", "uy", "uz") if d in names):
             pattern = -np.asarray(structure.M @ structure.influence(direction)).ravel()
             if pattern.any() and np.allclose(vector, pattern, rtol=1e-12, atol=0.0):
                 out.append((direction, f))
@@ -94,8 +103,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     coords: dict = {}
 
     def put(name, dims, case, array, long_name, unit=""):
-        entry = variables.setdefault(name, (dims, {}, {"long_name": long_name} | ({"units": unit} if unit else {})))
-        entry[1][case] = np.asarray(array, dtype=float)
+        _put(variables, name, dims, case, array, long_name, unit)
 
     foundation = getattr(structure, "foundation", None)
     inelastic = Inelastic(structure, units)
@@ -113,15 +121,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
         h = F.Histories.from_solution(structure, sol, rule, load0=q0)
         t = h.t
-        put("acceleration", ("time", "dof"), case, h.uddot, "acceleration relative to the ground (of the time rule)",
-            acc_unit)
-        if ground_motions:
-            put("absolute_acceleration", ("time", "dof"), case, F.absolute_acceleration(structure, h, ground_motions),
-                "absolute acceleration u'' + r a_g", acc_unit)
-            put("ground_acceleration", ("time", "excitation"), case,
-                np.column_stack([np.asarray(a_g(t), dtype=float) for _, a_g in ground_motions]),
-                "ground acceleration a_g", acc_unit)
-            coords["excitation"] = [f"{k}:{d}" for k, (d, _) in enumerate(ground_motions)]
+        acceleration_results(variables, coords, structure, h, ground_motions, case=case, unit=acc_unit)
         ends = F.end_forces(structure, h)
         names = list(ends)
         coords["element"] = names
@@ -186,14 +186,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                 put(name, dims, case, values, long_name, unit)
         energy = None
         if load_samples is not None:
-            energy = energy_balance(structure, h, np.asarray(load_samples)[: len(t)])
-            if contact is not None:         # the work of the contact forces went into the soil
-                from ..structure.foundation import add_soil_energy
-
-                energy = add_soil_energy(energy, contact, h.u)
-            for key in energy_keys:
-                put(f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
-                    "1" if key == "relative_error" else moment_unit)
+            energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
+                                    keys=energy_keys, unit=moment_unit)
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
         if per_frame:
@@ -204,7 +198,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         if note:
             peaks[case]["linear_members_note"] = note
         if energy is not None:
-            peaks[case]["energy"] |= {key: float(energy[key][-1]) for key in FAMILY_ENERGY if key in energy_keys}
+            peaks[case]["energy"] = energy_peaks(t, energy, energy_keys)
         if inelastic:
             peaks[case] |= inelastic.peaks(t, h, histories, None if energy is None else energy["unknown_work"])
     model, static = bilateral_modes(structure, model, peaks, coords, time_unit=T)
@@ -337,18 +331,70 @@ def _peaks(t, base, ends, reaction, drifts, energy, *, h, ground_motions, struct
         out["drift_ratio"] = {label: _abs_peak(t, ratio) for label, (_, ratio) in drifts.items()}
         out["residual_drift"] = _residual_drift(t, drifts)
     if ground_motions:
-        acc = F.absolute_acceleration(structure, h, ground_motions)
-        names = structure.dofs.names
-        out["absolute_acceleration"] = {names[k]: _abs_peak(t, acc[:, k]) for k in range(acc.shape[1])
-                                        if names[k].endswith(("ux", "uy")) and structure.M[k, k] > 0}
+        out["absolute_acceleration"] = acceleration_peaks(structure, h, ground_motions)
     if energy is not None:
-        k = int(np.argmax(energy["relative_error"]))
-        out["energy"] = {"max_relative_error": energy["max_relative_error"], "t_max_relative_error": float(t[k]),
-                         "input_work": float(energy["input_work"][-1]),
-                         "damping_dissipated": float(energy["damping_dissipated"][-1]),
-                         "contact_dissipated": float(energy["contact_dissipated"][-1]),
-                         "kinetic_max": float(energy["kinetic"].max())}
+        out["energy"] = energy_peaks(t, energy)
     return out
+
+
+def _put(variables, name, dims, case, array, long_name, unit=""):
+    """Add case ``case`` of the variable ``name`` to ``variables`` (name -> (dims, {case: array}, attrs))."""
+    entry = variables.setdefault(name, (dims, {}, {"long_name": long_name} | ({"units": unit} if unit else {})))
+    entry[1][case] = np.asarray(array, dtype=float)
+
+
+def acceleration_results(variables, coords, structure, h, ground_motions, *, case, unit=""):
+    """The accelerations of a case, 2-D or 3-D: ``acceleration`` (time, dof), the ``u''`` of the time
+    rule relative to the ground, and under ground motions ``absolute_acceleration`` (time, dof),
+    ``u'' + sum r_k a_g,k``, and ``ground_acceleration`` (time, excitation), each ``a_g,k`` (the
+    coordinate ``excitation``: ``"<k>:<direction>"``)."""
+    _put(variables, "acceleration", ("time", "dof"), case, h.uddot,
+         "acceleration relative to the ground (of the time rule)", unit)
+    if ground_motions:
+        _put(variables, "absolute_acceleration", ("time", "dof"), case,
+             F.absolute_acceleration(structure, h, ground_motions), "absolute acceleration u'' + r a_g", unit)
+        _put(variables, "ground_acceleration", ("time", "excitation"), case,
+             np.column_stack([np.asarray(a_g(h.t), dtype=float) for _, a_g in ground_motions]),
+             "ground acceleration a_g", unit)
+        coords["excitation"] = [f"{k}:{d}" for k, (d, _) in enumerate(ground_motions)]
+
+
+def acceleration_peaks(structure, h, ground_motions, directions=("ux", "uy")) -> dict:
+    """The peak absolute acceleration (``value``, ``t``) of each free DOF with mass along ``directions``."""
+    acc = F.absolute_acceleration(structure, h, ground_motions)
+    names = structure.dofs.names
+    return {names[k]: _abs_peak(h.t, acc[:, k]) for k in range(acc.shape[1])
+            if names[k].endswith(directions) and structure.M[k, k] > 0}
+
+
+def energy_results(variables, structure, h, load_samples, *, case, contact=None, keys=ENERGY_KEYS, unit=""):
+    """The energy balance of a case (:func:`unilateral.analysis.energy.energy_balance`, 2-D or 3-D), its
+    terms ``keys`` added to ``variables`` as ``energy_<key>`` (time); returns the energies.
+
+    ``contact`` (N+1, n): the footings' contact load ``T c`` on a frame on a soil medium (its work
+    went into the soil, :func:`unilateral.structure.foundation.add_soil_energy`)."""
+    energy = energy_balance(structure, h, np.asarray(load_samples)[: len(h.t)])
+    if contact is not None:                 # the work of the contact forces went into the soil
+        from ..structure.foundation import add_soil_energy
+
+        energy = add_soil_energy(energy, contact, h.u)
+    for key in keys:
+        _put(variables, f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
+             "1" if key == "relative_error" else unit)
+    return energy
+
+
+def energy_peaks(t, energy, keys=()) -> dict:
+    """The ``energy`` entry of a case's peaks: the largest relative error and its time, the input work,
+    the damping and contact dissipation and the plastic and friction work among ``keys`` at the end,
+    the largest kinetic energy."""
+    k = int(np.argmax(energy["relative_error"]))
+    out = {"max_relative_error": energy["max_relative_error"], "t_max_relative_error": float(t[k]),
+           "input_work": float(energy["input_work"][-1]),
+           "damping_dissipated": float(energy["damping_dissipated"][-1]),
+           "contact_dissipated": float(energy["contact_dissipated"][-1]),
+           "kinetic_max": float(energy["kinetic"].max())}
+    return out | {key: float(energy[key][-1]) for key in FAMILY_ENERGY if key in keys}
 
 
 def _residual_drift(t, drifts) -> dict:

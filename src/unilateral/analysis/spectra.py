@@ -149,7 +149,7 @@ def absolute_accelerations(structure, relative, ground, nodes, direction: str) -
     return nodal + np.asarray(ground, dtype=float)[:, None]
 
 
-def run_spectra(structure, results: dict, settings: SpectraSettings, dt: float) -> dict | None:
+def run_spectra(structure, results: dict, settings: SpectraSettings, dt: float, direction=None) -> dict | None:
     """The input and floor spectra of a frame's results, or None without a ground motion.
 
     Parameters
@@ -162,6 +162,10 @@ def run_spectra(structure, results: dict, settings: SpectraSettings, dt: float) 
     settings : SpectraSettings
     dt : float
         Time step of the analysis [time].
+    direction : ``"ux"``, ``"uy"`` or ``"uz"``, optional
+        The direction of the spectra (a 3-D frame: each horizontal direction, :func:`directions`);
+        default: ``"ux"`` if a ground motion acts along it, else ``"uy"``. None is returned if no
+        ground motion acts along ``direction``.
 
     Returns
     -------
@@ -174,7 +178,10 @@ def run_spectra(structure, results: dict, settings: SpectraSettings, dt: float) 
     if "ground_acceleration" not in variables or "acceleration" not in variables:
         return None
     directions = [str(label).rpartition(":")[2] for label in results["coords"]["excitation"]]
-    direction = "ux" if "ux" in directions else "uy"
+    if direction is None:
+        direction = "ux" if "ux" in directions else "uy"
+    elif direction not in directions:
+        return None
     along = np.array([d == direction for d in directions])
     ground_by_case = {case: a[:, along].sum(axis=1) for case, a in variables["ground_acceleration"][1].items()}
     longest = max(ground_by_case, key=lambda case: _finite_rows(ground_by_case[case]))
@@ -191,6 +198,15 @@ def run_spectra(structure, results: dict, settings: SpectraSettings, dt: float) 
         absolute = absolute_accelerations(structure, relative[:n], ground_by_case[case][:n], settings.nodes, direction)
         out["floors"][case] = pseudo_acceleration(absolute, dt, settings.periods, settings.damping)
     return out
+
+
+def directions(results: dict) -> list[str]:
+    """The directions of the spectra of a 3-D frame's results: those of its horizontal ground motions
+    (``ux``, ``uy``), else ``uz`` for a vertical one alone; empty without a ground motion."""
+    if "excitation" not in results.get("coords", {}):
+        return []
+    given = {str(label).rpartition(":")[2] for label in results["coords"]["excitation"]}
+    return [d for d in ("ux", "uy") if d in given] or [d for d in ("uz",) if d in given]
 
 
 def _finite_rows(values: np.ndarray) -> int:

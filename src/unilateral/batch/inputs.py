@@ -24,7 +24,9 @@ class StudyInputs:
     variants : dict
         ``variant index -> variant source`` (:func:`variant_source`).
     records : dict
-        ``record digest -> GroundMotion`` (samples in m/s^2).
+        ``record samples key -> GroundMotion`` (samples in m/s^2; ``Record.samples_key``, the
+        record's digest), or of a pair of components the tuple of their GroundMotions (a pair
+        swept over several angles is sent once).
     errors : dict
         ``analysis key -> message``: analyses whose model file or record could not be read (they
         are recorded as errors without running).
@@ -58,12 +60,13 @@ def study_inputs(analyses) -> StudyInputs:
                 failed_variants[variant.index] = str(exc)
             except OSError as exc:
                 failed_variants[variant.index] = f"cannot read the model's files: {exc}"
-        if record is not None and record.digest not in inputs.records and record.digest not in failed_records:
+        samples = None if record is None else record.samples_key
+        if record is not None and samples not in inputs.records and samples not in failed_records:
             try:
-                inputs.records[record.digest] = record_samples(record)
+                inputs.records[samples] = record_samples(record)
             except (OSError, ValueError, TypeError) as exc:
-                failed_records[record.digest] = f"cannot read the record: {type(exc).__name__}: {exc}"
-        message = failed_variants.get(variant.index) or (record is not None and failed_records.get(record.digest))
+                failed_records[samples] = f"cannot read the record: {type(exc).__name__}: {exc}"
+        message = failed_variants.get(variant.index) or (record is not None and failed_records.get(samples))
         if message:
             inputs.errors[analysis.key] = message
     return inputs
@@ -122,7 +125,8 @@ def referenced_files(data: dict, folder: Path) -> dict:
 
 
 def record_samples(record):
-    """The GroundMotion of a study record: read when the study was, else read (or generated) now."""
+    """The GroundMotion of a study record (a pair: the tuple of its components'): read when the study
+    was, else read (or generated) now."""
     if record.motion is not None:
         return record.motion
     return read_study_record(record.payload())

@@ -73,6 +73,10 @@ class Synthetic(Table):
     envelope: Literal[ENVELOPES] = Field("saragoni-hart", title="envelope")
 
 
+DIRECTIONS_3D = ("ux", "uy", "uz")
+"""Ground motion directions of ``[records] directions`` (a 2-D frame: ux and uy only)."""
+
+
 class Records(Table):
     """[records]: the ground-motion records; each replaces the ground motions of the model file."""
 
@@ -80,6 +84,17 @@ class Records(Table):
                                                       "with units), sorted by name.")
     files: list[FileName] = Field([], description="Record files.")
     synthetic: Synthetic | None = None
+    pairs: list[list[FileName]] = Field([], description=(
+        "Frames: records of two or three components, one analysis under all of them at once: "
+        '[["RSN1_X.AT2", "RSN1_Y.AT2"], ...], each 2 or 3 files (x, y[, vertical]) relative to the study file; '
+        "instead of folder, files and synthetic."))
+    directions: list[Literal[DIRECTIONS_3D]] | None = Field(None, title="ground motion direction", description=(
+        'pairs: the direction of each component (default ["ux", "uy"], or ["ux", "uy", "uz"] for 3 files; '
+        "a 2-D frame: ux and uy, horizontal and vertical)."))
+    angle: Union[float, Annotated[list[float], Field(min_length=1)], None] = Field(None, description=(
+        "pairs, 3-D frames: the horizontal components rotated in plan by this angle [deg] (component 1 along "
+        "(cos a, sin a), component 2 along (-sin a, cos a)); a list of angles: each pair at every angle "
+        "(default 0)."))
     direction: Literal["ux", "uy"] | None = Field(None, title="ground motion direction", description=(
         "Frames: the direction of the ground motion (default: that of the model file's first ground motion)."))
     influence: FileName | None = Field(None, description="Matrix-level models: Matrix Market file of r (n x 1), "
@@ -91,8 +106,8 @@ class Records(Table):
 
     @model_validator(mode="after")
     def _some(self):
-        if self.folder is None and not self.files and self.synthetic is None:
-            raise PydanticCustomError("records", "give folder, files or synthetic")
+        if self.folder is None and not self.files and self.synthetic is None and not self.pairs:
+            raise PydanticCustomError("records", "give folder, files, synthetic or pairs")
         return self
 
 

@@ -37,6 +37,10 @@ MAX_SCALE_FACTOR = 1e4
 """Files of a records folder that are read as records (any case); .AT2 files carry their units."""
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3}
+PAIR_DIRECTIONS = {2: ("ux", "uy"), 3: ("ux", "uy", "uz")}
+"""Default ``[records] directions`` of a pair of 2 and of 3 files (x, y[, vertical])."""
+HORIZONTAL = {2: ("ux",), 3: ("ux", "uy")}
+"""The horizontal ground motion directions of a 2-D and of a 3-D frame (the others are vertical)."""
 
 
 class StudyFileError(ModelFileError):
@@ -65,19 +69,42 @@ def sha256_json(obj) -> str:
 # ---------------------------------------------------------------------- the pieces of a study
 @dataclass
 class Record:
-    """A ground-motion record of the study (a file, or synthetic by seed)."""
+    """A ground-motion record of the study (a file, synthetic by seed, or a pair of files).
+
+    A pair (``kind = "pair"``, from ``[records] pairs``) is one record of the study made of 2 or 3
+    components, each a file applied along its direction (``directions``), the horizontal ones
+    rotated in plan by ``angle`` (degrees); its ``motion`` is the tuple of their GroundMotions.
+    """
 
     name: str
-    kind: str                         # "file" or "synthetic"
+    kind: str                         # "file", "synthetic" or "pair"
     path: Path | None
     options: dict                     # reader options (files) or generator arguments (synthetic)
-    digest: str                       # content hash
-    motion: object = None             # the GroundMotion, when read on the client
+    digest: str                       # content hash (of a pair: its components, directions and angle)
+    motion: object = None             # the GroundMotion (a pair: a tuple of them), when read on the client
     error: str | None = None          # why it cannot be read (its analyses fail without running)
+    components: list = field(default_factory=list)   # pair: [{"file", "path", "digest"}, ...]
+    directions: tuple = ()            # pair: the direction of each component
+    angle: float = 0.0                # pair: the plan rotation of the horizontal components [deg]
 
     def payload(self) -> dict:
-        return {"name": self.name, "kind": self.kind, "path": None if self.path is None else str(self.path),
-                "options": self.options, "digest": self.digest}
+        out = {"name": self.name, "kind": self.kind, "path": None if self.path is None else str(self.path),
+               "options": self.options, "digest": self.digest}
+        if self.kind == "pair":
+            out.update(components=self.components, directions=list(self.directions), angle=self.angle)
+        return out
+
+    @property
+    def samples_key(self) -> str:
+        """The key of the record's samples among the inputs sent to the workers: the digest, or of a
+        pair the digest of its components alone (the pair at several angles is sent once)."""
+        if self.kind != "pair":
+            return self.digest
+        return sha256_json({"pair": [c["digest"] for c in self.components]})
+
+    def ground(self) -> dict | None:
+        """How a pair's components enter the model (``{"directions", "angle"}``), None for a record."""
+        return {"directions": list(self.directions), "angle": self.angle} if self.kind == "pair" else None
 
 
 @dataclass
@@ -118,10 +145,13 @@ class Analysis:
     def inputs(self) -> dict:
         """The inputs of the analysis as a flat dict (one row of the study table)."""
         row = {"key": self.key, "model": self.variant.model, "variant": self.variant.index,
-               "record": "" if self.record is None else self.record.name, "level": self.level,
-               "intensity": self.intensity, "scale": self.scale, "record_intensity": self.record_intensity,
-               "T1": self.variant.T1, "dt": self.settings["dt"], "t_end": self.settings["t_end"],
-               "method": self.settings["method"]}
+               "record": "" if self.record is None else self.record.name}
+        if self.record is not None and self.record.kind == "pair":
+            row.update(record_files="; ".join(c["file"] for c in self.record.components),
+                       directions=" ".join(self.record.directions), angle=self.record.angle)
+        row.update({"level": self.level, "intensity": self.intensity, "scale": self.scale,
+                    "record_intensity": self.record_intensity, "T1": self.variant.T1, "dt": self.settings["dt"],
+                    "t_end": self.settings["t_end"], "method": self.settings["method"]})
         for name, value in self.variant.parameters.items():
             row[f"param.{name}"] = value
         return row
@@ -245,6 +275,7 @@ def _static_problems(doc: StudyFile, folder: Path) -> list[str]:
         if rec.influence is not None and not (folder / rec.influence).is_file():
             problems.append(value_problem(("records", "influence"), rec.influence,
                                           f"file not found (looked for {folder / rec.influence})"))
+        problems += _pair_problems(rec, folder)
     if rec is not None and rec.synthetic is not None:
         problems += _synthetic_problems(rec.synthetic)
     if doc.scaling is not None:
@@ -298,6 +329,63 @@ def _static_problems(doc: StudyFile, folder: Path) -> list[str]:
                     problems.append(value_problem(("quantities", k, "pairs", j), [upper, lower],
                                                   "the two nodes of a storey must differ"))
     return problems
+
+
+def _pair_problems(rec, folder: Path) -> list[str]:
+    """``[records] pairs`` and the keys that go with them (directions, angle): counts, files, directions."""
+    problems = []
+    if not rec.pairs:
+        for key in ("directions", "angle"):
+            if getattr(rec, key) is not None:
+                problems.append(value_problem(("records", key), getattr(rec, key),
+                                              "only with pairs (records of two or three components); a record "
+                                              "of files, folder or synthetic takes direction"))
+        return problems
+    only = "a study of pairs takes its records from pairs only: put every record in a pair, or make two studies"
+    why = {"direction": "give the direction of each component with directions = [...]",
+           "influence": "pairs are for frames; a matrix-level model takes single records (files) with influence"}
+    for key in ("folder", "files", "synthetic", "direction", "influence"):
+        value = getattr(rec, key)
+        if value is None or value == []:
+            continue
+        head = key_path(("records", key))
+        if key != "synthetic":
+            head += f" = {toml_value(value)}"
+        problems.append(f"{head}: not with pairs ({why.get(key, only)})")
+    for k, pair in enumerate(rec.pairs):
+        if len(pair) not in PAIR_DIRECTIONS:
+            problems.append(value_problem(("records", "pairs", k), pair, f"{len(pair)} file{'s' * (len(pair) != 1)}: "
+                                          "a pair holds 2 or 3 files (x, y[, vertical])"))
+            continue
+        for j, name in enumerate(pair):
+            if not (folder / name).is_file():
+                problems.append(value_problem(("records", "pairs", k, j), name,
+                                              f"file not found (looked for {folder / name})"))
+        if len(set(pair)) < len(pair):
+            problems.append(value_problem(("records", "pairs", k), pair, "the same file twice (each component "
+                                          "of a pair is a file of its own)"))
+    directions = rec.directions
+    if directions is not None:
+        repeated = [d for d in dict.fromkeys(directions) if directions.count(d) > 1]
+        if repeated:
+            problems.append(value_problem(("records", "directions"), directions,
+                                          f"{toml_value(repeated[0])} twice (each component along a direction of "
+                                          "its own: ux, uy, uz)"))
+        for k, pair in enumerate(rec.pairs):
+            if len(pair) in PAIR_DIRECTIONS and len(pair) != len(directions):
+                problems.append(value_problem(("records", "directions"), directions,
+                                              f"{len(directions)} direction{'s' * (len(directions) != 1)} for "
+                                              f"the {len(pair)} files of pairs[{k}] "
+                                              "(one direction per file, in the order of the files)"))
+                break
+    if isinstance(rec.angle, list) and len(set(rec.angle)) < len(rec.angle):
+        problems.append(value_problem(("records", "angle"), rec.angle, "an angle twice (each angle once)"))
+    return problems
+
+
+def pair_directions(rec, count: int) -> tuple:
+    """The directions of the components of a pair of ``count`` files: ``[records] directions`` or the default."""
+    return tuple(rec.directions) if rec.directions is not None else PAIR_DIRECTIONS[count]
 
 
 def _synthetic_problems(syn) -> list[str]:
@@ -435,18 +523,14 @@ def _records(doc: StudyFile, folder: Path) -> list[Record]:
     out = []
     names = {}
     for path in files:
-        at2 = path.suffix.lower() == ".at2"
-        options = {} if at2 else {k: v for k, v in (("units", rec.units), ("dt", rec.dt),
-                                                   ("skip_header", rec.skip_header)) if v is not None}
-        if not at2 and rec.units is None:
-            problems.append(f"records.units: missing key (the plain-text record {path.name} needs the units of "
-                            'its values, e.g. units = "g" or "cm/s2")')
+        options = _reader_options(rec, path, problems)
         name = path.stem
         if name in names:
             name = f"{path.stem}{path.suffix}"
         names[name] = path
         digest = sha256_json({"file": sha256_file(path), "options": options})
         out.append(Record(name=name, kind="file", path=path.resolve(), options=options, digest=digest))
+    out += _pair_records(rec, folder, problems)
     if rec.synthetic is not None:
         syn = rec.synthetic
         for seed in syn.seeds:
@@ -458,28 +542,70 @@ def _records(doc: StudyFile, folder: Path) -> list[Record]:
     for k, record in enumerate(out):
         if record.name in seen:
             problems.append(f"records: two records named {toml_value(record.name)} (every record needs a "
-                            "different name: file stems and synthetic-<seed>)")
+                            "different name: file stems, synthetic-<seed> and the first file stems of pairs)")
         seen.setdefault(record.name, k)
     if problems:
         raise Problems(problems)
     return out
 
 
+def _reader_options(rec, path: Path, problems: list) -> dict:
+    """The reader options of the record file ``path`` (none for .AT2); a missing ``units`` into ``problems``."""
+    if path.suffix.lower() == ".at2":
+        return {}
+    if rec.units is None:
+        problems.append(f"records.units: missing key (the plain-text record {path.name} needs the units of "
+                        'its values, e.g. units = "g" or "cm/s2")')
+    return {k: v for k, v in (("units", rec.units), ("dt", rec.dt), ("skip_header", rec.skip_header)) if v is not None}
+
+
+def _pair_records(rec, folder: Path, problems: list) -> list[Record]:
+    """The records of ``[records] pairs``: one per pair and angle, named by the first file's stem (both
+    stems joined if two pairs start with files of the same stem; ``@<angle>`` with several angles)."""
+    angles = rec.angle if isinstance(rec.angle, list) else [0.0 if rec.angle is None else rec.angle]
+    firsts = [Path(pair[0]).stem for pair in rec.pairs]
+    out = []
+    for pair in rec.pairs:
+        paths = [folder / name for name in pair]
+        components = []
+        for name, path in zip(pair, paths):
+            options = _reader_options(rec, path, problems)
+            components.append({"file": name, "path": str(path.resolve()), "options": options,
+                               "digest": sha256_json({"file": sha256_file(path), "options": options})})
+        stem = paths[0].stem
+        name = stem if firsts.count(stem) == 1 else "+".join(p.stem for p in paths)
+        directions = pair_directions(rec, len(pair))
+        for angle in angles:
+            angle = float(angle)
+            digest = sha256_json({"pair": [c["digest"] for c in components], "directions": directions,
+                                  "angle": angle})
+            out.append(Record(name=name if len(angles) == 1 else f"{name}@{angle:g}", kind="pair", path=None,
+                              options={}, digest=digest, components=components, directions=directions,
+                              angle=angle))
+    return out
+
+
 def read_study_record(payload: dict):
-    """The GroundMotion of a record payload (``Record.payload()``), in m/s^2."""
+    """The GroundMotion of a record payload (``Record.payload()``), in m/s^2; of a pair the tuple of
+    its components' GroundMotions."""
     from ..loads import read_record, synthetic_accelerogram
 
     if payload["kind"] == "synthetic":
         return synthetic_accelerogram(**payload["options"])
+    if payload["kind"] == "pair":
+        return tuple(read_record(c["path"], **c["options"]) for c in payload["components"])
     return read_record(payload["path"], **payload["options"])
 
 
 def _read_records(records: list[Record], doc: StudyFile) -> None:
+    read = {}                                       # samples_key -> motion or error (a pair at several angles)
     for record in records:
-        try:
-            record.motion = read_study_record(record.payload())
-        except (ValueError, OSError, TypeError) as exc:
-            record.error = f"cannot read the record: {exc}"
+        if record.samples_key not in read:
+            try:
+                read[record.samples_key] = (read_study_record(record.payload()), None)
+            except (ValueError, OSError, TypeError) as exc:
+                read[record.samples_key] = (None, f"cannot read the record: {exc}")
+        record.motion, record.error = read[record.samples_key]
 
 
 # ---------------------------------------------------------------------- model variants
@@ -524,8 +650,8 @@ def _variants(doc: StudyFile, folder: Path) -> list[Variant]:
                                           f"cannot read the model file ({'; '.join(exc.problems)})"))
             continue
         ground = _ground_motion(doc, base, folder, path, k)
-        if isinstance(ground, str):
-            problems.append(ground)
+        if isinstance(ground, (str, list)):
+            problems += [ground] if isinstance(ground, str) else ground
             continue
         study_settings = [(f"analysis.{key}", value) for key, value in
                           doc.analysis.model_dump(include={"dt", "method", "rule", "lcp", "initial"}).items()
@@ -593,6 +719,10 @@ def _ground_motion(doc: StudyFile, base: dict, folder: Path, model_path: Path, k
     if doc.records is None:
         return {}
     frame = "matrices" not in base
+    if doc.records.pairs:
+        return _pair_ground(doc.records, base, model_path) if frame else [value_problem(
+            ("records", "pairs"), doc.records.pairs, f"the matrix-level model {model_path.name} has no directions to "
+            "apply the components of a pair along (pairs are for frames; give files with influence)")]
     motions = (base.get("loads") or {}).get("ground_motion") or []
     first = motions[0] if motions and isinstance(motions[0], dict) else {}
     if frame:
@@ -611,6 +741,33 @@ def _ground_motion(doc: StudyFile, base: dict, folder: Path, model_path: Path, k
     if not influence.is_file():
         return f"models[{k}]: influence file not found (looked for {influence})"
     return {"influence": str(influence), "digest": sha256_file(influence)}
+
+
+def _pair_ground(rec, base: dict, model_path: Path):
+    """``{"pairs": dimensions}`` of a frame under the pairs of ``rec``, or the problems of the pairs'
+    directions and angle with it (a 2-D frame: directions ux and uy, no angle)."""
+    frame = base.get("frame")
+    dimensions = 3 if isinstance(frame, dict) and frame.get("dimensions") == 3 else 2
+    valid = PAIR_DIRECTIONS[dimensions]
+    problems = []
+    what = f"model {model_path.name} is a {dimensions}-D frame"
+    if rec.directions is not None:
+        bad = [d for d in rec.directions if d not in valid]
+        if bad:
+            problems.append(value_problem(("records", "directions"), rec.directions,
+                                          f"{toml_value(bad[0])} is not a ground motion direction of a 2-D frame "
+                                          f"({what}; valid: {', '.join(valid)}: horizontal and vertical)"))
+    else:
+        for k, pair in enumerate(rec.pairs):
+            if len(pair) > len(valid):
+                problems.append(value_problem(("records", "pairs", k), pair,
+                                              f"{len(pair)} files, but {what} with {len(valid)} ground motion "
+                                              f"directions ({', '.join(valid)}): give {len(valid)} files"))
+    if rec.angle is not None and dimensions == 2:
+        problems.append(value_problem(("records", "angle"), rec.angle,
+                                      f"a rotation in plan needs a 3-D frame ({what}: its pair is horizontal ux "
+                                      "and vertical uy; leave angle out)"))
+    return problems or {"pairs": dimensions}
 
 
 def _referenced_digests(data, folder: Path) -> dict:
@@ -640,13 +797,11 @@ def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | Non
         if record.motion is not None:
             unit = acceleration_factor(scaling.units)
             if scaling.measure == "pga":
-                record_im = record.motion.pga / unit
+                record_im = _pga(record, variant) / unit
             else:
-                from .spectrum import response_spectrum
-
                 period = variant.T1 if scaling.period == "T1" else scaling.period
                 if math.isfinite(period):
-                    record_im = _sa_cached(record, period, scaling.damping) / unit
+                    record_im = _sa(record, variant, period, scaling.damping) / unit
                 else:
                     error = error or "no first period T1 for Sa(T1) (the model has no mode with mass)"
             if math.isfinite(record_im) and record_im > 0:
@@ -656,7 +811,8 @@ def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | Non
     if doc.analysis.t_end == "record" and record is not None:
         if record.motion is not None:
             seconds = TIME_UNITS[variant.spec.units["time"]]
-            settings["t_end"] = (record.motion.duration + doc.analysis.t_after) / seconds
+            duration = max(m.duration for m in _components(record))       # a pair: its longest component
+            settings["t_end"] = (duration + doc.analysis.t_after) / seconds
         else:
             settings["t_end"] = math.nan
     ident = {"version": package_version(), "model": variant.digest, "overrides": variant.overrides,
@@ -664,8 +820,10 @@ def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | Non
              "scale": scale, "settings": {k: v for k, v in settings.items() if k != "timeout"},
              "quantities": [q.model_dump() for q in doc.quantities]}
     key = sha256_json(ident)[:24]
-    payload = {"key": key, "variant": variant.index, "record": None if record is None else record.digest,
+    payload = {"key": key, "variant": variant.index, "record": None if record is None else record.samples_key,
                "scale": scale, "settings": settings, "quantities": [q.model_dump() for q in doc.quantities]}
+    if record is not None and record.kind == "pair":
+        payload["ground"] = record.ground()
     return Analysis(key=key, index=index, variant=variant, record=record, level=level, intensity=intensity,
                     scale=scale, record_intensity=record_im, settings=settings, payload=payload, error=error)
 
@@ -673,12 +831,40 @@ def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | Non
 _SA_CACHE: dict = {}
 
 
-def _sa_cached(record: Record, period: float, zeta: float) -> float:
+def _components(record: Record) -> list:
+    """``[GroundMotion]`` of a record read on the client: its motion, or the components of a pair."""
+    return list(record.motion) if record.kind == "pair" else [record.motion]
+
+
+def _horizontal(record: Record, variant: Variant) -> list:
+    """``[(digest, GroundMotion)]`` of the components of ``record`` that scale it: the record itself, or
+    the components of a pair along a horizontal direction of the variant's frame (ux, uy in 3-D; ux in
+    2-D), as recorded (whatever the pair's angle)."""
+    if record.kind != "pair":
+        return [(record.digest, record.motion)]
+    horizontal = HORIZONTAL[variant.ground_motion["pairs"]]
+    return [(c["digest"], motion) for c, motion, direction in zip(record.components, record.motion,
+                                                                 record.directions) if direction in horizontal]
+
+
+def _pga(record: Record, variant: Variant) -> float:
+    """PGA of a record [m/s^2]; of a pair the larger PGA of its horizontal components."""
+    return max(motion.pga for _, motion in _horizontal(record, variant))
+
+
+def _sa(record: Record, variant: Variant, period: float, zeta: float) -> float:
+    """Sa(period, zeta) of a record [m/s^2]; of a pair the geometric mean of its horizontal components'
+    (Sa_GM, e.g. Baker & Cornell 2006)."""
+    values = [_sa_cached(digest, motion, period, zeta) for digest, motion in _horizontal(record, variant)]
+    return values[0] if len(values) == 1 else math.sqrt(values[0] * values[1])
+
+
+def _sa_cached(digest: str, motion, period: float, zeta: float) -> float:
     from .spectrum import response_spectrum
 
-    key = (record.digest, float(period), float(zeta))
+    key = (digest, float(period), float(zeta))
     if key not in _SA_CACHE:
-        _SA_CACHE[key] = response_spectrum(record.motion, period, zeta)
+        _SA_CACHE[key] = response_spectrum(motion, period, zeta)
     return _SA_CACHE[key]
 
 

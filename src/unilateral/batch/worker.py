@@ -24,14 +24,13 @@ from pathlib import Path
 import numpy as np
 
 _MODEL_CACHE: dict = {}
+_VECTOR_CACHE: dict = {}
 _CACHE_STATS = {"model_builds": 0}
 _FILES: dict = {}
 NOTES = {
     "base_shear": "not available: the model is not a frame (no elements to take the ground forces from)",
     "energy_error": "not available: the model is not a frame (no elements to take the energies from)",
 }
-#: The note of ``energy_error`` for a 3-D frame.
-NOT_IN_3D = "not available for a 3-D frame (the energy balance is written for 2-D frames only)"
 
 
 class AnalysisTimeout(Exception):
@@ -46,6 +45,7 @@ def cache_stats() -> dict:
 def clear_caches() -> None:
     """Forget the model variants built by this process."""
     _MODEL_CACHE.clear()
+    _VECTOR_CACHE.clear()
 
 
 # ---------------------------------------------------------------------- cached inputs
@@ -137,7 +137,7 @@ def model_variant(source: dict):
 def _ground_vector(spec, ground: dict, influence: bytes | None):
     """``-M r`` of the study's ground motion, as the model file builds it (``influence``: the
     Matrix Market file of ``r`` of a matrix-level model)."""
-    if not ground:
+    if not ground or "pairs" in ground:      # the vectors of a pair: pair_vectors, per analysis
         return None
     model = spec.model
     if "direction" in ground:
@@ -154,11 +154,51 @@ def _ground_vector(spec, ground: dict, influence: bytes | None):
     return -np.asarray(model.M @ r).ravel()
 
 
+def plan_direction(direction: str, angle: float):
+    """The ground motion direction ``direction`` of a 3-D frame rotated in plan by ``angle`` degrees:
+    ``"ux"`` -> ``(cos a, sin a, 0)``, ``"uy"`` -> ``(-sin a, cos a, 0)``, ``"uz"`` (and any direction
+    at a zero angle) itself. The cosine and sine of a multiple of 90 degrees are exact (0, 1, -1)."""
+    if direction == "uz" or angle == 0:
+        return direction
+    quarter, rest = divmod(float(angle), 90.0)
+    if rest == 0:
+        c, s = ((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(quarter) % 4]
+    else:
+        a = math.radians(angle)
+        c, s = math.cos(a), math.sin(a)
+    return (c, s, 0.0) if direction == "ux" else (-s, c, 0.0)
+
+
+def pair_vectors(spec, digest: str, ground: dict) -> list:
+    """``[-M r_i]`` of the components of a pair (``ground``: ``{"directions", "angle"}``), each ``r_i``
+    as a model file's ``[[loads.ground_motion]]`` along that direction builds it (a 3-D frame:
+    ``Frame3D.influence``, of the direction rotated by the angle, :func:`plan_direction`; a 2-D
+    frame: 1 on the free DOFs along it). Cached per model variant (``digest``), directions and angle."""
+    key = (digest, tuple(ground["directions"]), float(ground["angle"]))
+    hit = _VECTOR_CACHE.get(key)
+    if hit is not None:
+        return hit
+    structure, model = spec.structure, spec.model
+    if structure is None:
+        raise ValueError("a pair of records needs a frame (a matrix-level model has no directions)")
+    vectors = []
+    for direction in ground["directions"]:
+        if len(structure.dofs.dof_names) == 6:
+            r = structure.influence(plan_direction(direction, ground["angle"]))
+        else:
+            r = np.array([1.0 if dof == direction else 0.0 for _, dof in structure.dofs.free])
+        vectors.append(-np.asarray(model.M @ r).ravel())
+    _VECTOR_CACHE[key] = vectors
+    return vectors
+
+
 def analysis_load(spec, vector, record, scale: float):
     """The model's load with the record ``record`` (m/s^2) times ``scale`` as its ground motion.
 
     The same arithmetic as a model file's ``[[loads.ground_motion]]`` with ``scale``: a study's
-    analysis equals the model file run with that record, bit for bit.
+    analysis equals the model file run with that record, bit for bit. A pair: ``vector`` the list
+    of the components' vectors (:func:`pair_vectors`), ``record`` the tuple of their records, each a
+    term of its own in their order, as the ``[[loads.ground_motion]]`` entries of a model file.
     """
     from ..loads import LoadHistory, Tabulated, length_factor
     from ..modelfile.schema import TIME_UNITS
@@ -167,8 +207,9 @@ def analysis_load(spec, vector, record, scale: float):
         return spec.load
     seconds = TIME_UNITS[spec.units["time"]]
     to_model = seconds ** 2 / length_factor(spec.units["length"])
-    a_g = Tabulated(record.time / seconds, record.acceleration * (scale * to_model))
-    return LoadHistory(spec.load.constant, tuple(spec.load.terms) + ((vector, a_g),))
+    pairs = zip(vector, record, strict=True) if isinstance(vector, list) else [(vector, record)]
+    terms = tuple((v, Tabulated(r.time / seconds, r.acceleration * (scale * to_model))) for v, r in pairs)
+    return LoadHistory(spec.load.constant, tuple(spec.load.terms) + terms)
 
 
 # ---------------------------------------------------------------------- peaks
@@ -214,8 +255,6 @@ def collect(quantity: dict, sol, spec, ys: dict, frame: FrameResults | None = No
     if kind in ("base_shear", "energy_error"):
         if frame is None:
             return {name: math.nan}, [f"{name}: {NOTES[kind]}"]
-        if kind == "energy_error" and frame.three_d:
-            return {name: math.nan}, [f"{name}: {NOT_IN_3D}"]
         return {name: frame.peak_base_shear() if kind == "base_shear" else frame.energy_error()}, notes
     raise ValueError(f"unknown quantity type {kind!r}")
 
@@ -339,15 +378,18 @@ def _dof_history(sol, spec, node, dof):
     key = (id(dofs), node, dof)
     row = _ROWS.get(key)
     if row is None or row[0] is not dofs:
-        dense = np.asarray(dofs.T[dofs.full_index(node, dof)].todense()).ravel()
+        sparse = dofs.T[dofs.full_index(node, dof)]
+        dense = np.asarray(sparse.todense()).ravel()
         nonzero = np.flatnonzero(dense)
-        row = _ROWS[key] = (dofs, nonzero, dense[nonzero])
-    _, nonzero, weights = row
+        row = _ROWS[key] = (dofs, nonzero, dense[nonzero], sparse)
+    _, nonzero, weights, sparse = row
     if sol.u is None or sol.u.shape[1] != spec.structure.n:
         return spec.structure.node_displacement(sol, node, dof)       # its error message
     if nonzero.size == 1 and weights[0] == 1.0:       # a DOF of u itself: its column
         return sol.u[:, nonzero[0]]
-    return sol.u[:, nonzero] @ weights if nonzero.size else np.zeros(len(sol.t))
+    # a combination (a slave node): node_displacement's own product, rounded as it is (a dense
+    # product may fuse a multiply-add and differ in the last place)
+    return np.asarray(sparse @ sol.u.T).ravel() if nonzero.size else np.zeros(len(sol.t))
 
 
 # ---------------------------------------------------------------------- one analysis
@@ -386,6 +428,8 @@ def run_analysis(payload: dict, source: dict, record=None, run_id: str = "") -> 
         builds = _CACHE_STATS["model_builds"]
         spec, vector, ys, operators = model_variant(source)
         result["cache"] = {"model": "miss" if _CACHE_STATS["model_builds"] > builds else "hit"}
+        if payload.get("ground") is not None:           # a pair of records: a vector per component
+            vector = pair_vectors(spec, source["digest"], payload["ground"])
         _solve_and_collect(result, payload, spec, analysis_load(spec, vector, record, payload["scale"]),
                            (ys, operators))
     except AnalysisTimeout as exc:

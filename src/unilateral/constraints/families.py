@@ -69,6 +69,13 @@ class ConstraintFamily:
         surface): never both active, which the pivoting solvers respect (none by default)."""
         return ()
 
+    def polygons(self):
+        """Groups (sequences of unknowns) that are the facets of one polygon of more than four
+        facets (a friction cone, the interaction polygon of a 3-D hinge): any three of their
+        columns are dependent, so at most two are active, which the pivoting solvers respect
+        (none by default)."""
+        return ()
+
     def check(self, m: int) -> None:
         """Raise if an index lies outside ``0..m-1``."""
         bad = self.indices[(self.indices < 0) | (self.indices >= m)]
@@ -133,23 +140,34 @@ class Yield(ConstraintFamily):
         The multipliers; with ``two_sided`` (default) in pairs ``(+ face, - face)``.
     two_sided : bool
         The indices come in pairs of opposite faces of two-sided surfaces.
+    polygons : sequence of sequences of int, optional
+        The multipliers that are the facets of one polygonal yield surface of more than four
+        facets (a 3-D hinge's interaction polygon in the plane of its two end moments; see
+        :meth:`ConstraintFamily.polygons`).
     name : str, optional
     """
 
     law = "rate"
     kind = "yield"
 
-    def __init__(self, indices, *, two_sided=True, name=None):
+    def __init__(self, indices, *, two_sided=True, polygons=(), name=None):
         super().__init__(indices, name=name)
         self.two_sided = bool(two_sided)
         if self.two_sided and self.indices.size % 2:
             raise ValueError(f"a two-sided yield family needs its multipliers in pairs (+ face, - face); "
                              f"got {self.indices.size} indices (give two_sided=False for one-sided faces)")
+        self._polygons = tuple(tuple(int(i) for i in group) for group in polygons)
+        outside = {i for group in self._polygons for i in group} - set(self.indices.tolist())
+        if outside:
+            raise ValueError(f"polygons name unknown {min(outside)}, which is not a multiplier of the family")
 
     def pairs(self):
         if not self.two_sided:
             return ()
         return tuple(zip(self.indices[0::2].tolist(), self.indices[1::2].tolist()))
+
+    def polygons(self):
+        return self._polygons
 
 
 class Friction(ConstraintFamily):
@@ -187,6 +205,15 @@ class Friction(ConstraintFamily):
     def pairs(self):
         return tuple(zip(self.indices[0::2].tolist(), self.indices[1::2].tolist()))
 
+    def polygons(self):
+        """The slips of more than four facets sharing one normal contact: a polygonal friction cone
+        (a contact in 3-D)."""
+        groups = {}
+        for i, n in zip(self.indices.tolist(), self.normal.tolist()):
+            if n >= 0:
+                groups.setdefault(n, []).append(i)
+        return tuple(tuple(g) for g in groups.values() if len(g) > 4)
+
     def row_coupling(self):
         return tuple((int(i), int(n), float(mu)) for i, n, mu in zip(self.indices, self.normal, self.mu)
                      if n >= 0 and mu != 0.0)
@@ -201,6 +228,12 @@ class Friction(ConstraintFamily):
 
 class SoilFriction(Friction):
     """Coulomb slip of footing patches on a soil given in the Laplace domain (dual form).
+
+    A footing in plan has per patch a polygonal cone of ``N`` facets (opposite facets in pairs,
+    ``(k, k + N/2)``), each a slip multiplier with the same law ``w_k = mu c - d_k . f``: the rows
+    ``psi_k = d_k . f`` come from the kernel's constant coupling to the shears
+    (:meth:`FoundationModel.weights <unilateral.soil.FoundationModel.weights>`), so the family is
+    the same, with ``normal`` naming the patch's contact for each of its ``N`` multipliers.
 
     A slip pair ``(s+, s-)`` of a patch whose normal unknown is the compressive force ``c`` of a
     :class:`SoilContact` and whose shear unknown ``f`` a :class:`SoilShear`: the pair's rows are

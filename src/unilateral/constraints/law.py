@@ -17,7 +17,9 @@ unknowns): an **unknown map** ``Q`` (friction whose normal force is an unknown `
 ``w = (P W0 + Q) z + ...`` (``Q`` couples only to holonomic unknowns, so ``Q o = 0``); and **free**
 unknowns (the patches' shear forces ``f``, of either sign, whose rows are equations ``w = 0``),
 eliminated from each step's LCP by the Schur complement of their block
-(:class:`FreeCondensation`).
+(:class:`FreeCondensation`). Footings that slide in plan have per patch a cone of facets whose
+multipliers share the patch's contact as their normal unknown (their row of ``Q``): at most two
+facets of a cone are active in a solution, which the pivoting solver respects (``group``).
 """
 
 from __future__ import annotations
@@ -46,6 +48,8 @@ class StepLaw:
         makes both active (their columns are opposite: the pair's block of ``W0`` is singular)
     Q : (m, m) unknown map, or None: ``w`` gains ``Q v`` (friction on a soil contact's force)
     free : (m,) bool, unknowns of either sign whose rows are equations (eliminated each step)
+    group : (m,) int, the polygon (of more than four facets) each unknown is a facet of (-1: none);
+        a pivoting solver keeps at most two of a polygon active (any three columns are dependent)
     """
 
     rate: np.ndarray
@@ -54,10 +58,13 @@ class StepLaw:
     partner: np.ndarray
     Q: np.ndarray | None = None
     free: np.ndarray | None = None
+    group: np.ndarray | None = None
 
     def __post_init__(self):
         if self.free is None:
             object.__setattr__(self, "free", np.zeros(self.rate.size, dtype=bool))
+        if self.group is None:
+            object.__setattr__(self, "group", np.full(self.rate.size, -1, dtype=np.int64))
 
     @property
     def m(self) -> int:
@@ -99,7 +106,9 @@ class StepLaw:
         :class:`FreeCondensation` of it when the law has free unknowns. Either has
         ``solve(M, q, active=...)`` returning an :class:`~unilateral.lcp.base.LCPResult` over all
         ``m`` unknowns."""
-        return FreeCondensation(solver, M, self.free, self.partner) if self.free.any() else solver
+        if not self.free.any():
+            return solver
+        return FreeCondensation(solver, M, self.free, self.partner, group=self.group)
 
     def offset(self, v_prev) -> np.ndarray:
         """``o`` (m,): the previous value of the rate unknowns, zero for holonomic ones."""
@@ -112,12 +121,13 @@ class StepLaw:
         return q if self.P is None else self.P @ q
 
     def compiled(self):
-        """``(code, rate (m,) float, P (m, m), partner (m,) int)`` for the compiled marches."""
+        """``(code, rate (m,) float, P (m, m), partner (m,) int, group (m,) int)`` for the compiled
+        marches."""
         if not self.compiled_ok:
             raise ValueError("the compiled marches take no free unknowns and no unknown map (footings "
                              "that slide on a soil); use engine='python'")
         P = np.eye(self.m) if self.P is None else np.ascontiguousarray(self.P)
-        return self.code, self.rate.astype(float), P, self.partner
+        return self.code, self.rate.astype(float), P, self.partner, self.group
 
 
 def contact_law(m: int) -> StepLaw:
@@ -152,7 +162,10 @@ def step_law(families, m: int) -> StepLaw:
     kinds = ["contact"] * m
     P = Q = None
     partner = np.full(m, -1, dtype=np.int64)
+    group = np.full(m, -1, dtype=np.int64)
     for family in families:
+        for polygon in family.polygons():
+            group[list(polygon)] = group.max() + 1
         rate[family.indices] = family.law == "rate"
         free[family.indices] = family.law == "free"
         for i in family.indices:
@@ -183,7 +196,7 @@ def step_law(families, m: int) -> StepLaw:
             if Q is None:
                 Q = np.zeros((m, m))
             Q[row, col] += factor
-    return StepLaw(rate=rate, P=P, kinds=tuple(kinds), partner=partner, Q=Q, free=free)
+    return StepLaw(rate=rate, P=P, kinds=tuple(kinds), partner=partner, Q=Q, free=free, group=group)
 
 
 def default_families(m: int):
@@ -211,9 +224,13 @@ class FreeCondensation:
     M : (m, m) the step LCP matrix
     free : (m,) bool
     partner : (m,) int, the opposite face of each pair member (-1: none)
+    group : (m,) int, optional
+        The polygon of more than four facets (a friction cone in plan) of each unknown, -1 for none:
+        at most two of a polygon active at once (:func:`unilateral.march.compiled.bpp`); a step
+        that block principal pivoting fails is solved by Lemke's method.
     """
 
-    def __init__(self, solver, M, free, partner):
+    def __init__(self, solver, M, free, partner, *, group=None):
         self.solver = solver
         self.F, self.R = np.flatnonzero(free), np.flatnonzero(~free)
         position = np.full(free.size, -1)
@@ -221,6 +238,8 @@ class FreeCondensation:
         first = [i for i in self.R if partner[i] > i]
         self.pairs = (position[first], position[partner[first]]) if first else None
         self.partner = np.where(partner[self.R] >= 0, position[np.maximum(partner[self.R], 0)], -1)
+        self.group = (np.full(self.R.size, -1, dtype=np.int64) if group is None
+                      else np.ascontiguousarray(np.asarray(group, dtype=np.int64)[self.R]))
         M_FF = M[np.ix_(self.F, self.F)]
         try:
             inverse = np.linalg.inv(M_FF)
@@ -279,9 +298,15 @@ class FreeCondensation:
         v, w, rhs, x = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
         max_iter = self.solver.max_iter or 10 * m + 10
         it = compiled.bpp(self.reduced, q_R, active, v, w, max_iter, np.empty(m, dtype=np.int64), np.empty((m, m)),
-                          rhs, x, False, self.partner)
+                          rhs, x, False, (self.partner, self.group))
         error = float(compiled.lcp_error(v, w, q_R))
         success = it >= 0 and error <= self.solver.tol
+        if not success and (self.group >= 0).any():      # a cone in plan: complementary pivoting (Lemke)
+            from ..lcp.base import get_lcp_solver
+
+            res = get_lcp_solver("lemke", tol=self.solver.tol).solve(self.reduced, q_R)
+            if res.success:
+                return self._net_pairs(res, q_R) if self.pairs is not None else res
         message = (f"BPP (compiled, slip pairs one face at a time): solved in {abs(it)} linear solves" if success
                    else f"BPP (compiled, slip pairs one face at a time) failed after {abs(it)} linear solves, "
                         f"LCP error {error:.3g} (tol {self.solver.tol:g}): the step LCP with friction is not a "

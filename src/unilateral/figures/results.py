@@ -457,18 +457,25 @@ def hysteresis_figure(ds):
 
 
 def _yield_panels(d) -> list[dict]:
-    """Hysteresis panels of the yield elements: deformation, force, yield lines, work, peak over yield."""
+    """Hysteresis panels of the yield elements: deformation, force, yield lines, work, peak over yield
+    (a 3-D hinge's: along the component of its larger peak, :func:`_along`)."""
     if "yield_force" not in d:
         return []
     force, deformation = d["yield_force"].values, d["yield_element_deformation"].values
     plastic = d["plastic_deformation"].values
-    limits = np.column_stack([d["yield_limit_positive"].values, -d["yield_limit_negative"].values])
+    positive, negative = d["yield_limit_positive"].values, d["yield_limit_negative"].values
     panels = []
     for k, name in enumerate(d["yield_element"].values):
         rotational = str(d["yield_deformation_unit"].values[k]) == "rad"
-        peak = max(float(np.max(force[:, k])) / limits[k, 0], float(np.min(force[:, k])) / limits[k, 1])
-        panels.append({"name": str(name), "kind": str(d["yield_element_kind"].values[k]), "force": force[:, k],
-                       "deformation": deformation[:, k], "limits": limits[k], "work": _work(force[:, k], plastic[:, k]),
+        work, label = _work_of(force, plastic, k), str(name)
+        if force.ndim == 3:                     # components (a 3-D frame): the one of the larger peak
+            j, label = _along(d, "yield", plastic, force, k)
+            f, e, limits = force[:, k, j], deformation[:, k, j], (positive[k, j], -negative[k, j])
+        else:
+            f, e, limits = force[:, k], deformation[:, k], (positive[k], -negative[k])
+        peak = max(float(np.max(f)) / limits[0], float(np.min(f)) / limits[1])
+        panels.append({"name": label, "kind": str(d["yield_element_kind"].values[k]), "force": f,
+                       "deformation": e, "limits": np.array(limits), "work": work,
                        "ratio": peak, "x": "rotation" if rotational else "length",
                        "y": "moment" if rotational else "force",
                        "xlabel": "end rotation" if rotational else "deformation",
@@ -477,14 +484,42 @@ def _yield_panels(d) -> list[dict]:
 
 
 def _friction_panels(d) -> list[dict]:
-    """Hysteresis panels of the friction elements: tangential motion against the friction force."""
+    """Hysteresis panels of the friction elements: tangential motion against the friction force (a 3-D
+    contact's along the component of its larger peak)."""
     if "friction_force" not in d:
         return []
     force, motion, slip = d["friction_force"].values, d["tangential_deformation"].values, d["slip"].values
-    return [{"name": str(name), "kind": str(d["friction_element_kind"].values[k]), "force": force[:, k],
-             "deformation": motion[:, k], "limits": (), "work": _work(force[:, k], slip[:, k]), "ratio": 0.0,
-             "x": "length", "y": "force", "xlabel": "tangential motion", "ylabel": "friction force T"}
-            for k, name in enumerate(d["friction_element"].values)]
+    panels = []
+    for k, name in enumerate(d["friction_element"].values):
+        label, j = str(name), None
+        if force.ndim == 3:
+            j, label = _along(d, "friction", slip, force, k)
+        pick = (lambda a: a[:, k]) if j is None else (lambda a: a[:, k, j])
+        panels.append({"name": label, "kind": str(d["friction_element_kind"].values[k]), "force": pick(force),
+                       "deformation": pick(motion), "limits": (), "work": _work_of(force, slip, k), "ratio": 0.0,
+                       "x": "length", "y": "force", "xlabel": "tangential motion", "ylabel": "friction force T"})
+    return panels
+
+
+def _along(d, family, plastic, force, k) -> tuple[int, str]:
+    """``(j, "name (component)")``: the component of element ``k`` (values ``(time, element,
+    component)``) with the larger peak plastic deformation, or force if it never yields; its name
+    in the panel's title (none for an element with one component)."""
+    names = [str(c) for c in d[f"{family}_component_name"].values[k]]
+    count = sum(map(bool, names))
+    peaks = np.nanmax(np.abs(plastic[:, k, :count]), axis=0, initial=0.0)
+    if not peaks.any():
+        peaks = np.nanmax(np.abs(force[:, k, :count]), axis=0, initial=0.0)
+    j = int(np.argmax(peaks))
+    name = str(d[f"{family}_element"].values[k])
+    return j, (f"{name} ({names[j]})" if count > 1 else name)
+
+
+def _work_of(force, deformation, k) -> float:
+    """Work of element ``k``'s force on its deformation, summed over its components (if any)."""
+    if force.ndim == 2:
+        return _work(force[:, k], deformation[:, k])
+    return float(sum(_work(force[:, k, j], deformation[:, k, j]) for j in range(force.shape[2])))
 
 
 def _work(force, deformation) -> float:

@@ -11,6 +11,8 @@ module             history
                    in all
 ``recursive``      :class:`RecursiveHistory`: one scalar recursion per pole of a
                    :class:`~unilateral.kernels.PoleResidueKernel`, O(r m) per step, exact
+``restricted``     :class:`RestrictedHistory`: any of the above on the unknowns that the weights
+                   ``W_1 .. W_N`` couple (the slips of sliding footings have none)
 =================  =========================================================================
 
 A new way of summing the history is one module here with those two methods, and one entry in
@@ -20,8 +22,10 @@ A new way of summing the history is one module here with those two methods, and 
 from .fft_blocked import FFTBlockedHistory
 from .naive import NaiveHistory
 from .recursive import LinearRecursion, RecursiveHistory
+from .restricted import RestrictedHistory, history_on_coupled_unknowns
 
 #: Histories built from stored weights ``W (N+1, m, m)``, by name (``cq_options["history"]``).
 HISTORIES = {"naive": NaiveHistory, "fft": FFTBlockedHistory}
 
-__all__ = ["FFTBlockedHistory", "HISTORIES", "LinearRecursion", "NaiveHistory", "RecursiveHistory"]
+__all__ = ["FFTBlockedHistory", "HISTORIES", "LinearRecursion", "NaiveHistory", "RecursiveHistory",
+           "RestrictedHistory", "history_on_coupled_unknowns"]

@@ -162,7 +162,8 @@ def patch_coords(footings, m: int, units: dict | None = None) -> dict:
         The footings' patches do not end the ``m`` constraints.
     """
     first, patches = int(footings.first), sum(f.m for f in footings.footings)
-    if first + patches * (4 if getattr(footings, "sliding", False) else 1) != m:
+    per_patch = getattr(footings, "constraints_per_patch", 4 if getattr(footings, "sliding", False) else 1)
+    if first + patches * per_patch != m:
         raise ValueError(f"the footings have {patches} patches after {first} constraints of the frame, but the "
                          f"solution has {m} constraints: give the footings of the structure solved")
     name, node = np.full(m, "", dtype=object), np.full(m, "", dtype=object)

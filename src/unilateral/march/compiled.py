@@ -98,22 +98,31 @@ def _lu_solve_principal(W, idx, k, rhs, S, x):
 
 
 @njit(cache=True)
-def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmetric, partner):
+def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmetric, faces):
     """Block principal pivoting for ``w = W v + q >= 0, v >= 0, v.w = 0``.
 
     ``W`` symmetric positive definite on the principal submatrices it visits (Cholesky), or with
     ``symmetric=False`` a nonsymmetric matrix whose visited principal submatrices are
     nonsingular (LU with partial pivoting: the step LCP of friction).
-    ``partner`` (int, m; -1: none) pairs unknowns with opposite columns (two-sided yield and
-    slip): an unknown does not enter while its partner stays active, and of two partners that
-    would enter together only the one with the smaller ``w`` does (both active would make
-    ``W_AA`` singular; in a solution at most one is).
+    ``faces = (partner, group)`` (int, m each; -1: none). ``partner`` pairs unknowns with opposite
+    columns (two-sided yield and slip): an unknown does not enter while its partner stays active,
+    and of two partners that would enter together only the one with the smaller ``w`` does (the
+    one of lower index on a tie: both active would make ``W_AA`` singular; in a solution at most
+    one is). ``group`` gathers the facets of one polygon of more than four facets (a friction cone,
+    a 3-D hinge's interaction polygon: any three of its columns are dependent, they span two
+    strains): at most two of a group are active after any exchange (:func:`_two_per_group`), those
+    that enter of the smallest ``w`` first, then those that stay of the largest ``v`` (in a
+    solution at most two adjacent facets are active, a vertex).
     ``active`` (bool, m) is the warm start and is updated in place to the final active set
     (``v > 0``). ``v`` and ``w`` are outputs. Returns the number of linear solves, or minus
     that number if the method failed (``W_AA`` not positive definite or singular, or no
     convergence).
     """
     m = q.shape[0]
+    partner, group = faces
+    grouped = False
+    for i in range(m):
+        grouped = grouped or group[i] >= 0
     scale = 1.0
     w_max = 1e-300
     for i in range(m):
@@ -159,28 +168,80 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmet
                     if v[i] < 0.0:
                         v[i] = 0.0
             return it
+        murty = False
         if count < best:
             best = count
             tries = _BLOCK_TRIES
         elif tries > 0:
             tries -= 1
         else:                               # Murty: flip only the largest infeasible index
-            active[last] = not active[last]
-            if active[last] and partner[last] >= 0:
-                active[partner[last]] = False
-            continue
-        for i in range(m):
-            flip = (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps)
-            if flip and not active[i] and partner[i] >= 0:
-                p = partner[i]
-                stays = active[p] and not v[p] < -eps_v
-                enters = not active[p] and w[p] < w[i]
-                flip = not (stays or enters)
-            work_x[i] = 1.0 if flip else 0.0        # the solve's workspace is free until the next solve
+            murty = True
+        for i in range(m):                  # the flips, in the solve's workspace (free until the next solve)
+            if murty:
+                flip = i == last
+            else:
+                flip = (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps)
+                if flip and not active[i] and partner[i] >= 0:
+                    p = partner[i]
+                    stays = active[p] and not v[p] < -eps_v
+                    enters = not active[p] and (w[p] < w[i] or (w[p] == w[i] and p < i))
+                    flip = not (stays or enters)
+            work_x[i] = 1.0 if flip else 0.0
+        if murty and not active[last] and partner[last] >= 0 and active[partner[last]]:
+            work_x[partner[last]] = 1.0     # the partner leaves as the face enters
+        if grouped:
+            _two_per_group(active, v, w, group, work_x)
         for i in range(m):
             if work_x[i] != 0.0:
                 active[i] = not active[i]
     return -max_iter
+
+
+@njit(cache=True)
+def _two_per_group(active, v, w, group, flip):
+    """At most two members of each group active after the exchange ``active ^ flip`` (``flip``
+    (m,) nonzero where a member changes, updated in place): the members that enter of the smallest
+    ``w`` first, then those that stay of the largest ``v`` (a facet that enters a polygon with two
+    active facets replaces the one that carries less slip; see :func:`bpp`)."""
+    m = active.shape[0]
+    for i in range(m):
+        g = group[i]
+        if g < 0:
+            continue
+        first = True
+        for j in range(i):
+            if group[j] == g:
+                first = False
+                break
+        if not first:
+            continue                        # each group once, at its first member
+        count = 0
+        for j in range(i, m):
+            if group[j] == g and active[j] != (flip[j] != 0.0):
+                count += 1
+        if count <= 2:
+            continue
+        kept0, kept1 = -1, -1
+        for entering in (True, False):
+            for _ in range(2):
+                if kept1 >= 0:
+                    break
+                pick = -1
+                for j in range(i, m):
+                    if group[j] != g or j == kept0 or active[j] == entering or (flip[j] != 0.0) != entering:
+                        continue
+                    if pick < 0 or (w[j] < w[pick] if entering else v[j] > v[pick]):
+                        pick = j
+                if pick < 0:
+                    break
+                if kept0 < 0:
+                    kept0 = pick
+                else:
+                    kept1 = pick
+        for j in range(i, m):
+            if group[j] == g:
+                keep = j == kept0 or j == kept1
+                flip[j] = 1.0 if keep != active[j] else 0.0
 
 
 @njit(cache=True)
@@ -252,10 +313,10 @@ def _law_step(law, W0, WL, q, v_prev, vn, wn, active, max_iter, work, o, t):
     """The step LCP of the law on the associated vector ``q``: ``vn`` the new unknowns, ``wn``
     the LCP's ``w = -P psi``, ``q`` left as the LCP vector. Returns the solves (negative: failed)
     and the LCP error."""
-    code, rate, P, partner = law
+    code, rate, P, partner, group = law
     idx, S, rhs, x = work
     law_vector(code, rate, P, W0, q, v_prev, o, t)
-    it = bpp(WL, q, active, vn, wn, max_iter, idx, S, rhs, x, code != 2, partner)
+    it = bpp(WL, q, active, vn, wn, max_iter, idx, S, rhs, x, code != 2, (partner, group))
     err = lcp_error(vn, wn, q)
     if code != 0:
         for a in range(vn.shape[0]):
@@ -641,7 +702,7 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
     rhs, x, acc = np.empty(n), np.empty(n), np.empty(n)
     c, dv, dvd, dvdd = np.empty(m), np.zeros(m), np.empty(m), np.empty(m)
     q, vn, wn, idx, S, work_rhs, work_x = _workspace(m)
-    code, rate, P, partner = law
+    code, rate, P, partner, group = law
     WL = law_matrix(code, P, W0)
     o, t1 = np.empty(m), np.empty(m)
     for k in range(steps[0], steps[1]):
@@ -700,7 +761,7 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
                     active[b] = False
                 it, err = 0, 0.0
             else:
-                it = bpp(WL, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x, code != 2, partner)
+                it = bpp(WL, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x, code != 2, (partner, group))
                 err = lcp_error(vn, wn, q)
             if it < 0 or err > tol:
                 return k

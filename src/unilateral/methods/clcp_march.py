@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from .. import _validate as V
-from ..history import HISTORIES
+from ..history import HISTORIES, history_on_coupled_unknowns
 from ..lcp import BlockPrincipalPivoting
 from ..march.clcp import march_cq, march_cq_compiled
 from ..march.jit import compiled_pays
@@ -35,8 +35,7 @@ def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto",
     and block principal pivoting only) or ``"python"``; ``law``: the model's
     :class:`~unilateral.constraints.StepLaw` (default: contact only).
     """
-    W = W.copy()
-    W[0] = 0.5 * (W[0] + W[0].T)
+    W0 = 0.5 * (W[0] + W[0].T)
     N = W.shape[0] - 1
     history = V.choice(f"{option}['history']", history or ("fft" if N > FFT_HISTORY_MIN_STEPS else "naive"),
                        HISTORIES)
@@ -47,9 +46,12 @@ def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto",
     if use_compiled(engine, compiled_ok, run, option=option,
                     needs="history='naive' and lcp='bpp' (and no footings that slide)", steps=N):
         run.stats["engine"] = "compiled"
+        W = W.copy()
+        W[0] = W0
         return march_cq_compiled("naive", (W, psi_affine), v_b, dt=disc.dt, tol=solver.tol,
                                  max_iter=solver.max_iter or 10 * W.shape[1] + 10, callback=run.callback,
                                  law=law)
     run.stats["engine"] = "python"
-    return march_cq(W[0], HISTORIES[history](W), psi_affine, v_b, solver, dt=disc.dt,
-                    bilateral=run.bilateral, callback=run.callback, law=law)
+    sums = history_on_coupled_unknowns(HISTORIES[history], W)
+    return march_cq(W0, sums, psi_affine, v_b, solver, dt=disc.dt, bilateral=run.bilateral, callback=run.callback,
+                    law=law)

@@ -192,10 +192,12 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
 
 def _first_non_finite(t, *histories):
     """The first step at which any of the histories (K+1, .) holds inf or NaN, or None."""
+    present = [h for h in histories if h is not None]
+    if all(np.isfinite(np.sum(h)) for h in present):    # an inf or NaN anywhere makes its sum one
+        return None
     bad = np.zeros(len(t), dtype=bool)
-    for h in histories:
-        if h is not None:
-            bad |= ~np.all(np.isfinite(h), axis=1)
+    for h in present:
+        bad |= ~np.all(np.isfinite(h), axis=1)
     return int(np.argmax(bad)) if bad.any() else None
 
 

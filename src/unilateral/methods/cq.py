@@ -42,13 +42,24 @@ class CQ(Method):
 
     def memory_estimate(self, model, disc) -> dict:
         out = super().memory_estimate(model, disc)
-        out[f"the CQ weights (3 copies of (N+1) m^2, m = {model.m})"] = 24.0 * (disc.N + 1) * model.m ** 2
-        # the FFT that computes them holds L = 8 (N+1) complex values per entry, twice (a soil's:
-        # SOIL_FFT_POINTS (J+1), J <= N); an uncoupled soil has m entries (its diagonal), not m^2
-        diagonal = getattr(getattr(model, "soil", None), "is_diagonal", False)
-        entries = "m" if diagonal else "m^2"
-        out[f"the FFT of the weights (2 x 8 (N+1) {entries} complex)"] = (
-            256.0 * (disc.N + 1) * (model.m if diagonal else model.m ** 2))
+        N, m = disc.N, model.m
+        out[f"the CQ weights (3 copies of (N+1) m^2, m = {m})"] = 24.0 * (N + 1) * m ** 2
+        soil = getattr(model, "soil", None)
+        if soil is None:        # the FFT that computes them: L = 8 (N+1) complex values per entry, twice
+            out["the FFT of the weights (2 x 8 (N+1) m^2 complex)"] = 256.0 * (N + 1) * m ** 2
+            coupled = m
+        else:                   # only the soil's: SOIL_FFT_POINTS (J+1) per entry (its diagonal if uncoupled)
+            from ..soil.foundation_model import SOIL_FFT_POINTS
+
+            memory = getattr(soil, "memory", None)
+            J = N if memory is None else min(N, int(np.ceil(memory / disc.dt)) + 64)
+            entries = soil.m if soil.is_diagonal else soil.m ** 2
+            out[f"the FFT of the soil's weights (2 x {SOIL_FFT_POINTS} (J+1) entries complex, J = {J})"] = (
+                32.0 * SOIL_FFT_POINTS * (J + 1) * entries)
+            coupled = m - len(model.slips)      # the slips take no part in the history
+        if self.config.get("history", "fft" if N > FFT_HISTORY_MIN_STEPS else "naive") == "fft":
+            out[f"the weight spectra of the FFT-blocked history (2 N s^2 complex, s = {coupled})"] = (
+                32.0 * N * coupled ** 2)
         return out
 
     def _options(self):
@@ -83,7 +94,7 @@ class CQ(Method):
         return self._solve_foundation(model, load, initial, disc, run, *self._options())
 
     def _solve_foundation(self, model, load, initial, disc, run, weight_options, march):
-        from ..history import HISTORIES
+        from ..history import HISTORIES, history_on_coupled_unknowns
         from ..soil.foundation_solve import solve_foundation
 
         def operators():
@@ -91,7 +102,7 @@ class CQ(Method):
             name = march.get("history") or ("fft" if disc.N > FFT_HISTORY_MIN_STEPS else "naive")
             name = V.choice("cq_options['history']", name, HISTORIES)
             clcp = lambda psi_affine, z_b: march_weights(W, psi_affine, z_b, disc, run, law=model.law, **march)
-            return 0.5 * (W[0] + W[0].T), lambda: HISTORIES[name](W), clcp
+            return 0.5 * (W[0] + W[0].T), lambda: history_on_coupled_unknowns(HISTORIES[name], W), clcp
 
         return solve_foundation(model, load, initial, disc, run, operators=operators)
 

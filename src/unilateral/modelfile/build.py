@@ -27,8 +27,8 @@ from .checks import read_toml  # noqa: F401 (the reader of study files too)
 from .errors import ModelFileError, Problems, key_path
 from .matrices import dof_index, read_matrix_model, read_vector
 from .schema import (TIME_UNITS, Bar, Beam, Beam3D, Cable, ConstantLoad, Dashpot, Dashpot3D, Gap, Gap3D,
-                     HalfSinePulse, Hinge, ModelFile, RampLoad, RectangularPulse, Slider, Slider3D, Soil, Soil3D,
-                     Spring, Spring3D, TableLoad, TriangularPulse, YieldLink, YieldLink3D)
+                     HalfSinePulse, Hinge, Hinge3D, ModelFile, RampLoad, RectangularPulse, Slider, Slider3D, Soil,
+                     Soil3D, Spring, Spring3D, TableLoad, TriangularPulse, YieldLink, YieldLink3D)
 
 
 @dataclass(frozen=True, eq=False)
@@ -217,7 +217,7 @@ def _build_structure_3d(document: ModelFile) -> Structure:
             fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=_footing_soil(f, to_mass),
                           patches=(3, 3) if f.patches is None else f.patches if isinstance(f.patches, int)
                           else tuple(f.patches), horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
-                          Jx=f.Jx * to_mass, Jy=f.Jy * to_mass)
+                          Jx=f.Jx * to_mass, Jy=f.Jy * to_mass, Jz=f.Jz * to_mass, mu=f.mu, facets=f.facets)
     _damping(fr, document)
     with _at("structure"):
         return fr.build()
@@ -246,6 +246,8 @@ def _add_element_3d(fr: Frame3D, e, to_mass=1.0) -> None:
         case YieldLink3D():
             fr.yield_link(e.name, e.node, e.node_j, k=e.k, Fy=e.Fy, Fy_t=e.Fy_t, Fy_c=e.Fy_c, direction=e.direction,
                           hardening=e.hardening)
+        case Hinge3D():
+            fr.hinge(e.name, e.beam, e.end, My=e.My, Mz=e.Mz, shape=e.shape, k=e.k, hardening=e.hardening, **facets)
         case Slider3D():
             fr.slider(e.name, e.node, mu=e.mu, N=e.N, k=e.k, direction=e.direction)
 

@@ -348,7 +348,22 @@ def _unilateral_problems(document: ModelFile) -> list[str]:
                 problems.append(value_problem((*at, "end"), e.end, f"beam {toml_value(e.beam)} already has a hinge "
                                               f"at this end ({key_path(hinged[(e.beam, e.end)])}); one per end"))
             hinged.setdefault((e.beam, e.end), (*at, "end"))
+            problems += _hinge_facets_problems(at, e)
     return problems
+
+
+def _hinge_facets_problems(at, e) -> list[str]:
+    """A 3-D hinge's facets: an even number for an ellipse, 4 for a diamond or a box."""
+    facets = getattr(e, "facets", None)
+    if facets is None:
+        return []
+    if e.shape != "ellipse" and facets != 4:
+        return [value_problem((*at, "facets"), facets, f"a {e.shape} has exactly 4 facets: give facets = 4 or "
+                              'remove it (or use shape = "ellipse")')]
+    if facets % 2:
+        return [value_problem((*at, "facets"), facets, "must be even (the facets of the hinge's polygon come in "
+                              "opposite pairs)")]
+    return []
 
 
 def _friction_problems(at, e) -> list[str]:
@@ -389,7 +404,7 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
     problems = []
     ids = [node.id for node in document.nodes]
     if is_3d(document):
-        return problems + _soil_problems(document, at, f, _patch_count_3d(f.patches))
+        return problems + _sliding_3d_problems(at, f) + _soil_problems(document, at, f, _patch_count_3d(f.patches))
     for k, node in enumerate(f.nodes or ()):
         if node not in set(ids):
             problems.append(value_problem((*at, "nodes", k), node, f"no node {toml_value(node)} (nodes are "
@@ -412,6 +427,23 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
         problems.append(value_problem((*at, "mu"), f.mu, f'only for horizontal = "soil" (now '
                                       f'{toml_value(f.horizontal)}): remove it, or let the footing slide'))
     return problems + _soil_problems(document, at, f, len(f.nodes) if f.nodes is not None else (f.patches or 3))
+
+
+def _sliding_3d_problems(at: tuple, f) -> list[str]:
+    """``mu`` and ``facets`` of a 3-D footing: both for horizontal = "soil" only, ``mu`` needed there,
+    ``facets`` even."""
+    problems = []
+    if f.horizontal == "soil" and f.mu is None:
+        problems.append(f"{key_path((*at, 'mu'))}: missing key (horizontal = \"soil\" needs the friction "
+                        "coefficient of the footing on the soil, a number > 0)")
+    for key in ("mu", "facets"):
+        if f.horizontal != "soil" and getattr(f, key) is not None:
+            problems.append(value_problem((*at, key), getattr(f, key), f'only for horizontal = "soil" (now '
+                                          f'{toml_value(f.horizontal)}): remove it, or let the footing slide'))
+    if f.facets is not None and f.facets % 2:
+        problems.append(value_problem((*at, "facets"), f.facets, "give an even number >= 4 (the facets of the "
+                                      "friction cone in plan come in opposite pairs)"))
+    return problems
 
 
 def _patch_count_3d(patches) -> int:
@@ -559,9 +591,6 @@ def _link_problems(document: ModelFile) -> list[str]:
 def _output_problems(document: ModelFile) -> list[str]:
     """``[output] floor_spectra``: nodes of the frame, each once."""
     spectra = document.output.floor_spectra
-    if is_3d(document) and spectra:
-        return [value_problem(("output", "floor_spectra"), spectra, "floor response spectra are for 2-D frames "
-                              "only (not yet for [frame] dimensions = 3): remove it")]
     if document.matrices is not None:
         return ["output.floor_spectra: needs a frame (a matrix-level model has no nodes)"] if spectra else []
     ids = [node.id for node in document.nodes]

@@ -666,9 +666,11 @@ class FoundationSoil(Table):
     c: NonNegative | list[NonNegative] = Field(0.0, description=(
         "winkler-kelvin: dashpot of each patch [F T/L], one number or one per patch."))
     kx: Positive | list[Positive] | None = Field(None, description=(
-        "winkler-kelvin with horizontal = \"soil\": horizontal spring of each patch [F/L]."))
+        "winkler-kelvin with horizontal = \"soil\": horizontal spring of each patch [F/L] (3-D: along x and "
+        "along y)."))
     cx: NonNegative | list[NonNegative] = Field(0.0, description=(
-        "winkler-kelvin with horizontal = \"soil\": horizontal dashpot of each patch [F T/L]."))
+        "winkler-kelvin with horizontal = \"soil\": horizontal dashpot of each patch [F T/L] (3-D: along x and "
+        "along y)."))
     layers: list[SiteLayer] | None = Field(None, description=(
         "layered: the layers from the surface down (thickness, G or Vs, nu, rho, damping); the half-space "
         "under them is G or Vs, nu, rho, damping of this table."))
@@ -765,8 +767,10 @@ FRAME_SECTIONS = ("frame", "nodes", "supports", "rigid_links", "rigid_diaphragms
 # ---------------------------------------------------------------------- 3-D frames ([frame] dimensions = 3)
 DOFS_3D = ("ux", "uy", "uz", "rx", "ry", "rz")
 """The nodal DOFs of a 3-D frame (:class:`~unilateral.structure.Frame3D`)."""
-TWO_D_ONLY_TYPES = {"hinge": "plastic hinges"}
-"""Unilateral element types of 2-D frames only."""
+TWO_D_ONLY_TYPES: dict[str, str] = {}
+"""Unilateral element types of 2-D frames only (none: a 3-D frame takes hinges too, :class:`Hinge3D`)."""
+HINGE_SHAPES = ("ellipse", "diamond", "box")
+"""The interaction polygons of a 3-D hinge (those of :meth:`Frame3D.hinge <unilateral.structure.Frame3D.hinge>`)."""
 
 
 def _vector3(value):
@@ -906,7 +910,22 @@ class Slider3D(Slider):
     direction: Direction3 = Field("ux", description="Sliding direction.")
 
 
-Unilateral3D = Annotated[Union[Soil3D, Gap3D, Cable, YieldLink3D, Slider3D],
+class Hinge3D(Hinge):
+    """Plastic hinge at an end of a 3-D beam, yielding under the end moments about both bending axes within a
+    polygon: rigid-plastic (no k) or an elastic-plastic rotational spring on both rotations."""
+
+    My: Positive = Field(description="Plastic moment about the beam's local y' axis [force length].")
+    Mz: Positive = Field(description="Plastic moment about the beam's local z' axis [force length].")
+    shape: Literal[HINGE_SHAPES] = Field("ellipse", title="hinge shape", description=(
+        "ellipse: (My'/My)^2 + (Mz'/Mz)^2 <= 1, as the circumscribed polygon of facets facets; diamond: "
+        "|My'|/My + |Mz'|/Mz <= 1; box: |My'| <= My and |Mz'| <= Mz, uncoupled (4 facets each)."))
+    facets: Annotated[int, Field(ge=4)] | None = Field(None, description=(
+        "The number of facets: for an ellipse an even integer >= 4 (default 8); a diamond or a box has 4."))
+    hardening: NonNegative = Field(0.0, description=(
+        "Kinematic hardening modulus over k on both axes (over 4EIy/L and 4EIz/L without k)."))
+
+
+Unilateral3D = Annotated[Union[Soil3D, Gap3D, Cable, YieldLink3D, Hinge3D, Slider3D],
                          Field(discriminator="type", title="unilateral element type")]
 
 
@@ -923,12 +942,20 @@ class Foundation3D(Table):
     patches: Annotated[int, Field(ge=1, le=20)] | Annotated[list[Annotated[int, Field(ge=1, le=400)]], Field(
         min_length=2, max_length=2)] | None = Field(None, description=(
             "[nx, ny] patches along x and y (one integer: both; default [3, 3]; at most 400 in all)."))
-    horizontal: Literal["support", "none"] = Field("support", title="horizontal restraint", description=(
-        "support: ux, uy, rz of node supported; none: the frame holds the footing in plan."))
+    horizontal: Literal["support", "none", "soil"] = Field("support", title="horizontal restraint", description=(
+        "support: ux, uy, rz of node supported; none: the frame holds the footing in plan; soil: each patch's "
+        "horizontal force (fx, fy) through the soil, limited by a polygonal Coulomb cone of facets facets with "
+        "mu (the footing slides and twists in plan; every footing then takes soil)."))
+    mu: Positive | None = Field(None, description=(
+        "horizontal = \"soil\": the friction coefficient of the footing on the soil."))
+    facets: Annotated[int, Field(ge=4)] | None = Field(None, description=(
+        "horizontal = \"soil\": the facets of each patch's friction cone in plan, an even number >= 4 "
+        "(default 8; 4: the pyramid of the x and y axes)."))
     gap: float = Field(0.0, description="Opening at u = 0 with the soil unloaded [L]; negative: a penetration.")
     mass: NonNegative = Field(0.0, description="The footing's own mass on ux, uy, uz of node [M].")
     Jx: NonNegative = Field(0.0, description="Its rotary inertia on rx of node [M L^2].")
     Jy: NonNegative = Field(0.0, description="Its rotary inertia on ry of node [M L^2].")
+    Jz: NonNegative = Field(0.0, description="Its rotary inertia on rz of node [M L^2] (its twist).")
     soil: FoundationSoil
 
 
@@ -1013,13 +1040,13 @@ class ModelFile3D(ModelFile):
 
 #: The table of a 2-D frame and that of a 3-D frame in the same place (both ways).
 COUNTERPARTS = {Node: Node3D, Support: Support3D, Mass: Mass3D, Beam: Beam3D, Spring: Spring3D, Dashpot: Dashpot3D,
-                Soil: Soil3D, Gap: Gap3D, Foundation: Foundation3D, Gravity: Gravity3D, NodalLoad: NodalLoad3D,
-                DistributedLoad: DistributedLoad3D, Loads: Loads3D, Figure: Figure3D, Output: Output3D,
-                ModelFile: ModelFile3D}
+                Soil: Soil3D, Gap: Gap3D, Hinge: Hinge3D, Foundation: Foundation3D, Gravity: Gravity3D,
+                NodalLoad: NodalLoad3D, DistributedLoad: DistributedLoad3D, Loads: Loads3D, Figure: Figure3D,
+                Output: Output3D, ModelFile: ModelFile3D}
 COUNTERPARTS |= {three: two for two, three in COUNTERPARTS.items()}
 THREE_D_TABLES = frozenset({
-    Node3D, Support3D, Mass3D, Beam3D, Spring3D, Dashpot3D, Soil3D, Gap3D, Foundation3D, Gravity3D, NodalLoad3D,
-    DistributedLoad3D, Loads3D, Figure3D, Output3D, ModelFile3D, RigidDiaphragm, GroundMotion3D})
+    Node3D, Support3D, Mass3D, Beam3D, Spring3D, Dashpot3D, Soil3D, Gap3D, Hinge3D, Foundation3D, Gravity3D,
+    NodalLoad3D, DistributedLoad3D, Loads3D, Figure3D, Output3D, ModelFile3D, RigidDiaphragm, GroundMotion3D})
 
 
 def model_class(data) -> type[ModelFile]:

@@ -63,7 +63,7 @@ def foundation_base_state(model, q_static, initial, solver) -> InitialState:
         raise ValueError(f"the initial state penetrates the unloaded soil at contact {model.contact_names[i]!r}: "
                          f"opening T^T u0 + gap = {v0[i]:.6g} < 0; start from initial='static', or give u0 "
                          "with the foundation on or above the soil")
-    slips = np.zeros(2 * model.ms if model.sliding else 0)
+    slips = np.zeros(len(model.slips))
     psi = np.zeros(model.mp + model.ms + slips.size)
     if model.structure is not None:
         psi[: model.mp] = -model.structure.g(0.0)
@@ -83,16 +83,48 @@ def primal_columns(model, v, psi):
 
     ``psi`` of the slips may be their associated values ``+-f`` or the friction functions: ``f``
     is half their difference either way.
+
+    Footings that slide in plan: the facets' ``v`` (the multipliers ``lambda_k``) and ``psi``
+    (``d_k . f`` or ``d_k . f - mu c``) per patch give the shears' columns (x block, y block): ``v``
+    the net slip ``sum_k lambda_k d_k``, ``psi = -f`` with ``f`` the least-squares solution of the
+    facets' ``d_k . f`` (exact either way: opposite facets cancel ``mu c``), and the facets' columns
+    ``v = lambda_k``, ``psi = d_k . f - mu c``.
     """
     mp, ms = model.mp, model.ms
     if not model.sliding:
         return v, psi
+    if model.horizontal == 2:
+        return _plan_columns(model, v, psi)
     c = -psi[..., mp:mp + ms]
     f = 0.5 * (psi[..., mp + ms::2] - psi[..., mp + ms + 1::2])
     slips = v[..., mp + ms:]
     friction = np.stack([f - model.mu * c, -f - model.mu * c], axis=-1).reshape(slips.shape)
     return (np.concatenate([v[..., :mp + ms], slips[..., 0::2] - slips[..., 1::2], slips], axis=-1),
             np.concatenate([psi[..., :mp + ms], -f, friction], axis=-1))
+
+
+def _plan_columns(model, v, psi):
+    """:func:`primal_columns` of footings that slide in plan (``facets`` multipliers per patch)."""
+    mp, ms = model.mp, model.ms
+    D = model.directions                                   # (facets, 2)
+    c = -psi[..., mp:mp + ms]
+    lam = v[..., mp + ms:].reshape(v.shape[:-1] + (ms, D.shape[0]))
+    rows = psi[..., mp + ms:].reshape(lam.shape)
+    f = (rows @ D) @ np.linalg.inv(D.T @ D)                 # (..., ms, 2)
+    net = lam @ D
+    blocks = lambda a: np.swapaxes(a, -1, -2).reshape(a.shape[:-2] + (2 * ms,))
+    friction = (f @ D.T - model.mu[:, None] * c[..., None]).reshape(lam.shape[:-2] + (-1,))
+    return (np.concatenate([v[..., :mp + ms], blocks(net), v[..., mp + ms:]], axis=-1),
+            np.concatenate([psi[..., :mp + ms], -blocks(f), friction], axis=-1))
+
+
+def plan_forces(model, psi_slips):
+    """``f`` (..., 2 m_s), the x block then the y block, from the facets' rows ``d_k . f`` (or the facet
+    functions ``d_k . f - mu c``) (..., facets m_s) of footings that slide in plan (least squares)."""
+    D = model.directions
+    rows = psi_slips.reshape(psi_slips.shape[:-1] + (model.ms, D.shape[0]))
+    f = (rows @ D) @ np.linalg.inv(D.T @ D)
+    return np.swapaxes(f, -1, -2).reshape(psi_slips.shape[:-1] + (2 * model.ms,))
 
 
 def hold_openings(W0, history, psi_affine, z_b, held, *, callback=None):
@@ -172,9 +204,10 @@ def solve_foundation(model, load, initial, disc, run, *, operators):
     z_b = np.concatenate([init.v[:mp], c_b])
     row_b = np.concatenate([init.psi[:mp], opening_b])
     if model.sliding:
-        f_b, slip_b = init.psi[mp + ms::2], init.v[mp + ms:]
+        f_b = init.psi[mp + ms::2] if model.horizontal == 1 else plan_forces(model, init.psi[mp + ms:])
+        slip_b = init.v[mp + ms:]
         z_b = np.concatenate([z_b, f_b, slip_b])
-        row_b = np.concatenate([row_b, np.zeros(ms), init.psi[mp + ms:]])
+        row_b = np.concatenate([row_b, np.zeros(f_b.size), init.psi[mp + ms:]])
     u_b = init.u
     N, m = disc.N, model.m
     free = model.stepping_model()
@@ -224,7 +257,11 @@ def _columns(model, z, rows):
     opening = np.where(c > 0, 0.0, -rows[:, mp:mp + ms])
     v = np.hstack([z[:, :mp], opening])
     psi = np.hstack([rows[:, :mp], -c])
-    if model.sliding:
+    if model.horizontal == 1:
         v = np.hstack([v, z[:, mp + 2 * ms:]])
         psi = np.hstack([psi, np.repeat(z[:, mp + ms:mp + 2 * ms], 2, axis=1) * np.tile([1.0, -1.0], ms)])
+    elif model.horizontal == 2:         # the facets' associated values d_k . f
+        v = np.hstack([v, z[:, mp + 3 * ms:]])
+        f = np.swapaxes(z[:, mp + ms:mp + 3 * ms].reshape(-1, 2, ms), 1, 2)       # (N+1, ms, 2)
+        psi = np.hstack([psi, (f @ model.directions.T).reshape(z.shape[0], -1)])
     return primal_columns(model, v, psi)

@@ -66,8 +66,9 @@ class Unknown:
         its primary strain (:attr:`Structure.constraint_strains
         <unilateral.structure.Structure.constraint_strains>`, the force reported for the unknown).
     b : float
-        +1 or -1; a facet of a polygonal friction cone: its direction cosine on ``row`` (the
-        larger in magnitude of its two, see :func:`.elements3d.frictional`).
+        +1 or -1; a facet of a polygon (a friction cone, :func:`.elements3d.frictional`, or a 3-D
+        hinge's interaction polygon, :func:`.elements3d.hinge`): the component of its unit normal
+        on ``row`` (the larger in magnitude of its two).
     r : float
         Resistance, >= 0 [force, or force length for a rotation]: a contact's capacity, a yield
         force or moment, a slider's ``mu N``.

@@ -14,7 +14,9 @@ the strain conventions of :mod:`.elements`:
   ``E = diag(EA/L, GJ/L, EIz/L [[4, 2], [2, 4]], EIy/L [[4, 2], [2, 4]])``. Stresses: the axial
   force (tension positive), the torque at ``j`` about ``x'`` and the end moments acting on the
   element about ``z'`` and ``y'`` (right-hand positive). For a beam in the x-y plane with
-  ``vecxz = z`` the strains ``[elongation, rotz_i, rotz_j]`` are those of the 2-D beam.
+  ``vecxz = z`` the strains ``[elongation, rotz_i, rotz_j]`` are those of the 2-D beam. A plastic
+  hinge at an end (:func:`hinge`) bounds the end moments ``(M_y', M_z')`` (the stresses ``roty``,
+  ``rotz`` of that end) by a convex polygon (:func:`hinge_polygon`), one yield unknown per facet.
 - bar and cable: ``[elongation]`` along the chord, ``E = [[EA/L]]``, tension positive.
 - directional elements (spring, dashpot, soil, gap) between an end ``i`` and an end ``j``
   (either may be the ground): ``[d . (u_j - u_i)]`` for a direction ``d``
@@ -29,7 +31,7 @@ the strain conventions of :mod:`.elements`:
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -199,8 +201,9 @@ def facet_unknowns(name, facets, *, mu, k, rows=(1, 2)) -> tuple[Unknown, ...]:
 
     Any three facet columns are linearly dependent (they span the two tangential strains): a
     pivoting basis with three facets of one contact is singular; in a solution at most two
-    adjacent facets slip (a vertex). The pair rule of the pivoting solvers keeps apart only
-    opposite facets (see :meth:`Frame3D.soil <unilateral.structure.Frame3D.soil>`).
+    adjacent facets slip (a vertex). The pivoting solvers keep opposite facets apart (the pairs)
+    and at most two facets of a cone of more than four active (the cone's group, by its normal:
+    :meth:`Friction.polygons <unilateral.constraints.Friction.polygons>`).
     """
     d = facet_directions(facets)
     half = facets // 2
@@ -234,3 +237,87 @@ def frictional(name, kind, i, j, terms, axes, *, k, kt, mu, c=0.0, ct=0.0, theta
     E_v = np.diag([c, ct, ct]) if c > 0 or ct > 0 else None
     return FrictionContact(name, kind, dofs, a, np.diag([k, kt, kt]), np.array([theta, 0.0, 0.0]), E_v=E_v,
                            unknowns=unknowns)
+
+
+#: The shapes of the interaction polygon of a plastic hinge of a 3-D beam (:func:`hinge_polygon`).
+HINGE_SHAPES = ("ellipse", "diamond", "box")
+#: The strain rows ``(roty, rotz)`` of the end rotations of a 3-D beam at each end (:func:`beam`).
+END_ROWS = {"i": (4, 2), "j": (5, 3)}
+
+
+def hinge_polygon(shape, facets, My, Mz) -> tuple[np.ndarray, np.ndarray]:
+    """The facets of the yield polygon of a plastic hinge in the plane of the end moments ``(M_y', M_z')``.
+
+    Returns ``n`` (facets, 2), the unit outward normals of the facets on ``(M_y', M_z')``, and ``r``
+    (facets,), their distances from the origin [force length]: facet ``k`` is ``n_k . M <= r_k``.
+    In the normalised plane ``x = (M_y'/My, M_z'/Mz)`` facet ``k`` is ``g_k . x <= c_k``:
+
+    - ``"ellipse"``: ``g_k = (cos th_k, sin th_k)``, ``th_k = 2 pi k / facets``, ``c_k = 1``
+      (:func:`facet_directions`): the polygon circumscribing the unit circle (the ellipse
+      ``(M_y'/My)^2 + (M_z'/Mz)^2 <= 1``), each facet tangent to it at ``x = g_k``;
+    - ``"box"``: the ellipse's polygon with 4 facets, ``|M_y'| <= My``, ``|M_z'| <= Mz``;
+    - ``"diamond"``: ``g_k = (+-1, +-1)`` at ``th_k = pi/4 + pi k/2``, ``c_k = 1``:
+      ``|M_y'|/My + |M_z'|/Mz <= 1`` (inscribed in the ellipse: its vertices lie on it).
+
+    For an even ``facets`` facet ``k + facets/2`` is opposite to facet ``k``. In moment space
+    ``n_k = (g_k1/My, g_k2/Mz) / s_k`` and ``r_k = c_k / s_k``, ``s_k = |(g_k1/My, g_k2/Mz)|``.
+    """
+    if shape == "diamond":
+        g = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
+    else:
+        g = facet_directions(4 if shape == "box" else facets)
+    scaled = g / np.array([My, Mz])
+    s = np.linalg.norm(scaled, axis=1)
+    return scaled / s[:, None], 1.0 / s
+
+
+def hinge(beam_element, name, end, polygon, *, k=None, moduli=(0.0, 0.0)) -> Beam3D:
+    """``beam_element`` (a 3-D beam, :func:`beam`) with a plastic hinge at ``end`` (``"i"`` or ``"j"``).
+
+    Parameters
+    ----------
+    polygon : (n (N, 2), r (N,))
+        The unit outward normals on ``(M_y', M_z')`` and the resistances [force length] of the ``N``
+        facets (even; facet ``k + N/2`` opposite to facet ``k``), e.g. :func:`hinge_polygon`.
+    k : float or None
+        Rotational stiffness [force length/rad] of an elastic spring in series on both end
+        rotations: the flexibility ``1/k`` is added on the rows ``roty`` and ``rotz`` of ``end``
+        (the spring's massless inner node condensed out); None: rigid-plastic.
+    moduli : (H_y, H_z)
+        Kinematic hardening moduli [force length/rad] about ``y'`` and ``z'``.
+
+    Facet ``k`` is an unknown ``name.facet<k>`` of the ``"yield"`` family whose column of ``B`` is
+    ``n_k`` on the rows ``(roty, rotz)`` of ``end`` (the primary entry on the larger in magnitude,
+    ``roty`` on a tie, the other in ``extra`` unless it is 0), resistance ``r_k``: its yield
+    function is ``psi_k = n_k . (M - alpha) - r_k``, ``M = (M_y', M_z')`` the end moments, the
+    plastic rotation ``theta_p = sum_k lambda_k n_k`` (rad, associated flow) an imposed strain on
+    the two rows, and the back moment ``alpha = diag(H_y, H_z) theta_p`` (linear kinematic
+    hardening: ``A_kj = n_k^T diag(H_y, H_z) n_j``, symmetric positive semidefinite). The unknowns
+    come in opposite pairs ``(k, k + N/2)``, in that order (the pairs of
+    :class:`~unilateral.constraints.Yield`, as :func:`facet_unknowns` orders friction facets).
+    """
+    normals, resistances = polygon
+    rows = END_ROWS[end]
+    E = beam_element.E
+    if k is not None:
+        flexibility = np.linalg.inv(E)
+        for row in rows:
+            flexibility[row, row] += 1.0 / k
+        E = np.linalg.inv(flexibility)
+        E = 0.5 * (E + E.T)
+    node = beam_element.dofs[0 if end == "i" else 6][0]
+    half = len(normals) // 2
+    order = [f for p in range(half) for f in (p, p + half)]
+    unknowns = []
+    for f in order:
+        (ny, nz) = normals[f]
+        (row, b), (other, b2) = (((rows[0], ny), (rows[1], nz)) if abs(ny) >= abs(nz)
+                                 else ((rows[1], nz), (rows[0], ny)))
+        unknowns.append(Unknown(f"{name}.facet{f}", row, float(b), float(resistances[f]), "yield", None, 0.0, node,
+                                k, ((other, float(b2)),) if b2 != 0.0 else ()))
+    ordered = normals[order]
+    n = len(beam_element.unknowns)
+    A = np.zeros((n + len(order), n + len(order)))
+    A[:n, :n] = beam_element.interaction
+    A[n:, n:] = ordered @ np.diag(np.asarray(moduli, dtype=float)) @ ordered.T
+    return replace(beam_element, E=E, unknowns=beam_element.unknowns + tuple(unknowns), A=A)

@@ -1,6 +1,6 @@
-"""What an engineer reads off a solved 3-D frame (:class:`~unilateral.structure.Frame3D`): support and
-ground reactions, base forces and moments about the three axes, storey drifts at the corners of the
-plan, absolute accelerations.
+"""What an engineer reads off a solved 3-D frame (:class:`~unilateral.structure.Frame3D`): element end
+forces in local axes, support and ground reactions, base forces and moments about the three axes,
+storey drifts at the corners of the plan, absolute accelerations.
 
 The 3-D counterparts of :mod:`unilateral.structure.forces`, whose dimension-free parts they reuse
 (:class:`~unilateral.structure.forces.Histories`, the rates of the rule, the element stresses,
@@ -12,6 +12,13 @@ Sign conventions
 Global right-handed axes ``x``, ``y`` (horizontal) and ``z`` (up); nodal DOFs ``(ux, uy, uz, rx,
 ry, rz)``, rotations and moments right-hand positive about the axes
 (:mod:`unilateral.structure.elements3d`).
+
+*End forces* (:func:`end_forces`) are the forces and moments **acting on the element at its ends**,
+from the nodes, in the element's local axes ``x'``, ``y'``, ``z'`` (a ``beam3d``'s of
+:func:`~unilateral.structure.elements3d.local_axes`; another element's ``x'`` is its direction ``d``):
+``N_i, Vy_i, Vz_i, T_i, My_i, Mz_i, N_j, ..., Mz_j`` (:data:`END_COMPONENTS`). Carried back to the
+global axes and added up at the nodes they are ``G sigma``: ``M u'' + C u' + G sigma = q`` at every
+free DOF, the support reaction at a supported one (``tests/test_run3d_outputs.py``).
 
 *Reactions* (:func:`reactions`) are the forces and moments **the ground exerts on the structure**:
 at each supported DOF (``"node.dof"``), through every element attached to the ground (soil, springs,
@@ -49,15 +56,18 @@ from __future__ import annotations
 import numpy as np
 
 from .dofs3d import rigid_rows
-from .elements3d import DOF_NAMES
+from .elements3d import DOF_NAMES, ROTATIONS
 from .forces import (Histories, _element_vectors, _free_a, _ground_elements, absolute_acceleration, nodal_forces,
                      stresses)
 
-__all__ = ["DOF_NAMES", "BASE_COMPONENTS", "Histories", "histories", "nodal_forces", "reactions", "base_point",
-           "base_forces", "storeys", "storey_drifts", "absolute_acceleration"]
+__all__ = ["DOF_NAMES", "BASE_COMPONENTS", "END_COMPONENTS", "Histories", "histories", "nodal_forces", "end_forces",
+           "local_frame", "reactions", "base_point", "base_forces", "storeys", "storey_drifts",
+           "absolute_acceleration"]
 
 #: The keys of :func:`base_forces`.
 BASE_COMPONENTS = ("Fx", "Fy", "Fz", "Mx", "My", "Mz")
+#: The components of :func:`end_forces`: forces along and moments about the local axes at ends i and j.
+END_COMPONENTS = ("N_i", "Vy_i", "Vz_i", "T_i", "My_i", "Mz_i", "N_j", "Vy_j", "Vz_j", "T_j", "My_j", "Mz_j")
 
 
 # ---------------------------------------------------------------------- histories
@@ -85,6 +95,60 @@ def histories(structure, sol, rule, *, load0=None) -> Histories:
     contact = fnd.contact_load(structure, sol)
     q0 = contact[0] if load0 is None else np.asarray(load0, dtype=float) + contact[0]
     return Histories.from_solution(structure, structural_solution(sol, fnd.first), rule, load0=q0)
+
+
+# ---------------------------------------------------------------------- element end forces
+def local_frame(e) -> np.ndarray:
+    """The local axes (3, 3) of a ``beam3d`` element, rows ``x'``, ``y'``, ``z'``
+    (:func:`unilateral.structure.elements3d.local_axes`), read off its strain rows: ``x'`` is the
+    twist's row on ``theta_j``, ``y'`` that of ``roty_i`` and ``z'`` that of ``rotz_i`` on ``theta_i``."""
+    a = np.asarray(e.a, dtype=float)
+    return np.vstack([a[1, 9:12], a[4, 3:6], a[2, 3:6]])
+
+
+def _local_ends(e, sigma) -> np.ndarray:
+    """Local end forces (N+1, 12) of element ``e`` from its stresses ``sigma`` (N+1, k)."""
+    out = np.zeros((sigma.shape[0], len(END_COMPONENTS)))
+    if e.kind == "beam3d":
+        R = local_frame(e)
+        glob = sigma @ e.a                                  # forces and moments on the element at its DOFs
+        for end in (0, 6):
+            out[:, end:end + 3] = glob[:, end:end + 3] @ R.T           # N, Vy, Vz
+            out[:, end + 3:end + 6] = glob[:, end + 3:end + 6] @ R.T   # T, My, Mz
+        return out
+    k = sigma.shape[1]                                      # along d (, t1, t2): N (, Vy, Vz), or T
+    first = 3 if all(dof in ROTATIONS for _, dof in e.dofs) else 0
+    out[:, first:first + k] = -sigma
+    out[:, 6 + first:6 + first + k] = sigma
+    return out
+
+
+def end_forces(structure, h: Histories) -> dict:
+    """End forces of every element of a 3-D frame, in local axes: the forces and moments **acting on
+    the element at its ends**, from the nodes.
+
+    Components :data:`END_COMPONENTS`: ``N`` along ``x'``, ``Vy``, ``Vz`` along ``y'``, ``z'``,
+    ``T`` (torque) about ``x'``, ``My``, ``Mz`` about ``y'``, ``z'`` (right-hand positive), at end
+    ``i`` then end ``j``. A ``beam3d`` has its local axes (:func:`local_frame`): its natural stresses
+    are ``N_j`` (the axial force, tension positive, ``N_i = -N_j``), ``T_j`` (the torque), ``Mz_i``,
+    ``Mz_j``, ``My_i``, ``My_j`` (the end moments), and the shears follow from them,
+    ``Vy_j = -(Mz_i + Mz_j) / L``, ``Vz_j = (My_i + My_j) / L``. Every other element acts along its
+    strain's direction ``x' = d`` (from end ``i``, or the ground, to end ``j``): ``N_j = sigma``,
+    ``N_i = -sigma`` (a bar, cable, spring, soil, gap, yield link, slider; a dashpot's viscous force);
+    a rotational spring's moment is ``T_j = sigma`` about its axis; a contact with friction adds its
+    tangential forces along ``y' = t1``, ``z' = t2``: ``Vy_j = T1``, ``Vz_j = T2``. These are the
+    elastic forces plus the Kelvin dashpot of a contact (``sigma`` of the natural form), without the
+    Rayleigh part ``a1 E e'``, as in 2-D (:func:`unilateral.structure.forces.end_forces`).
+
+    Returns
+    -------
+    dict name -> (N+1, 12)
+    """
+    sigma = stresses(structure, h)
+    out = {e.name: _local_ends(e, sigma[:, cols]) for e, cols, _ in _element_vectors(structure)}
+    for e in structure.dashpots:
+        out[e.name] = _local_ends(e, (h.udot @ _free_a(structure, e).T) @ np.asarray(e.E).T)
+    return out
 
 
 # ---------------------------------------------------------------------- reactions

@@ -1,4 +1,4 @@
-"""Rigid footings in plan for :class:`~unilateral.structure.Frame3D`: rocking about both axes.
+"""Rigid footings in plan for :class:`~unilateral.structure.Frame3D`: rocking, sliding and twisting.
 
 A rigid rectangular footing (``width`` along x, ``length`` along y, centred on its reference node)
 rests on the soil through an ``nx x ny`` grid of patches (:func:`unilateral.soil.patches.grid`),
@@ -11,9 +11,20 @@ and the soil's compressive force ``c_j`` at the patch loads the node with ``fz =
 ``mx = (y_j - y_0) c_j``, ``my = -(x_j - x_0) c_j``. All footings on one half-space (or layered
 soil) share it: every patch of every footing is coupled to every other through the ground, in
 plan. The footing is held horizontally and in twist (``ux``, ``uy``, ``rz`` of its node supported:
-``horizontal="support"``) or left to the frame (``"none"``); sliding in plan is not available.
-The same :class:`~unilateral.structure.foundation.Footings` and
-:class:`~unilateral.soil.FoundationModel` as in 2-D solve it.
+``horizontal="support"``), left to the frame (``"none"``), or rests on the soil horizontally too
+and **slides in plan** (``"soil"``, with ``mu`` and ``facets``): each patch carries a horizontal
+force ``(fx, fy)`` through the soil's x-y-z flexibility (the half-space's or layered soil's Green's
+tensor, ``components="xyz"``; Wolf's horizontal cone spread over the patches by area for
+``"cones"``; springs ``kx`` and dashpots ``cx`` along x and along y per patch for
+``"winkler-kelvin"``), limited by a polygonal Coulomb cone of ``facets`` facets (facet ``k`` of
+unit normal ``d_k`` keeps ``d_k . f <= mu c``, :func:`unilateral.soil.foundation_model.facet_normals`).
+The footing's horizontal displacement at a patch includes its twist ``rz`` about its node (its base
+is at the node's elevation, as in 2-D, so rocking does not move it horizontally):
+
+    x_j = ux - (y_j - y_0) rz,        y_j = uy + (x_j - x_0) rz
+
+so sway, rocking and torsion of the footing couple through the ground. The same
+:class:`~unilateral.soil.FoundationModel` as in 2-D solves it, with ``Tx``, ``Ty`` and ``facets``.
 """
 
 from __future__ import annotations
@@ -22,23 +33,45 @@ import numbers
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp
 
-from .foundation import Foundation, _positive, patch_gaps, soil_flexibility
+from .foundation import (COUPLED_SOILS, Footings, Foundation, _concat_patches, _material, _positive, _rows_matrix,
+                         patch_gaps, soil_flexibility)
 
 #: Horizontal restraint of a 3-D footing.
-HORIZONTAL_3D = ("support", "none")
+HORIZONTAL_3D = ("support", "none", "soil")
+#: The facets of a footing's friction cone in plan unless given.
+DEFAULT_FACETS = 8
 
 
 @dataclass(frozen=True, eq=False)
 class Footing3D(Foundation):
     """A rigid footing in plan (see the module). ``patches`` holds absolute plan centres ``(x, y)``;
-    ``y`` (inherited) is the elevation ``z`` of the footing's base."""
+    ``y`` (inherited) is the elevation ``z`` of the footing's base; ``origin`` the plan position of
+    its node; ``facets`` the facets of its friction cone (``horizontal="soil"``)."""
+
+    facets: int | None = None
+    origin: tuple = (0.0, 0.0)
 
     def moved_rows(self, coords) -> list[tuple]:
         """Per contact: ``[(node, dof, factor), ...]`` with ``z_j = sum factor * u(node, dof)``."""
         x0, y0 = (float(a) for a in coords[self.node][:2])
         return [[(self.node, "uz", 1.0), (self.node, "rx", float(y) - y0), (self.node, "ry", -(float(x) - x0))]
                 for x, y in self.patches.centres]
+
+    def shear_rows(self) -> list[tuple]:
+        """Per contact: the footing's displacement along x at the patch, ``ux - (y_j - y_0) rz``."""
+        y0 = float(self.origin[1])
+        return [[(self.node, "ux", 1.0), (self.node, "rz", -(float(y) - y0))] for y in self.patches.centres[:, 1]]
+
+    def shear_rows_y(self) -> list[tuple]:
+        """Per contact: the footing's displacement along y at the patch, ``uy + (x_j - x_0) rz``."""
+        x0 = float(self.origin[0])
+        return [[(self.node, "uy", 1.0), (self.node, "rz", float(x) - x0)] for x in self.patches.centres[:, 0]]
+
+    def Ty(self, dofs) -> np.ndarray:
+        """``Ty`` (n, m): displacement along y of the footing at each patch, ``y_f = Ty^T u``."""
+        return _rows_matrix(dofs, self.shear_rows_y(), self.m)
 
     def constraint_coords(self) -> dict:
         """Plan coordinates, kind and gap of each patch along ``constraint``."""
@@ -49,7 +82,9 @@ class Footing3D(Foundation):
                 "constraint_gap": ("constraint", [float(g) for g in self.gap])}
 
     def ground_reactions(self, structure, c, h=None) -> tuple[dict, dict]:
-        """The soil's forces on the footing's node per contact: ``(fx, fy, fz, mx, my, mz)`` (N+1, 6)."""
+        """The soil's forces on the footing's node per contact: ``(fx, fy, fz, mx, my, mz)`` (N+1, 6).
+
+        ``h`` (N+1, m, 2): the soil's horizontal forces on the footing (sliding in plan), or None."""
         x0, y0 = (float(a) for a in structure.coords[self.node][:2])
         forces, at = {}, {}
         for j, (x, y) in enumerate(self.patches.centres):
@@ -57,12 +92,16 @@ class Footing3D(Foundation):
             f[:, 2] = c[:, j]
             f[:, 3] = (float(y) - y0) * c[:, j]
             f[:, 4] = -(float(x) - x0) * c[:, j]
+            if h is not None:
+                f[:, 0], f[:, 1] = h[:, j, 0], h[:, j, 1]
+                f[:, 5] = (float(x) - x0) * h[:, j, 1] - (float(y) - y0) * h[:, j, 0]
             forces[self.contact_names[j]] = f
             at[self.contact_names[j]] = self.node
         return forces, at
 
 
-def build_footing(*, name, node, width, length, soil, patches, horizontal, gap, coords) -> Footing3D:
+def build_footing(*, name, node, width, length, soil, patches, horizontal, gap, coords, mu=None,
+                  facets=None) -> Footing3D:
     """Check the arguments of :meth:`Frame3D.foundation <unilateral.structure.Frame3D.foundation>`
     and make the :class:`Footing3D`."""
     from ..soil.patches import RectangularPatches, grid
@@ -70,9 +109,10 @@ def build_footing(*, name, node, width, length, soil, patches, horizontal, gap, 
     where = f"foundation {name!r}"
     width = _positive(where, "width", width)
     length = _positive(where, "length", length)
-    if horizontal not in HORIZONTAL_3D:
+    if not isinstance(horizontal, str) or horizontal not in HORIZONTAL_3D:
         raise ValueError(f"{where}: horizontal={horizontal!r} is not valid for a 3-D footing; valid: "
-                         f"{', '.join(map(repr, HORIZONTAL_3D))} (sliding in plan is not available)")
+                         f"{', '.join(map(repr, HORIZONTAL_3D))}")
+    mu, facets = _friction(where, horizontal, mu, facets)
     counts = (patches, patches) if isinstance(patches, numbers.Integral) and not isinstance(patches, bool) \
         else patches
     ok = (isinstance(counts, (tuple, list)) and len(counts) == 2
@@ -83,10 +123,220 @@ def build_footing(*, name, node, width, length, soil, patches, horizontal, gap, 
     x0, y0, z0 = (float(a) for a in coords[node])
     local = grid(width, length, int(counts[0]), int(counts[1]))
     pts = RectangularPatches(local.centres + np.array([x0, y0]), local.sizes)
-    flex, spec = soil_flexibility(soil, pts, f"{where}: soil", "z")
+    if horizontal == "soil":
+        flex, spec = plan_soil(soil, pts, f"{where}: soil")
+    else:
+        flex, spec = soil_flexibility(soil, pts, f"{where}: soil", "z")
     return Footing3D(name=name, node=node, nodes=None, width=width, length=length, patches=pts, soil=flex,
                      spec=spec, horizontal=horizontal, gap=patch_gaps(where, gap, pts.m),
-                     contact_names=tuple(f"{name}.{j + 1}" for j in range(pts.m)), y=z0)
+                     contact_names=tuple(f"{name}.{j + 1}" for j in range(pts.m)), y=z0, mu=mu, facets=facets,
+                     origin=(x0, y0))
+
+
+def _friction(where, horizontal, mu, facets):
+    """``(mu, facets)`` of a footing that slides in plan, checked; ``(None, None)`` otherwise."""
+    if horizontal != "soil":
+        for arg, value in (("mu", mu), ("facets", facets)):
+            if value is not None:
+                raise ValueError(f"{where}: {arg}={value!r} is for a footing that slides on the soil; give "
+                                 f"horizontal='soil' (now {horizontal!r}) or remove {arg}")
+        return None, None
+    if isinstance(mu, bool) or not isinstance(mu, numbers.Real) or not (np.isfinite(mu) and mu > 0):
+        raise ValueError(f"{where}: horizontal='soil' needs mu, the friction coefficient of the footing on the "
+                         f"soil (a finite number > 0; a large one for a footing that does not slide), got mu={mu!r}")
+    if facets is None:
+        facets = DEFAULT_FACETS
+    if isinstance(facets, bool) or not isinstance(facets, numbers.Integral) or facets < 4 or facets % 2:
+        raise ValueError(f"{where}: facets={facets!r} is not valid; give the facets of the friction cone in plan, "
+                         "an even int >= 4 (opposite facets in pairs; 4: the pyramid of the x and y axes)")
+    return float(mu), int(facets)
+
+
+def plan_soil(soil, patches, where):
+    """The x-y-z :class:`~unilateral.soil.SoilFlexibility` (3 m rows: x, y, z) of ``patches`` for a
+    footing that slides in plan, and its :class:`~unilateral.structure.foundation.SoilSpec` (or None).
+
+    A SoilFlexibility is taken as it is (3 m rows). A spec is checked as the 2-D footing that slides
+    checks it (``components="xz"``), then: the half-space's or layered soil's ``components="xyz"``;
+    Wolf's horizontal cone of the footing's area spread over the patches by area along x and along
+    y, its vertical cone along z; Kelvin springs ``kx``, dashpots ``cx`` along x and along y.
+    """
+    from ..soil.foundation_model import SoilFlexibility
+
+    if isinstance(soil, SoilFlexibility):
+        if soil.m != 3 * patches.m:
+            raise ValueError(f"{where}: the SoilFlexibility has m = {soil.m} rows but the footing has {patches.m} "
+                             f"patches and slides in plan (x, y then z rows: 3 per patch, {3 * patches.m}); build "
+                             "it for these patches with components='xyz'")
+        return soil, None
+    flex, spec = soil_flexibility(soil, patches, where, "xz")           # checks the spec
+    if spec.model == "winkler-kelvin":
+        m = patches.m
+        k, c = flex.kelvin
+        return SoilFlexibility.kelvin(np.concatenate([k[:m], k[:m], k[m:]]),
+                                      np.concatenate([c[:m], c[:m], c[m:]])), spec
+    if spec.model == "cones":
+        from ..soil.cones import Cone, cone
+
+        G, nu = spec.shear_modulus(where), spec.poisson(where)
+        share = patches.areas / patches.areas.sum()
+        r0 = float(np.sqrt(patches.areas.sum() / np.pi))
+        cones = []
+        for motion in ("horizontal", "horizontal", "vertical"):
+            whole = cone(motion, G, nu, spec.rho, r0)
+            cones += [Cone(motion, whole.K * w, whole.C * w, whole.dM * w, 0.0, whole.z0, whole.c) for w in share]
+        out = SoilFlexibility.impedances(cones)
+        out.description = (f"the footing's horizontal (x and y) and vertical cones (G={G:g}, nu={nu:g}, "
+                           f"rho={spec.rho:g}) over {patches.m} patches by area")
+        return out, spec
+    if spec.model == "layered":
+        from .foundation import layered_soil
+
+        return SoilFlexibility.halfspace(layered_soil(spec, where), patches, components="xyz"), spec
+    from ..soil.halfspace import HalfSpace
+
+    medium = HalfSpace(spec.shear_modulus(where), spec.poisson(where), float(spec.rho), float(spec.damping))
+    return SoilFlexibility.halfspace(medium, patches, components="xyz"), spec
+
+
+class Footings3D(Footings):
+    """The footings of a :class:`~unilateral.structure.Frame3D` on one soil (see
+    :class:`~unilateral.structure.foundation.Footings`); footings that slide in plan add the
+    maps ``Tx``, ``Ty``, the facets of their friction cones, and their results in plan.
+
+    The constraints of the soil after the frame's own: the contacts (``m``), the shears along x
+    (``m``), along y (``m``), then the ``facets`` slip multipliers of each patch.
+    """
+
+    def __init__(self, footings, first=0):
+        footings = tuple(footings)
+        self.facets = None
+        if not any(f.sliding for f in footings):
+            super().__init__(footings, first)
+            return
+        self.footings, self.first, self.sliding = footings, int(first), True
+        names = ", ".join(repr(f.name) for f in footings)
+        if not all(f.sliding for f in footings):
+            raise ValueError(f"foundations {names}: footings that slide (horizontal='soil') and footings held "
+                             "otherwise cannot be mixed in one frame; give every footing horizontal='soil', or none")
+        if len({f.facets for f in footings}) > 1:
+            raise ValueError(f"foundations {names}: footings that slide in plan share one friction cone; give them "
+                             f"the same facets, got {[f.facets for f in footings]}")
+        self.facets = footings[0].facets
+        self.mu = np.concatenate([np.full(f.m, f.mu) for f in footings])
+        self.soil = _plan_group_soil(footings)
+        self.patches = _concat_patches([f.patches for f in footings])
+        self.gap = np.concatenate([f.gap for f in footings])
+        self.contact_names = tuple(name for f in footings for name in f.contact_names)
+
+    @property
+    def constraints_per_patch(self) -> int:
+        """The soil's constraints per patch: 1 (a contact), or sliding in plan ``3 + facets``."""
+        return 3 + self.facets if self.sliding else 1
+
+    def Ty(self, dofs) -> np.ndarray:
+        """``Ty`` (n, m) of all patches (footings that slide in plan)."""
+        return np.hstack([f.Ty(dofs) for f in self.footings])
+
+    def constraint_coords(self) -> dict:
+        """x, y, kind and gap along ``constraint``: the contacts; sliding: the shears along x and along
+        y (kind ``"foundation_shear"``) and the facets (``"foundation_slip"``), each at its patch."""
+        if not self.sliding:
+            return super().constraint_coords()
+        parts = [f.constraint_coords() for f in self.footings]
+        out = {key: [x for p in parts for x in p[key][1]] for key in parts[0]}
+        x, y, gap, n = out["constraint_x"], out["constraint_y"], out["constraint_gap"], self.facets
+        out = {"constraint_x": x + x + x + [a for a in x for _ in range(n)],
+               "constraint_y": y + y + y + [a for a in y for _ in range(n)],
+               "constraint_kind": out["constraint_kind"] + ["foundation_shear"] * (2 * self.m)
+               + ["foundation_slip"] * (n * self.m),
+               "constraint_gap": gap + [0.0] * ((2 + n) * self.m)}
+        return {key: ("constraint", value) for key, value in out.items()}
+
+    def shear_forces(self, sol) -> np.ndarray | None:
+        """The soil's horizontal forces on the footings (N+1, m, 2) (force; x, y), or None."""
+        if not self.sliding:
+            return None
+        psi = np.asarray(sol.psi, dtype=float)[:, self.first + self.m:self.first + 3 * self.m]
+        return np.stack([psi[:, :self.m], psi[:, self.m:]], axis=-1)
+
+    def slips(self, sol) -> np.ndarray | None:
+        """The net slip ``sum_k lambda_k d_k`` (N+1, m, 2) of each patch on the soil (length; x, y), or None."""
+        if not self.sliding:
+            return None
+        v = np.asarray(sol.v, dtype=float)[:, self.first + self.m:self.first + 3 * self.m]
+        return np.stack([v[:, :self.m], v[:, self.m:]], axis=-1)
+
+    def facet_slips(self, sol) -> np.ndarray | None:
+        """The slip multipliers ``lambda_k`` (N+1, m, facets) of each patch (length), or None."""
+        if not self.sliding:
+            return None
+        v = np.asarray(sol.v, dtype=float)[:, self.first + 3 * self.m:self.first + (3 + self.facets) * self.m]
+        return v.reshape(v.shape[0], self.m, self.facets)
+
+    def contact_load(self, structure, sol) -> np.ndarray:
+        """``T c + Tx hx + Ty hy`` (N+1, n): the load of the soil's forces on the structure."""
+        out = self.contact_forces(sol) @ self.T(structure.dofs, structure.coords).T
+        if self.sliding:
+            h = self.shear_forces(sol)
+            out = out + h[..., 0] @ self.Tx(structure.dofs).T + h[..., 1] @ self.Ty(structure.dofs).T
+        return out
+
+
+def _plan_group_soil(footings):
+    """One x-y-z flexibility of all the footings' patches: all x rows, all y rows, then all z rows."""
+    from ..soil.foundation_model import SoilFlexibility
+
+    if len(footings) == 1:
+        return footings[0].soil
+    names = ", ".join(repr(f.name) for f in footings)
+    specs = [f.spec for f in footings]
+    coupled = [s is not None and s.model in COUPLED_SOILS for s in specs]
+    if any(coupled):
+        if not all(coupled) or len({_material(s) for s in specs}) > 1:
+            raise ValueError(f"foundations {names}: footings on a half-space or a layered soil share that soil "
+                             "(their patches interact through the ground): give every footing the same soil, "
+                             f"got {[_material(s) if s else 'a SoilFlexibility' for s in specs]}")
+        if len({round(f.y, 9) for f in footings}) > 1:
+            raise ValueError(f"foundations {names}: footings on one soil medium lie on its surface, at one "
+                             f"elevation; got z = {sorted({f.y for f in footings})}")
+        return plan_soil(specs[0], _concat_patches([f.patches for f in footings]),
+                         f"foundation {footings[0].name!r}: soil")[0]
+    soil = SoilFlexibility.block_diagonal([f.soil for f in footings])
+    starts = np.cumsum([0] + [3 * f.m for f in footings])
+    order = [a + b * f.m + j for b in range(3) for a, f in zip(starts, footings) for j in range(f.m)]
+    return soil.permuted(order)
+
+
+def to_plan_model(structure):
+    """The :class:`~unilateral.soil.FoundationModel` of a 3-D frame whose footings slide in plan
+    (``Tx``, ``Ty``, ``mu``, ``facets``), as :func:`~unilateral.structure.foundation.to_foundation_model`
+    makes that of other footings: the frame's own constraints first (if any), then the soil's."""
+    from ..model import Model
+    from ..soil.foundation_model import FoundationModel
+
+    fnd = structure.foundation
+    T, Tx, Ty = fnd.T(structure.dofs, structure.coords), fnd.Tx(structure.dofs), fnd.Ty(structure.dofs)
+    big = structure.n > 2000
+    if big:
+        T, Tx, Ty = sp.csr_matrix(T), sp.csr_matrix(Tx), sp.csr_matrix(Ty)
+    slide = dict(Tx=Tx, Ty=Ty, mu=fnd.mu, facets=fnd.facets, gap=fnd.gap, contact_names=list(fnd.contact_names))
+    nat = structure.natural
+    if structure.m:
+        model = Model.from_natural(nat.G, nat.E, nat.B, M=structure.M, A=nat.A, r=nat.r, theta=nat.theta(0.0),
+                                   C=structure.C, E_v=nat.E_v, dof_names=structure.dofs.names,
+                                   constraint_names=list(structure.constraint_names), families=structure.families(),
+                                   on_soil=True)
+        return FoundationModel.on(model, T, fnd.soil, **slide)
+    if np.any(nat.theta(0.0)):
+        raise ValueError("the frame has imposed strains (axial_strain, curvature) and a foundation on a soil "
+                         "medium: give them as loads")
+    K = (nat.G @ nat.E @ nat.G.T).tocsr()
+    M, C = structure.M, structure.C
+    if not big:
+        K, M = K.toarray(), M.toarray()
+        C = None if C is None else C.toarray()
+    return FoundationModel(M, K, T, fnd.soil, C=C, dof_names=structure.dofs.names, **slide)
 
 
 def check_plan_overlap(footings, new, where) -> None:

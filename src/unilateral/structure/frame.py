@@ -58,6 +58,8 @@ class _Frame(ABC):
         self._mass: dict = {}
         self._rayleigh: tuple[float, float] | None = None
         self._modal: tuple | None = None
+        self._beams: dict = {}              # name -> the beam as defined (before any hinge)
+        self._hinges: dict = {}             # (beam, end) -> hinge name: one hinge per beam end
 
     # ------------------------------------------------------------------ damping
     def rayleigh(self, a0=0.0, a1=0.0) -> None:
@@ -217,6 +219,27 @@ class _Frame(ABC):
         )
 
     # ------------------------------------------------------------------ plasticity and friction
+    def _hinge_site(self, name, beam, end) -> str:
+        """The label of the hinge ``name`` at the end ``end`` of the beam ``beam``, checked: a beam of
+        the frame, ``"i"`` or ``"j"``, one hinge per beam end."""
+        where = self._label("hinge", name)
+        if not isinstance(beam, str) or beam not in self._beams:
+            beams = ", ".join(repr(b) for b in list(self._beams)[:10]) or "none"
+            raise ValueError(f"{where}: beam={beam!r} is not a beam of the frame (beams: {beams})")
+        if end not in ("i", "j"):
+            raise ValueError(f"{where}: end={end!r} is not valid; use 'i' or 'j'")
+        if (beam, end) in self._hinges:
+            raise ValueError(f"{where}: end {end!r} of beam {beam!r} already has the hinge "
+                             f"{self._hinges[(beam, end)]!r}; one hinge per beam end")
+        return where
+
+    def _put_hinge(self, name, beam, end, hinged) -> None:
+        """Replace the beam ``beam`` by ``hinged(beam element)``, its element with the hinge."""
+        p = next(p for p, e in enumerate(self._elements) if e.name == beam)
+        self._elements[p] = hinged(self._elements[p])
+        self._hinges[(beam, end)] = name
+        self._names.add(name)
+
     def yield_link(self, name, node_i, node_j=None, *, k, Fy=None, Fy_t=None, Fy_c=None, direction="ux",
                    hardening=0.0) -> None:
         """Zero-length elastic-plastic spring from ``node_i`` to the ground (``node_j=None``) or to
@@ -361,8 +384,6 @@ class Frame2D(_Frame):
     def __init__(self):
         super().__init__()
         self._links: dict = {}
-        self._beams: dict = {}
-        self._hinges: dict = {}
         self._p_delta: tuple | None = None
         self._foundations = []
 
@@ -566,23 +587,13 @@ class Frame2D(_Frame):
         k : rotational stiffness of the spring, force length/rad, > 0, or None (rigid-plastic)
         hardening : ``h >= 0``
         """
-        where = self._label("hinge", name)
-        if beam not in self._beams:
-            beams = ", ".join(repr(b) for b in list(self._beams)[:10]) or "none"
-            raise ValueError(f"{where}: beam={beam!r} is not a beam of the frame (beams: {beams})")
-        if end not in ("i", "j"):
-            raise ValueError(f"{where}: end={end!r} is not valid; use 'i' or 'j'")
-        if (beam, end) in self._hinges:
-            raise ValueError(f"{where}: end {end!r} of beam {beam!r} already has the hinge "
-                             f"{self._hinges[(beam, end)]!r}; one hinge per beam end")
+        where = self._hinge_site(name, beam, end)
         My = _real(where, "My", My, ">0")
         k = None if k is None else _real(where, "k", k, ">0")
         reference = k if k is not None else self._beams[beam].E[1, 1]          # k or 4EI/L
         modulus = _hardening(where, hardening) * reference
-        p = next(p for p, e in enumerate(self._elements) if e.name == beam)
-        self._elements[p] = el.hinge(self._elements[p], name, end, My=My, k=k, modulus=modulus)
-        self._hinges[(beam, end)] = name
-        self._names.add(name)
+        self._put_hinge(name, beam, end, lambda beam_element: el.hinge(beam_element, name, end, My=My, k=k,
+                                                                      modulus=modulus))
 
     # ------------------------------------------------------------------ foundation on a soil medium
     def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
@@ -821,7 +832,9 @@ class Structure:
         pairs = self.constraints
         index = {u.name: k for k, (_, u) in enumerate(pairs)}
         of = {kind: [k for k, (_, u) in enumerate(pairs) if u.kind == kind] for kind in el.UNKNOWN_KINDS}
-        families = [family(of[kind]) for kind, family in (("contact", Contact), ("yield", Yield)) if of[kind]]
+        families = [Contact(of["contact"])] if of["contact"] else []
+        if of["yield"]:
+            families.append(Yield(of["yield"], polygons=_yield_polygons(pairs, of["yield"])))
         if of["friction"]:
             slips = [pairs[k][1] for k in of["friction"]]
             normal = [-1 if u.normal is None else index[u.normal] for u in slips]
@@ -1201,3 +1214,20 @@ def _hardening(where, value) -> float:
         raise ValueError(f"{where}: hardening={value!r} must be >= 0 (the ratio of the kinematic hardening "
                          "modulus to the elastic stiffness; softening is not supported)")
     return h
+
+
+def _yield_polygons(pairs, indices) -> list:
+    """The yield multipliers of ``indices`` that are the facets of one polygon of more than four
+    facets: those of one element whose columns of ``B`` share strains (a 3-D hinge at one beam end)."""
+    groups: dict = {}
+    for k in indices:
+        element, unknown = pairs[k]
+        rows = {row for row, _ in unknown.entries}
+        joined = [key for key in groups if key[0] == id(element) and key[1] & rows]
+        members = [k]
+        for key in joined:
+            members += groups.pop(key)
+            rows |= key[1]
+        groups[(id(element), frozenset(rows))] = members
+    return [sorted(members) for members in groups.values() if len(members) > 4]
+

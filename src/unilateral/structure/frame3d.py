@@ -34,7 +34,7 @@ from . import elements as el
 from . import elements3d as el3
 from .dofs import DofMap  # noqa: F401  (likewise)
 from .dofs3d import IN_PLANE, DofMap3D
-from .frame import Structure, _Frame, _friction, _real
+from .frame import Structure, _Frame, _friction, _hardening, _real
 
 
 class Frame3D(_Frame):
@@ -58,7 +58,9 @@ class Frame3D(_Frame):
     cone of ``facets`` facets in the tangent plane (default 4: a four-sided pyramid), circumscribing
     Coulomb's circle. Rigid footings in plan on a soil medium (:meth:`foundation`: a grid of
     contact patches, rocking about both axes). Yielding links and sliders (:meth:`yield_link`,
-    :meth:`slider`) along any direction, as in 2-D. Not (yet) in 3-D: plastic hinges, flexible
+    :meth:`slider`) along any direction, as in 2-D. Plastic hinges at beam ends (:meth:`hinge`, after
+    the beam) yield under the end moments about both bending axes, within a polygonal interaction
+    surface (an ellipse's circumscribed polygon, a diamond or a box). Not (yet) in 3-D: flexible
     footings and footings that slide, P-Delta.
     """
 
@@ -143,7 +145,7 @@ class Frame3D(_Frame):
         self._mass[node] = self._mass.get(node, np.zeros(6)) + add
 
     def foundation(self, name, node, *, width, length, soil, patches=(3, 3), horizontal="support", gap=0.0,
-                   mass=0.0, Jx=0.0, Jy=0.0) -> None:
+                   mass=0.0, Jx=0.0, Jy=0.0, Jz=0.0, mu=None, facets=None) -> None:
         """A rigid rectangular footing on a soil medium, resting on an ``nx x ny`` grid of unilateral
         contact patches (:mod:`unilateral.structure.foundation3d`); :meth:`Structure3D.to_model
         <unilateral.structure.Structure.to_model>` then gives a
@@ -154,6 +156,13 @@ class Frame3D(_Frame):
         rocking ``rx``, ``ry``; the upward displacement of the patch at ``(x, y)`` is
         ``uz + rx (y - y_node) - ry (x - x_node)``. Footings on a half-space (or a layered soil) share
         it: every patch of every footing is coupled to every other through the ground.
+
+        With ``horizontal="soil"`` the footing also rests on the soil horizontally and slides in plan:
+        each patch carries a horizontal force ``(fx, fy)`` through the soil's x-y-z flexibility,
+        limited by a polygonal Coulomb cone of ``facets`` facets (``d_k . f <= mu c``); the footing's
+        displacement at a patch is ``(ux - (y - y_node) rz, uy + (x - x_node) rz)``, so its sway, rocking
+        and twist couple through the ground (:mod:`unilateral.structure.foundation3d`). Every footing of
+        the frame then slides, with the same ``facets``.
 
         Parameters
         ----------
@@ -167,16 +176,26 @@ class Frame3D(_Frame):
             ``"layered"``, ``"cones"``, ``"winkler-kelvin"``).
         patches : (int, int) or int
             ``(nx, ny)`` patches along x and y (one int: both), at most 400 in all.
-        horizontal : {"support", "none"}
+        horizontal : {"support", "none", "soil"}
             ``"support"`` (default): ``ux``, ``uy`` and ``rz`` of ``node`` supported; ``"none"``: the
-            frame holds the footing in plan (springs, other members).
+            frame holds the footing in plan (springs, other members); ``"soil"``: the footing slides
+            on the soil in plan (``mu``, ``facets``; ``ux``, ``uy``, ``rz`` of ``node`` must be free).
         gap : float or (nx ny,) array, length
             Opening of each patch at ``u = 0`` with the soil unloaded.
-        mass, Jx, Jy : float >= 0
-            The footing's own mass (on the translations of ``node``) and rotary inertias.
+        mass, Jx, Jy, Jz : float >= 0
+            The footing's own mass (on the translations of ``node``) and rotary inertias (``Jz``: its
+            twist, e.g. for a footing that slides in plan).
+        mu : float > 0
+            ``horizontal="soil"``: the friction coefficient of the footing on the soil.
+        facets : int, even >= 4
+            ``horizontal="soil"``: the facets of each patch's friction cone in plan (default 8: its
+            strength is at most ``sec(pi/8) = 1.082`` times Coulomb's; 4, the pyramid ``+-x``, ``+-y``,
+            is ``sqrt 2`` times along the diagonals, and its anisotropy twists a footing pushed off
+            its axes much more: 0.10 rad against 0.018 with 8 and 0.012 with 16 facets in
+            ``tests/test_sliding_footings3d.py``'s tower at 0.5 rad). With 32 facets the pivoting
+            solver failed at a step of that run.
         """
-        from .foundation import Footings
-        from .foundation3d import build_footing, check_plan_overlap
+        from .foundation3d import Footings3D, build_footing, check_plan_overlap
 
         where = self._label("foundation", name)
         self._node(where, "node", node)
@@ -187,13 +206,18 @@ class Frame3D(_Frame):
             raise ValueError(f"{where}: uz of node {node!r} is supported (or follows another node): the footing "
                              "could not move on the soil; remove that support")
         fnd = build_footing(name=name, node=node, width=width, length=length, soil=soil, patches=patches,
-                            horizontal=horizontal, gap=gap, coords=self._coords)
+                            horizontal=horizontal, gap=gap, coords=self._coords, mu=mu, facets=facets)
+        if fnd.sliding:
+            for dof in ("ux", "uy", "rz"):
+                if (node, dof) in self._restrained or self._tied(node, dof):
+                    raise ValueError(f"{where}: {dof} of node {node!r} is supported (or follows another node): the "
+                                     "footing could not slide on the soil; remove that support")
         check_plan_overlap(self._foundations, fnd, where)
-        Footings(self._foundations + [fnd])                 # one soil for all: the same medium, one elevation
+        Footings3D(self._foundations + [fnd])               # one soil for all: the same medium, one elevation
         if horizontal == "support":
             self.support(node, ux=True, uy=True, uz=False, rz=True)
-        if mass or Jx or Jy:
-            self.mass(node, mass, Jx=Jx, Jy=Jy)
+        if mass or Jx or Jy or Jz:
+            self.mass(node, mass, Jx=Jx, Jy=Jy, Jz=Jz)
         self._foundations.append(fnd)
         self._names.add(name)
 
@@ -238,6 +262,7 @@ class Frame3D(_Frame):
             for node in (i, j):
                 self.mass(node, half)
         self._add(element)
+        self._beams[name] = element
 
     def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
         """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
@@ -324,12 +349,12 @@ class Frame3D(_Frame):
         ``th_k``), ordered in opposite pairs ``facet0, facet<N/2>, facet1, facet<N/2+1>, ...``
         (:func:`~unilateral.structure.elements3d.facet_unknowns`).
 
-        With ``N > 4``, a step that violates three or more facets at once (a sudden push far beyond
-        the strength) may stop block principal pivoting (``lcp="bpp"``, the default): any three
-        facet columns of ``B`` are linearly dependent (two tangential strains), so a basis with three
-        facets is singular, and the pair rule keeps apart only opposite facets. The run then stops
-        with a message naming ``lcp="lemke"``, which solves such steps; ramped loads and
-        ``N = 4`` are not affected.
+        With ``N > 4`` any three facet columns of ``B`` are linearly dependent (two tangential
+        strains), so a basis with three facets is singular: block principal pivoting (``lcp="bpp"``,
+        the default) keeps at most two facets of a cone active (its group rule), so that a step that
+        violates many facets at once (a sudden push far beyond the strength) is solved too
+        (``tests/test_friction_cone.py``: 20 times the strength on 16 facets, equal to Lemke's
+        method).
         """
         where, ends, terms = self._ends("soil", name, node, None, direction, ("node", None))
         self._add(self._contact("soil", where, name, ends, terms, k=k, c=c, gap=gap, capacity=capacity,
@@ -368,6 +393,86 @@ class Frame3D(_Frame):
                             A=_real(where, "A", A, ">0"), slack=_real(where, "slack", slack),
                             capacity=_real(where, "capacity", capacity, ">=0")))
 
+    # ------------------------------------------------------------------ plasticity
+    def hinge(self, name, beam, end, *, My, Mz, shape="ellipse", facets=None, k=None, hardening=0.0) -> None:
+        """Plastic hinge at the end ``"i"`` or ``"j"`` of the beam ``beam`` (define the beam first),
+        yielding under the end moments about both bending axes: a polygonal interaction surface.
+
+        The end moments ``M = (M_y', M_z')`` (the beam's natural stresses ``roty`` and ``rotz`` at that
+        end: the moments acting on the beam about its local ``y'`` and ``z'``, right-hand positive,
+        force length) stay within a convex polygon of ``N`` facets: facet ``k`` keeps
+        ``n_k . (M - alpha) <= r_k`` (``n_k`` its unit outward normal on ``(M_y', M_z')``, ``r_k`` >
+        0, force length, :func:`~unilateral.structure.elements3d.hinge_polygon`). Each facet is an
+        unknown ``"name.facet<k>"`` of the ``"yield"`` family, a multiplier ``lambda_k >= 0`` (rad)
+        that only grows, while its facet yields (``d lambda_k >= 0``, ``psi_k <= 0``, ``psi_k d
+        lambda_k = 0``); the plastic rotation ``theta_p = sum_k lambda_k n_k`` (rad, on ``(y', z')``:
+        associated flow, normal to the active facet, in the normal cone at a vertex) is an imposed
+        strain on the two end rotations. Its column of ``B`` is ``n_k`` on those two strains (the
+        primary entry on the larger component, the other an extra entry, as for the facets of a
+        friction cone, :func:`~unilateral.structure.elements3d.facet_unknowns`). The unknowns come
+        in opposite pairs ``(k, k + N/2)``: ``facet0, facet<N/2>, facet1, ...``, the pairs of the
+        :class:`~unilateral.constraints.Yield` family (never both active).
+
+        Shapes, in the normalised plane ``x = (M_y'/My, M_z'/Mz)``:
+
+        - ``"ellipse"`` (default): ``(M_y'/My)^2 + (M_z'/Mz)^2 <= 1`` replaced by the polygon that
+          circumscribes it: ``N = facets`` facets tangent to it, with normals at the angles
+          ``th_k = 2 pi k / N`` in the normalised plane (facet 0 along ``+M_y'``). The pure-``My``
+          points lie on facets exactly, and so do the pure-``Mz`` points when ``N`` is a multiple
+          of 4 (else they are vertices). Along a ray from the origin the polygon's strength is
+          between 1 and ``sec(pi/N)`` times the ellipse's (exact along the facet normals, the
+          bound at the vertices): an overstrength of at most ``sec(pi/N) - 1``: 41 % for N = 4,
+          8.2 % for 8, 2.0 % for 16, 0.48 % for 32. The plastic rotation is normal to the facet,
+          within ``pi/N`` (in the normalised plane) of the ellipse's normal.
+        - ``"diamond"``: ``|M_y'|/My + |M_z'|/Mz <= 1``, exactly 4 facets (inscribed in the ellipse).
+        - ``"box"``: ``|M_y'| <= My`` and ``|M_z'| <= Mz`` independently, exactly 4 facets: two
+          uncoupled 2-D hinges (:meth:`Frame2D.hinge <unilateral.structure.Frame2D.hinge>`), the
+          ellipse's polygon with ``N = 4``.
+
+        ``k=None``: a rigid-plastic hinge in the beam itself. ``k`` given: an elastic-plastic
+        rotational spring in series between the beam end and the node on both bending rotations
+        (elastic rotations ``M_y'/k``, ``M_z'/k``): the flexibility ``1/k`` is added on both rows,
+        the spring's massless inner node condensed into the beam's stiffness (no DOF added), as in
+        2-D. Kinematic hardening: the back moment ``alpha = diag(H_y, H_z) theta_p`` translates the
+        polygon, ``H_y = h 4EIy/L`` and ``H_z = h 4EIz/L`` without ``k``, ``H_y = H_z = h k`` with
+        it; in the facets' terms ``A_kj = n_k^T diag(H_y, H_z) n_j`` (the 2-D pair's
+        ``modulus [[1, -1], [-1, 1]]`` on one axis). A history in one plane (only ``M_y'``, say)
+        stays on the facets normal to that axis and is the 2-D hinge's.
+
+        Parameters
+        ----------
+        name : str, unique
+        beam : str, the name of a beam of the frame
+        end : ``"i"`` or ``"j"``; one hinge per beam end
+        My, Mz : plastic moments about the local ``y'`` and ``z'``, force length, > 0
+        shape : ``"ellipse"``, ``"diamond"`` or ``"box"``
+        facets : int or None
+            ``N``: with ``"ellipse"`` an even int >= 4 (default 8); ``"diamond"`` and ``"box"`` have
+            exactly 4 (None or 4).
+        k : rotational stiffness of the spring, force length/rad, > 0, or None (rigid-plastic)
+        hardening : ``h >= 0``
+
+        Notes
+        -----
+        Any three facet columns of one hinge are linearly dependent (two rotations): a pivoting
+        basis with three facets of one hinge is singular; in a solution at most two adjacent facets
+        flow (a vertex). Block principal pivoting (``lcp="bpp"``, the default) keeps the facets of a
+        polygon of more than four apart that way (its group rule, as for a friction cone,
+        :meth:`soil`), so a step that pushes the moment far beyond the polygon at once is solved
+        too (1.2 and 3 times the strength with 8 and 16 facets, rigid-plastic and with ``k``: equal
+        to ``lcp="lemke"``, ``tests/test_hinge3d.py``).
+        """
+        where = self._hinge_site(name, beam, end)
+        My, Mz = _real(where, "My", My, ">0"), _real(where, "Mz", Mz, ">0")
+        shape, facets = _hinge_shape(where, shape, facets)
+        k = None if k is None else _real(where, "k", k, ">0")
+        h = _hardening(where, hardening)
+        E = self._beams[beam].E
+        moduli = (h * k, h * k) if k is not None else (h * E[4, 4], h * E[2, 2])       # k, or 4EIy/L and 4EIz/L
+        polygon = el3.hinge_polygon(shape, facets, My, Mz)
+        self._put_hinge(name, beam, end, lambda beam_element: el3.hinge(beam_element, name, end, polygon, k=k,
+                                                                       moduli=moduli))
+
     # ------------------------------------------------------------------ build
     def build(self) -> Structure3D:
         """Number the DOFs and assemble the natural form, the mass and the damping matrices.
@@ -382,14 +487,17 @@ class Frame3D(_Frame):
                     for dof, J in zip(el3.ROTATIONS, mass[3:]) if J > 0}
         on_soil = set()                                 # the soil stiffens these (FoundationModel checks)
         for footing in self._foundations:
-            on_soil |= {(node, dof) for terms in footing.moved_rows(self._coords) for node, dof, _ in terms}
+            rows = footing.moved_rows(self._coords)
+            if footing.sliding:
+                rows = rows + footing.shear_rows() + footing.shear_rows_y()
+            on_soil |= {(node, dof) for terms in rows for node, dof, _ in terms}
         rotated |= {(node, dof) for node, dof in on_soil if dof in el3.ROTATIONS}
         dofs = DofMap3D(self._coords, self._restrained, rotated, self._ties)
         fields = self._assemble(dofs, exempt=on_soil)
         if self._foundations:
-            from .foundation import Footings
+            from .foundation3d import Footings3D
 
-            fields["foundation"] = Footings(self._foundations, first=len(fields["constraint_names"]))
+            fields["foundation"] = Footings3D(self._foundations, first=len(fields["constraint_names"]))
         return Structure3D(**fields)
 
     # ------------------------------------------------------------------ helpers
@@ -441,6 +549,25 @@ def _facets(where, mu, facets) -> int:
     return facets
 
 
+def _hinge_shape(where, shape, facets) -> tuple[str, int]:
+    """``(shape, N)`` of a hinge's polygon: ``shape`` one of :data:`~.elements3d.HINGE_SHAPES`; ``N`` an even
+    int >= 4 for ``"ellipse"`` (default 8), 4 for ``"diamond"`` and ``"box"``."""
+    if not isinstance(shape, str) or shape not in el3.HINGE_SHAPES:
+        raise ValueError(f"{where}: shape={shape!r} is not valid; use 'ellipse', 'diamond' or 'box'")
+    if facets is None:
+        return shape, 8 if shape == "ellipse" else 4
+    if isinstance(facets, (bool, np.bool_)) or not isinstance(facets, (int, np.integer)):
+        raise TypeError(f"{where}: facets must be an even int >= 4 (the facets of the hinge's polygon), got {facets!r}")
+    facets = int(facets)
+    if shape != "ellipse" and facets != 4:
+        raise ValueError(f"{where}: facets={facets} is not valid for shape={shape!r}, which has exactly 4 facets; "
+                         "give facets=4 or leave it out (or use shape='ellipse')")
+    if facets < 4 or facets % 2:
+        raise ValueError(f"{where}: facets={facets} must be an even int >= 4 (the facets of the hinge's polygon "
+                         "come in opposite pairs, and fewer than 4 do not bound the moment plane)")
+    return shape, facets
+
+
 @dataclass(frozen=True, eq=False)
 class Structure3D(Structure):
     """A built 3-D frame: the natural form and the DOF map (:class:`DofMap3D`).
@@ -454,6 +581,17 @@ class Structure3D(Structure):
     solution: :mod:`unilateral.structure.forces3d` (those of :mod:`unilateral.structure.forces` are
     for 2-D frames); P-Delta (:meth:`geometric_stiffness`) is for 2-D frames only.
     """
+
+    def to_model(self):
+        """As :meth:`Structure.to_model <unilateral.structure.Structure.to_model>`; footings that slide
+        in plan (``Frame3D.foundation(horizontal="soil")``) give the
+        :class:`~unilateral.soil.FoundationModel` with ``Tx``, ``Ty`` and ``facets``
+        (:func:`~unilateral.structure.foundation3d.to_plan_model`)."""
+        if self.foundation is not None and self.foundation.sliding:
+            from .foundation3d import to_plan_model
+
+            return to_plan_model(self)
+        return super().to_model()
 
     def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, 0.0, -1.0)) -> np.ndarray:
         """Load (n,) of gravity ``g`` along ``direction`` (a vector, normalised) on the lumped masses."""
