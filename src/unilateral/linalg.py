@@ -37,7 +37,9 @@ class Factorization:
                 warnings.simplefilter("error", spla.MatrixRankWarning)
                 if self.sparse:
                     self._lu = spla.splu(sp.csc_matrix(A))
-                    diag = np.abs(self._lu.U.diagonal())
+                    U = self._lu.U                  # built anew at each access: read once
+                    self._dtype = U.dtype
+                    diag = np.abs(U.diagonal())
                 else:
                     self._lu = sla.lu_factor(np.asarray(A))
                     self._getrs, = sla.get_lapack_funcs(("getrs",), (self._lu[0],))
@@ -59,7 +61,7 @@ class Factorization:
         if self.sparse:
             if sp.issparse(b):
                 b = b.toarray()
-            return self._lu.solve(np.asarray(b, dtype=np.result_type(b, self._lu.U.dtype)))
+            return self._lu.solve(np.asarray(b, dtype=np.result_type(b, self._dtype)))
         lu, piv = self._lu
         if np.iscomplexobj(b) and not np.iscomplexobj(lu):
             return self.solve(b.real) + 1j * self.solve(b.imag)
