@@ -215,8 +215,8 @@ def _build_structure_3d(document: ModelFile) -> Structure:
     for at, f in document.footings:
         with _at(key_path(at)):
             fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=_footing_soil(f, to_mass),
-                          patches=(3, 3) if f.patches is None else f.patches if isinstance(f.patches, int)
-                          else tuple(f.patches), horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
+                          patches=f.patches if f.patches is None or isinstance(f.patches, int) else tuple(f.patches),
+                          nodes=f.nodes, horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
                           Jx=f.Jx * to_mass, Jy=f.Jy * to_mass, Jz=f.Jz * to_mass, mu=f.mu, facets=f.facets)
     _damping(fr, document)
     with _at("structure"):

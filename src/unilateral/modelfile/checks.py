@@ -396,6 +396,27 @@ def _foundation_problems(document: ModelFile) -> list[str]:
     problems = []
     for at, f in document.footings:
         problems += _footing_problems(document, at, f)
+    if is_3d(document):
+        problems += _shared_node_problems(document)
+    return problems
+
+
+def _shared_node_problems(document: ModelFile) -> list[str]:
+    """Nodes of a 3-D frame's footings that rest on two footings (a rigid footing's node or a flexible
+    footing's grid node)."""
+    problems, first = [], {}
+    for at, f in document.footings:
+        if f.nodes is None:
+            places = [((*at, "node"), f.node)] if f.node is not None else []
+        else:
+            places = [((*at, "nodes", i, j), node) for i, row in enumerate(f.nodes) for j, node in enumerate(row)]
+        mine = set()
+        for parts, node in places:
+            if node in first and node not in mine:
+                problems.append(value_problem(parts, node, f"the node already rests on another footing (also in "
+                                              f"{key_path(first[node])}); give each footing its own nodes"))
+            first.setdefault(node, parts)
+            mine.add(node)
     return problems
 
 
@@ -404,7 +425,9 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
     problems = []
     ids = [node.id for node in document.nodes]
     if is_3d(document):
-        return problems + _sliding_3d_problems(at, f) + _soil_problems(document, at, f, _patch_count_3d(f.patches))
+        count = _patch_count_3d(f.patches) if f.nodes is None else sum(len(row) for row in f.nodes)
+        return (problems + _footing_3d_problems(document, at, f) + _sliding_3d_problems(at, f)
+                + _soil_problems(document, at, f, count))
     for k, node in enumerate(f.nodes or ()):
         if node not in set(ids):
             problems.append(value_problem((*at, "nodes", k), node, f"no node {toml_value(node)} (nodes are "
@@ -427,6 +450,71 @@ def _footing_problems(document: ModelFile, at: tuple, f) -> list[str]:
         problems.append(value_problem((*at, "mu"), f.mu, f'only for horizontal = "soil" (now '
                                       f'{toml_value(f.horizontal)}): remove it, or let the footing slide'))
     return problems + _soil_problems(document, at, f, len(f.nodes) if f.nodes is not None else (f.patches or 3))
+
+
+def _footing_3d_problems(document: ModelFile, at: tuple, f) -> list[str]:
+    """A 3-D footing's keys: a rigid footing's node, width and length; a flexible footing's grid of
+    nodes (defined, each once, rows as long, one elevation, a rectilinear grid in plan) and no keys of
+    a rigid footing."""
+    if f.nodes is None:
+        return [f"{key_path((*at, key))}: missing key (a rigid footing needs {what}; or give nodes, the grid of a "
+                "flexible footing)" for key, what in (("node", "its node, at its centre"),
+                                                      ("width", "its width along x"),
+                                                      ("length", "its length along y"))
+                if getattr(f, key) is None]
+    problems = [value_problem((*at, key), getattr(f, key), "only for a rigid footing (a flexible footing, with "
+                              "nodes, has one patch per node" + ("" if key == "patches" else " and its masses in "
+                                                                  "[[masses]]") + "): remove it")
+                for key in ("patches", "mass", "Jx", "Jy", "Jz") if getattr(f, key)]
+    if len({len(row) for row in f.nodes}) > 1:
+        return problems + [value_problem((*at, "nodes"), f.nodes, "the rows have "
+                                         f"{', '.join(str(len(row)) for row in f.nodes)} nodes; every row of the "
+                                         "grid needs the same number of nodes (one per column)")]
+    if sum(len(row) for row in f.nodes) < 2:
+        return problems + [value_problem((*at, "nodes"), f.nodes, "a flexible footing needs at least two nodes; "
+                                         "omit nodes for a rigid footing")]
+    ids = [node.id for node in document.nodes]
+    where = {node.id: (node.x, node.y, node.z) for node in document.nodes}
+    seen, bad = {}, False
+    for i, row in enumerate(f.nodes):
+        for j, node in enumerate(row):
+            parts = (*at, "nodes", i, j)
+            if node not in where:
+                problems.append(value_problem(parts, node, f"no node {toml_value(node)} (nodes are "
+                                              f"{compact_ids(ids)})") + did_you_mean(node, ids))
+                bad = True
+            elif node in seen:
+                problems.append(value_problem(parts, node, f"given twice (also {key_path(seen[node])}); give each "
+                                              "node of the grid once"))
+                bad = True
+            seen.setdefault(node, parts)
+    return problems if bad else problems + _grid_plan_problems(at, f.nodes, where)
+
+
+def _grid_plan_problems(at: tuple, grid: list, where: dict) -> list[str]:
+    """The first node of a flexible footing's grid off its elevation, or off the rectilinear grid."""
+    xyz = [[where[node] for node in row] for row in grid]
+    scale = max(1.0, *(abs(a) for row in xyz for point in row for a in point))
+    tol = 1e-9 * scale
+
+    def off(i, j, axis, i0, j0, rule):
+        a, b = xyz[i][j][axis], xyz[i0][j0][axis]
+        if abs(a - b) <= tol:
+            return None
+        label = "xyz"[axis]
+        return value_problem((*at, "nodes", i, j), grid[i][j], f"at {label} = {a!r}, but "
+                             f"{key_path(('nodes', i0, j0))} = {toml_value(grid[i0][j0])} at {label} = {b!r}; {rule}")
+
+    elevation = "a footing's nodes lie at one elevation (on the ground surface)"
+    rectilinear = ("the nodes must lie on a rectilinear grid in plan: each row (nodes[i]) at one y, each column "
+                   "(nodes[i][j] of every row) at one x")
+    for i, row in enumerate(grid):
+        for j in range(len(row)):
+            problem = (off(i, j, 2, 0, 0, elevation) or off(i, j, 0, 0, j, rectilinear)
+                       or off(i, j, 1, i, 0, rectilinear))
+            if problem:
+                return [problem]
+    return []
 
 
 def _sliding_3d_problems(at: tuple, f) -> list[str]:
@@ -528,7 +616,7 @@ def _soil_scale_problems(document: ModelFile, f, where: tuple) -> list[str]:
     rho = soil.rho * consistent_mass_factor(document.units)
     G = soil.G if soil.G is not None else rho * soil.Vs * soil.Vs
     vs = soil.Vs if soil.Vs is not None else math.sqrt(G / rho)
-    area = (f.width or 1.0) * f.length
+    area = (f.width or 1.0) * (f.length or 1.0)         # a flexible footing without them: of order 1
     derived = {"the shear modulus G = rho Vs^2": G, "the shear-wave speed Vs = sqrt(G/rho)": vs,
                "the footing's stiffness G sqrt(A)": G * math.sqrt(area),
                "the footing's dashpot rho Vs A": rho * vs * area}

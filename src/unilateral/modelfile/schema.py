@@ -931,31 +931,44 @@ Unilateral3D = Annotated[Union[Soil3D, Gap3D, Cable, YieldLink3D, Hinge3D, Slide
 
 class Foundation3D(Table):
     """[[foundations]] of a 3-D frame: a rigid rectangular footing centred on node, on an nx x ny grid of
-    unilateral contact patches on a soil medium."""
+    unilateral contact patches on a soil medium, or a flexible one (nodes: a patch under each node of a
+    grid)."""
 
     EXAMPLE: ClassVar[str] = ('[[foundations]] node = 2, width = 2.5, length = 2.5, patches = [3, 3], '
                               'soil = { model = "halfspace", Vs = 200.0, nu = 0.33, rho = 2.0 }')
     name: Name = "footing"
-    node: NodeRef = Field(description="The footing's node (its centre, at the base): uz, rx, ry.")
-    width: Positive = Field(description="Plan dimension along x [L].")
-    length: Positive = Field(description="Plan dimension along y [L].")
+    node: NodeRef | None = Field(None, description=(
+        "The rigid footing's node (its centre, at the base: uz, rx, ry), required for it; a flexible "
+        "footing's reference node, where horizontal = \"support\" acts (default: the grid's middle node)."))
+    nodes: Annotated[list[Annotated[list[NodeId], Field(min_length=1)]], Field(min_length=1)] | None = Field(
+        None, description=(
+            "A flexible footing: its grid of contact nodes at one elevation, rows along x (each row at one y, "
+            "each column at one x), e.g. [[1, 2, 3], [4, 5, 6]]; one patch each (omit for a rigid footing)."))
+    width: Positive | None = Field(None, description=(
+        "Plan dimension along x [L]; rigid: required; flexible: default the span of the columns plus one mean "
+        "spacing."))
+    length: Positive | None = Field(None, description=(
+        "Plan dimension along y [L]; rigid: required; flexible: default the span of the rows plus one mean "
+        "spacing."))
     patches: Annotated[int, Field(ge=1, le=20)] | Annotated[list[Annotated[int, Field(ge=1, le=400)]], Field(
         min_length=2, max_length=2)] | None = Field(None, description=(
-            "[nx, ny] patches along x and y (one integer: both; default [3, 3]; at most 400 in all)."))
+            "Rigid footing: [nx, ny] patches along x and y (one integer: both; default [3, 3]; at most 400 in "
+            "all)."))
     horizontal: Literal["support", "none", "soil"] = Field("support", title="horizontal restraint", description=(
         "support: ux, uy, rz of node supported; none: the frame holds the footing in plan; soil: each patch's "
         "horizontal force (fx, fy) through the soil, limited by a polygonal Coulomb cone of facets facets with "
-        "mu (the footing slides and twists in plan; every footing then takes soil)."))
+        "mu (the footing slides and twists in plan; a flexible footing's patches act on their nodes' ux, uy; "
+        "every footing then takes soil)."))
     mu: Positive | None = Field(None, description=(
         "horizontal = \"soil\": the friction coefficient of the footing on the soil."))
     facets: Annotated[int, Field(ge=4)] | None = Field(None, description=(
         "horizontal = \"soil\": the facets of each patch's friction cone in plan, an even number >= 4 "
         "(default 8; 4: the pyramid of the x and y axes)."))
     gap: float = Field(0.0, description="Opening at u = 0 with the soil unloaded [L]; negative: a penetration.")
-    mass: NonNegative = Field(0.0, description="The footing's own mass on ux, uy, uz of node [M].")
-    Jx: NonNegative = Field(0.0, description="Its rotary inertia on rx of node [M L^2].")
-    Jy: NonNegative = Field(0.0, description="Its rotary inertia on ry of node [M L^2].")
-    Jz: NonNegative = Field(0.0, description="Its rotary inertia on rz of node [M L^2] (its twist).")
+    mass: NonNegative = Field(0.0, description="Rigid footing: its own mass on ux, uy, uz of node [M].")
+    Jx: NonNegative = Field(0.0, description="Rigid footing: its rotary inertia on rx of node [M L^2].")
+    Jy: NonNegative = Field(0.0, description="Rigid footing: its rotary inertia on ry of node [M L^2].")
+    Jz: NonNegative = Field(0.0, description="Rigid footing: its rotary inertia on rz of node [M L^2] (its twist).")
     soil: FoundationSoil
 
 

@@ -1,4 +1,4 @@
-"""Rigid footings in plan for :class:`~unilateral.structure.Frame3D`: rocking, sliding and twisting.
+"""Rigid and flexible footings in plan for :class:`~unilateral.structure.Frame3D`: rocking, sliding and twisting.
 
 A rigid rectangular footing (``width`` along x, ``length`` along y, centred on its reference node)
 rests on the soil through an ``nx x ny`` grid of patches (:func:`unilateral.soil.patches.grid`),
@@ -25,6 +25,18 @@ is at the node's elevation, as in 2-D, so rocking does not move it horizontally)
 
 so sway, rocking and torsion of the footing couple through the ground. The same
 :class:`~unilateral.soil.FoundationModel` as in 2-D solves it, with ``Tx``, ``Ty`` and ``facets``.
+
+A **flexible** footing in plan (``nodes=``, a grid of nodes at one elevation: rows along x, each at
+one y; columns at one x) has one patch per node, its contact acting on that node's ``uz`` alone
+(``T[:, j] = e_uz`` of node ``j``); the structure the user builds on the nodes (a grillage of beams,
+plates of links, ...) is the footing's stiffness, the footing adds none. Along x and along y the
+patches follow the rule of the 2-D flexible footing: the footing spans ``c +- width/2`` (``c`` the
+middle of the end columns; default ``width``: the columns' span plus one mean spacing), each
+column's strip reaches halfway to its neighbours and, at the ends, to the edge, and its patches are
+centred on it, twice as wide as the nearer end of the strip; likewise ``length`` along y. Equally
+spaced nodes with the default extents get equal patches covering the footing (the rigid footing's
+patches of the same grid). Sliding in plan, each patch's shears act on its own node's ``ux``, ``uy``
+(no twist term: each node moves on its own).
 """
 
 from __future__ import annotations
@@ -55,17 +67,25 @@ class Footing3D(Foundation):
 
     def moved_rows(self, coords) -> list[tuple]:
         """Per contact: ``[(node, dof, factor), ...]`` with ``z_j = sum factor * u(node, dof)``."""
+        if not self.rigid:
+            return [[(node, "uz", 1.0)] for node in self.nodes]
         x0, y0 = (float(a) for a in coords[self.node][:2])
         return [[(self.node, "uz", 1.0), (self.node, "rx", float(y) - y0), (self.node, "ry", -(float(x) - x0))]
                 for x, y in self.patches.centres]
 
     def shear_rows(self) -> list[tuple]:
-        """Per contact: the footing's displacement along x at the patch, ``ux - (y_j - y_0) rz``."""
+        """Per contact: the footing's displacement along x at the patch, ``ux - (y_j - y_0) rz`` (rigid),
+        ``ux`` of the patch's node (flexible)."""
+        if not self.rigid:
+            return [[(node, "ux", 1.0)] for node in self.nodes]
         y0 = float(self.origin[1])
         return [[(self.node, "ux", 1.0), (self.node, "rz", -(float(y) - y0))] for y in self.patches.centres[:, 1]]
 
     def shear_rows_y(self) -> list[tuple]:
-        """Per contact: the footing's displacement along y at the patch, ``uy + (x_j - x_0) rz``."""
+        """Per contact: the footing's displacement along y at the patch, ``uy + (x_j - x_0) rz`` (rigid),
+        ``uy`` of the patch's node (flexible)."""
+        if not self.rigid:
+            return [[(node, "uy", 1.0)] for node in self.nodes]
         x0 = float(self.origin[0])
         return [[(self.node, "uy", 1.0), (self.node, "rz", float(x) - x0)] for x in self.patches.centres[:, 0]]
 
@@ -82,12 +102,14 @@ class Footing3D(Foundation):
                 "constraint_gap": ("constraint", [float(g) for g in self.gap])}
 
     def ground_reactions(self, structure, c, h=None) -> tuple[dict, dict]:
-        """The soil's forces on the footing's node per contact: ``(fx, fy, fz, mx, my, mz)`` (N+1, 6).
+        """The soil's forces per contact on the node it acts on (the rigid footing's node, the flexible
+        footing's node of the patch): ``(fx, fy, fz, mx, my, mz)`` (N+1, 6), with the moments of the
+        patch centre's offset from that node (none for a flexible footing's centred patches).
 
         ``h`` (N+1, m, 2): the soil's horizontal forces on the footing (sliding in plan), or None."""
-        x0, y0 = (float(a) for a in structure.coords[self.node][:2])
         forces, at = {}, {}
-        for j, (x, y) in enumerate(self.patches.centres):
+        for j, ((x, y), node) in enumerate(zip(self.patches.centres, self.contact_nodes())):
+            x0, y0 = (float(a) for a in structure.coords[node][:2])
             f = np.zeros((c.shape[0], 6))
             f[:, 2] = c[:, j]
             f[:, 3] = (float(y) - y0) * c[:, j]
@@ -96,23 +118,26 @@ class Footing3D(Foundation):
                 f[:, 0], f[:, 1] = h[:, j, 0], h[:, j, 1]
                 f[:, 5] = (float(x) - x0) * h[:, j, 1] - (float(y) - y0) * h[:, j, 0]
             forces[self.contact_names[j]] = f
-            at[self.contact_names[j]] = self.node
+            at[self.contact_names[j]] = node
         return forces, at
 
 
 def build_footing(*, name, node, width, length, soil, patches, horizontal, gap, coords, mu=None,
-                  facets=None) -> Footing3D:
+                  facets=None, nodes=None) -> Footing3D:
     """Check the arguments of :meth:`Frame3D.foundation <unilateral.structure.Frame3D.foundation>`
-    and make the :class:`Footing3D`."""
+    and make the :class:`Footing3D` (rigid; flexible with ``nodes``, a grid from :func:`grid_nodes`)."""
     from ..soil.patches import RectangularPatches, grid
 
     where = f"foundation {name!r}"
-    width = _positive(where, "width", width)
-    length = _positive(where, "length", length)
     if not isinstance(horizontal, str) or horizontal not in HORIZONTAL_3D:
         raise ValueError(f"{where}: horizontal={horizontal!r} is not valid for a 3-D footing; valid: "
                          f"{', '.join(map(repr, HORIZONTAL_3D))}")
     mu, facets = _friction(where, horizontal, mu, facets)
+    if nodes is not None:
+        return _flexible_footing(where, name=name, node=node, nodes=nodes, width=width, length=length, soil=soil,
+                                 horizontal=horizontal, gap=gap, coords=coords, mu=mu, facets=facets)
+    width = _positive(where, "width", width)
+    length = _positive(where, "length", length)
     counts = (patches, patches) if isinstance(patches, numbers.Integral) and not isinstance(patches, bool) \
         else patches
     ok = (isinstance(counts, (tuple, list)) and len(counts) == 2
@@ -123,14 +148,116 @@ def build_footing(*, name, node, width, length, soil, patches, horizontal, gap, 
     x0, y0, z0 = (float(a) for a in coords[node])
     local = grid(width, length, int(counts[0]), int(counts[1]))
     pts = RectangularPatches(local.centres + np.array([x0, y0]), local.sizes)
-    if horizontal == "soil":
-        flex, spec = plan_soil(soil, pts, f"{where}: soil")
-    else:
-        flex, spec = soil_flexibility(soil, pts, f"{where}: soil", "z")
+    flex, spec = _footing_soil(soil, pts, where, horizontal)
     return Footing3D(name=name, node=node, nodes=None, width=width, length=length, patches=pts, soil=flex,
                      spec=spec, horizontal=horizontal, gap=patch_gaps(where, gap, pts.m),
                      contact_names=tuple(f"{name}.{j + 1}" for j in range(pts.m)), y=z0, mu=mu, facets=facets,
                      origin=(x0, y0))
+
+
+def _footing_soil(soil, patches, where, horizontal):
+    if horizontal == "soil":
+        return plan_soil(soil, patches, f"{where}: soil")
+    return soil_flexibility(soil, patches, f"{where}: soil", "z")
+
+
+def grid_nodes(where, nodes) -> list[list]:
+    """``nodes`` of a flexible footing checked as a grid: a non-empty list of rows (along x), each a
+    non-empty list of node ids, all rows as long, at least two nodes, none twice."""
+    def is_list(a):
+        return isinstance(a, (list, tuple))
+
+    if not is_list(nodes) or not nodes or not all(is_list(row) and row for row in nodes):
+        raise ValueError(f"{where}: nodes={nodes!r} is not valid; give a grid of node ids, a list of rows (each "
+                         "row the nodes at one y, along x), e.g. [[1, 2, 3], [4, 5, 6]] (one row: [[1, 2, 3]])")
+    rows = [list(row) for row in nodes]
+    if len({len(row) for row in rows}) > 1:
+        raise ValueError(f"{where}: nodes={nodes!r}: the rows have {[len(row) for row in rows]} nodes; every row "
+                         "of the grid needs the same number of nodes (one per column)")
+    flat = [n for row in rows for n in row]
+    if len(flat) < 2:
+        raise ValueError(f"{where}: nodes={nodes!r}: a flexible footing needs at least two nodes (one patch each); "
+                         "give node only for a rigid footing")
+    seen = {}
+    for i, row in enumerate(rows):
+        for j, n in enumerate(row):
+            if repr(n) in seen:
+                raise ValueError(f"{where}: nodes[{i}][{j}]={n!r} is given twice (also nodes{seen[repr(n)]}); "
+                                 "give each node of the grid once")
+            seen[repr(n)] = f"[{i}][{j}]"
+    return rows
+
+
+def _flexible_footing(where, *, name, node, nodes, width, length, soil, horizontal, gap, coords, mu, facets):
+    """The flexible :class:`Footing3D` on the grid ``nodes`` (see :meth:`Frame3D.foundation`)."""
+    from ..soil.patches import RectangularPatches
+
+    rows = grid_nodes(where, nodes)
+    xyz = np.array([[coords[n] for n in row] for row in rows], dtype=float)        # (ny, nx, 3)
+    scale = max(1.0, float(np.abs(xyz).max()))
+    tol = 1e-9 * scale
+    z = xyz[..., 2]
+    if np.ptp(z) > tol:
+        i, j = np.unravel_index(np.argmax(np.abs(z - z[0, 0])), z.shape)
+        raise ValueError(f"{where}: nodes[{i}][{j}]={rows[i][j]!r} is at z={z[i, j]:g}, nodes[0][0]={rows[0][0]!r} "
+                         f"at z={z[0, 0]:g}; a footing's nodes lie at one elevation (on the ground surface)")
+    for axis, label, key in ((0, "x", "column"), (1, "y", "row")):
+        values = xyz[..., axis]
+        # x is constant down each column (along the rows' index), y along each row
+        ref = values[0:1, :] if axis == 0 else values[:, 0:1]
+        bad = np.abs(values - ref) > tol
+        if np.any(bad):
+            i, j = np.argwhere(bad)[0]
+            i0, j0 = (0, j) if axis == 0 else (i, 0)
+            raise ValueError(f"{where}: nodes[{i}][{j}]={rows[i][j]!r} is at {label}={values[i, j]:g}, but "
+                             f"nodes[{i0}][{j0}]={rows[i0][j0]!r} of its {key} at {label}={values[i0, j0]:g}; the "
+                             f"nodes must lie on a rectilinear grid in plan: each row (nodes[i]) at one y, each "
+                             f"column (nodes[.][j]) at one x")
+    xs, ys = xyz[0, :, 0], xyz[:, 0, 1]
+    for values, label, what in ((xs, "x", "columns"), (ys, "y", "rows")):
+        if len(values) > 1 and np.min(np.abs(np.diff(np.sort(values)))) <= tol:
+            raise ValueError(f"{where}: nodes={nodes!r}: two {what} are at the same {label} "
+                             f"({label} = {sorted(values.tolist())}); give each {what[:-1]} its own {label}")
+    ox, oy = np.argsort(xs), np.argsort(ys)
+    rows = [[rows[i][j] for j in ox] for i in oy]
+    xs, ys = xs[ox], ys[oy]
+    width, wx = _tributary(where, "width", "x", xs, width)
+    length, wy = _tributary(where, "length", "y", ys, length)
+    X, Y = np.meshgrid(xs, ys)                                   # x fastest, then y
+    W, L = np.meshgrid(wx, wy)
+    pts = RectangularPatches(np.column_stack([X.ravel(), Y.ravel()]), np.column_stack([W.ravel(), L.ravel()]))
+    flat = tuple(n for row in rows for n in row)
+    if node is None:
+        node = rows[(len(rows) - 1) // 2][(len(rows[0]) - 1) // 2]
+    flex, spec = _footing_soil(soil, pts, where, horizontal)
+    x0, y0 = (float(a) for a in coords[node][:2])
+    return Footing3D(name=name, node=node, nodes=flat, width=width, length=length, patches=pts, soil=flex,
+                     spec=spec, horizontal=horizontal, gap=patch_gaps(where, gap, pts.m),
+                     contact_names=tuple(f"{name}.{n}" for n in flat), y=float(z[0, 0]), mu=mu, facets=facets,
+                     origin=(x0, y0))
+
+
+def _tributary(where, arg, axis, xs, extent) -> tuple[float, np.ndarray]:
+    """The footing's extent along ``axis`` and its patches' sizes there, as the 2-D flexible footing's
+    (:func:`~unilateral.structure.foundation.build_foundation`): the footing spans ``c +- extent/2``,
+    ``c`` the middle of the end nodes (default ``extent``: their span plus one mean spacing; one node:
+    required); each node's strip reaches halfway to its neighbours and to the edge; its patch is
+    centred on it, twice as wide as the nearer end of the strip."""
+    n, span = len(xs), float(xs[-1] - xs[0])
+    if extent is None:
+        if n == 1:
+            raise ValueError(f"{where}: the nodes form one line along {'x' if axis == 'y' else 'y'}: give {arg}, "
+                             f"the footing's extent along {axis} (no node spacing to take it from)")
+        extent = span * n / (n - 1)
+    extent = _positive(where, arg, extent)
+    if extent <= span * (1 + 1e-12):
+        raise ValueError(f"{where}: {arg}={extent!r} is not larger than the span of the nodes along {axis} "
+                         f"({span:g}); give a {arg} larger than the span, or omit it (the span plus one mean "
+                         "node spacing)")
+    centre = 0.5 * (xs[0] + xs[-1])
+    edges = np.concatenate([[centre - 0.5 * extent], 0.5 * (xs[1:] + xs[:-1]), [centre + 0.5 * extent]])
+    half = np.minimum(xs - edges[:-1], edges[1:] - xs)
+    return float(extent), 2.0 * half
 
 
 def _friction(where, horizontal, mu, facets):

@@ -60,8 +60,8 @@ class Frame3D(_Frame):
     contact patches, rocking about both axes). Yielding links and sliders (:meth:`yield_link`,
     :meth:`slider`) along any direction, as in 2-D. Plastic hinges at beam ends (:meth:`hinge`, after
     the beam) yield under the end moments about both bending axes, within a polygonal interaction
-    surface (an ellipse's circumscribed polygon, a diamond or a box). Not (yet) in 3-D: flexible
-    footings and footings that slide, P-Delta.
+    surface (an ellipse's circumscribed polygon, a diamond or a box). Flexible footings in plan
+    (:meth:`foundation` with ``nodes``: a patch under each node of a grid). Not (yet) in 3-D: P-Delta.
     """
 
     _dof_names = el3.DOF_NAMES
@@ -144,10 +144,11 @@ class Frame3D(_Frame):
         add = np.array([m, m, m] + [_real(where, arg, J, ">=0") for arg, J in (("Jx", Jx), ("Jy", Jy), ("Jz", Jz))])
         self._mass[node] = self._mass.get(node, np.zeros(6)) + add
 
-    def foundation(self, name, node, *, width, length, soil, patches=(3, 3), horizontal="support", gap=0.0,
-                   mass=0.0, Jx=0.0, Jy=0.0, Jz=0.0, mu=None, facets=None) -> None:
+    def foundation(self, name, node=None, *, soil, width=None, length=None, patches=None, nodes=None,
+                   horizontal="support", gap=0.0, mass=0.0, Jx=0.0, Jy=0.0, Jz=0.0, mu=None, facets=None) -> None:
         """A rigid rectangular footing on a soil medium, resting on an ``nx x ny`` grid of unilateral
-        contact patches (:mod:`unilateral.structure.foundation3d`); :meth:`Structure3D.to_model
+        contact patches, or a flexible one (``nodes``: one patch per node of a grid)
+        (:mod:`unilateral.structure.foundation3d`); :meth:`Structure3D.to_model
         <unilateral.structure.Structure.to_model>` then gives a
         :class:`~unilateral.soil.FoundationModel`, as for :meth:`Frame2D.foundation
         <unilateral.structure.Frame2D.foundation>`.
@@ -175,7 +176,8 @@ class Frame3D(_Frame):
             As for ``Frame2D.foundation`` (``{"model": "halfspace", "Vs": ..., "nu": ..., "rho": ...}``,
             ``"layered"``, ``"cones"``, ``"winkler-kelvin"``).
         patches : (int, int) or int
-            ``(nx, ny)`` patches along x and y (one int: both), at most 400 in all.
+            ``(nx, ny)`` patches along x and y (one int: both), at most 400 in all; rigid only
+            (default ``(3, 3)``).
         horizontal : {"support", "none", "soil"}
             ``"support"`` (default): ``ux``, ``uy`` and ``rz`` of ``node`` supported; ``"none"``: the
             frame holds the footing in plan (springs, other members); ``"soil"``: the footing slides
@@ -184,7 +186,7 @@ class Frame3D(_Frame):
             Opening of each patch at ``u = 0`` with the soil unloaded.
         mass, Jx, Jy, Jz : float >= 0
             The footing's own mass (on the translations of ``node``) and rotary inertias (``Jz``: its
-            twist, e.g. for a footing that slides in plan).
+            twist, e.g. for a footing that slides in plan); a rigid footing's only.
         mu : float > 0
             ``horizontal="soil"``: the friction coefficient of the footing on the soil.
         facets : int, even >= 4
@@ -195,31 +197,55 @@ class Frame3D(_Frame):
             ``tests/test_sliding_footings3d.py``'s tower at 0.5 rad). With 32 facets the pivoting
             solver failed at a step of that run.
         """
-        from .foundation3d import Footings3D, build_footing, check_plan_overlap
+        from .foundation3d import Footings3D, build_footing, check_plan_overlap, grid_nodes
 
         where = self._label("foundation", name)
-        self._node(where, "node", node)
-        if any(f.node == node for f in self._foundations):
-            raise ValueError(f"{where}: node {node!r} already carries another footing; give each footing its own "
-                             "node")
-        if (node, "uz") in self._restrained or self._tied(node, "uz"):
-            raise ValueError(f"{where}: uz of node {node!r} is supported (or follows another node): the footing "
-                             "could not move on the soil; remove that support")
-        fnd = build_footing(name=name, node=node, width=width, length=length, soil=soil, patches=patches,
-                            horizontal=horizontal, gap=gap, coords=self._coords, mu=mu, facets=facets)
-        if fnd.sliding:
-            for dof in ("ux", "uy", "rz"):
-                if (node, dof) in self._restrained or self._tied(node, dof):
-                    raise ValueError(f"{where}: {dof} of node {node!r} is supported (or follows another node): the "
-                                     "footing could not slide on the soil; remove that support")
+        if nodes is None:
+            if node is None:
+                raise ValueError(f"{where}: give node (a rigid footing's node) or nodes (a flexible footing's grid "
+                                 "of nodes)")
+            self._node(where, "node", node)
+        else:
+            for i, row in enumerate(grid_nodes(where, nodes)):
+                for j, other in enumerate(row):
+                    self._node(where, f"nodes[{i}][{j}]", other)
+            if node is not None:
+                self._node(where, "node", node)
+            if patches is not None:
+                raise ValueError(f"{where}: patches={patches!r}: a flexible footing has one patch per node of "
+                                 "nodes; remove patches")
+            if mass or Jx or Jy or Jz:
+                raise ValueError(f"{where}: mass={mass!r}, Jx={Jx!r}, Jy={Jy!r}, Jz={Jz!r} are for a rigid footing; "
+                                 "give a flexible footing's masses to its nodes with Frame3D.mass")
+        fnd = build_footing(name=name, node=node, width=width, length=length, soil=soil,
+                            patches=(3, 3) if patches is None else patches, horizontal=horizontal, gap=gap,
+                            coords=self._coords, mu=mu, facets=facets, nodes=nodes)
+        used = {n: f.name for f in self._foundations for n in f.contact_nodes()}
+        used |= {f.node: f.name for f in self._foundations if f.rigid}
+        for contact in dict.fromkeys(fnd.contact_nodes()):
+            if contact in used:
+                raise ValueError(f"{where}: node {contact!r} already rests on footing {used[contact]!r}; give each "
+                                 "footing its own nodes")
+        self._check_on_soil(where, fnd)
         check_plan_overlap(self._foundations, fnd, where)
         Footings3D(self._foundations + [fnd])               # one soil for all: the same medium, one elevation
         if horizontal == "support":
-            self.support(node, ux=True, uy=True, uz=False, rz=True)
+            self.support(fnd.node, ux=True, uy=True, uz=False, rz=True)
         if mass or Jx or Jy or Jz:
             self.mass(node, mass, Jx=Jx, Jy=Jy, Jz=Jz)
         self._foundations.append(fnd)
         self._names.add(name)
+
+    def _check_on_soil(self, where, fnd) -> None:
+        """Raise if a DOF a footing moves on the soil is supported (rigid: or follows another node)."""
+        dofs = ("uz", "ux", "uy", "rz") if fnd.sliding else ("uz",)
+        for node in dict.fromkeys(fnd.contact_nodes()):
+            for dof in dofs if fnd.rigid else [d for d in dofs if d != "rz"]:
+                if (node, dof) in self._restrained or (fnd.rigid and self._tied(node, dof)):
+                    what = "move on" if dof == "uz" else "slide on"
+                    raise ValueError(f"{where}: {dof} of node {node!r} is supported" +
+                                     (" (or follows another node)" if fnd.rigid else "") +
+                                     f": the footing could not {what} the soil; remove that support")
 
     # The damping of :class:`_Frame`, listed as this class's own: the API reference documents those only.
     rayleigh = _Frame.rayleigh
@@ -493,6 +519,13 @@ class Frame3D(_Frame):
             on_soil |= {(node, dof) for terms in rows for node, dof, _ in terms}
         rotated |= {(node, dof) for node, dof in on_soil if dof in el3.ROTATIONS}
         dofs = DofMap3D(self._coords, self._restrained, rotated, self._ties)
+        if any(not footing.rigid for footing in self._foundations):
+            # a flexible footing's node may follow a master (rigid links): the soil stiffens the master's DOFs
+            from .foundation import _rows_matrix
+
+            rows = [r for f in self._foundations for r in f.moved_rows(self._coords)
+                    + (f.shear_rows() + f.shear_rows_y() if f.sliding else [])]
+            on_soil |= {dofs.free[i] for i in np.flatnonzero(np.abs(_rows_matrix(dofs, rows, len(rows))).sum(axis=1))}
         fields = self._assemble(dofs, exempt=on_soil)
         if self._foundations:
             from .foundation3d import Footings3D
