@@ -180,7 +180,13 @@ WRONG_3D = {
     "dimensions": (_change(frame__dimensions=4),
                    "frame.dimensions = 4: unknown number of dimensions (valid: 2, 3)"),
     "direction": (_change(loads__ground_motion__0__direction="rz"),
-                  'loads.ground_motion[0].direction = "rz": unknown ground motion direction (valid: ux, uy, uz)'),
+                  'loads.ground_motion[0].direction = "rz": unknown ground motion direction (valid: ux, uy, uz or a '
+                  'vector [dx, dy, dz])'),
+    "vector at depth": (lambda d: d | {"site": {"layers": [{"thickness": 5.0, "Vs": 150.0, "rho": 1.9}],
+                                                "base": {"Vs": 400.0, "rho": 2.1}}}
+                        | {"loads": d["loads"] | {"ground_motion": [{"file": str(RECORD), "direction": [1.0, 1.0, 0.0],
+                                                                      "at": "outcrop"}]}},
+                        'loads.ground_motion[0].direction = [1.0, 1.0, 0.0]: a vector with at = "outcrop"'),
     "2-D vector": (_change(unilateral__0__direction=[0.0, 1.0]),
                    "unilateral[0].direction = [0.0, 1.0]: expected a nonzero vector [dx, dy, dz] of three numbers"),
     "figure dof": (_change(output__figure__dof="rw"),

@@ -356,3 +356,34 @@ def test_the_energy_balance_of_the_building_on_footings_closes_with_the_trapezoi
         assert energy["damping_dissipated"] > 0.0 and energy["kinetic_max"] > 0.0
     ds = load_netcdf(tmp_path / "building" / "results.nc")
     assert ds["end_force"].sizes["element"] == len(load_model_file(example).structure.elements)
+
+
+def test_a_pair_of_records_rotated_in_plan_by_vector_directions(tmp_path):
+    """``[[loads.ground_motion]] direction = [dx, dy, dz]``: the pair of records of :func:`table`
+    rotated by 35 degrees in plan (``[cos a, sin a, 0]`` and ``[-sin a, cos a, 0]``). The model file's
+    load equals ``Frame3D.ground_motion`` along those vectors; the run's absolute accelerations add
+    the ground's acceleration along x and y from the records' own samples, each record's share being
+    the cosine of its direction with the axis."""
+    from unilateral.loads import read_record
+
+    a = np.radians(35.0)
+    document = table()
+    document["loads"] = dict(document["loads"], ground_motion=[
+        {"file": str(RECORD), "direction": [float(np.cos(a)), float(np.sin(a)), 0.0], "scale": 0.6},
+        {"file": str(RECORD), "direction": [float(-np.sin(a)), float(np.cos(a)), 0.0], "scale": 0.4}])
+    spec, ds, result = _run(tmp_path, document, "rotated")
+    st = spec.structure
+    record = read_record(RECORD)
+    api = [-(st.M @ st.influence((np.cos(a), np.sin(a), 0.0))), -(st.M @ st.influence((-np.sin(a), np.cos(a), 0.0)))]
+    for (vector, f), expected, scale in zip(spec.load.terms[-2:], api, (0.6, 0.4)):
+        np.testing.assert_allclose(vector, expected, rtol=1e-14, atol=1e-14 * np.abs(expected).max())
+        np.testing.assert_allclose(f(record.time[:50]), scale * record.acceleration[:50], rtol=1e-14)
+    t = ds["time"].values
+    a_g = np.interp(t, record.time, record.acceleration)
+    node = list(ds["node"].values).index("13")
+    for component, share in (("ux", 0.6 * np.cos(a) - 0.4 * np.sin(a)), ("uy", 0.6 * np.sin(a) + 0.4 * np.cos(a))):
+        c = list(ds["component"].values).index(component)
+        ground = (ds["node_absolute_acceleration"].sel(case="unilateral").values[:, node, c]
+                  - ds["node_acceleration"].sel(case="unilateral").values[:, node, c])
+        np.testing.assert_allclose(ground, share * a_g, rtol=0, atol=1e-9 * np.abs(a_g).max())
+    assert set(result["spectra"]["by_direction"]) >= {"uy"} and "ground_spectrum_uy" in ds

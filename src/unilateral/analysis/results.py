@@ -57,15 +57,38 @@ FAMILY_ENERGY = {"plastic_work": "yield", "friction_work": "friction"}
 
 def ground_motions_of(structure, load) -> list:
     """``[(direction, a_g)]`` of the ground-motion terms ``(-M r, a_g)`` of a LoadHistory (directions
-    ``ux``, ``uy`` and, for a 3-D frame, ``uz``)."""
+    ``ux``, ``uy`` and, for a 3-D frame, ``uz``). A term along a vector ``d`` (``r = sum_k d_k r_k``,
+    a record at an angle in plan) is one entry per axis it moves along, ``(axis, d_k a_g)``: the
+    accelerations and spectra that sum ``r_k a_g,k`` see the same ground motion."""
     out = []
     names = getattr(structure.dofs, "dof_names", ("ux", "uy", "rz"))
+    axes = [d for d in ("ux", "uy", "uz") if d in names]
+    patterns = np.column_stack([-np.asarray(structure.M @ structure.influence(d)).ravel() for d in axes])
     for vector, f in getattr(load, "terms", ()):
-        for direction in (d for d in ("ux", "uy", "uz") if d in names):
-            pattern = -np.asarray(structure.M @ structure.influence(direction)).ravel()
-            if pattern.any() and np.allclose(vector, pattern, rtol=1e-12, atol=0.0):
-                out.append((direction, f))
+        vector = np.asarray(vector, dtype=float)
+        single = [d for k, d in enumerate(axes)
+                  if patterns[:, k].any() and np.allclose(vector, patterns[:, k], rtol=1e-12, atol=0.0)]
+        if single:
+            out.append((single[0], f))
+            continue
+        if len(axes) < 3 or not vector.any():
+            continue                                        # vectors: 3-D frames (model files, Frame3D.influence)
+        d, *_ = np.linalg.lstsq(patterns, vector, rcond=None)
+        along = np.abs(d) > 1e-15
+        if (along.sum() >= 2 and np.abs(patterns @ d - vector).max() <= 1e-12 * np.abs(vector).max()
+                and abs(np.linalg.norm(d) - 1.0) <= 1e-9):
+            out += [(axis, _Scaled(f, float(c))) for axis, c, on in zip(axes, d, along) if on]
     return out
+
+
+class _Scaled:
+    """``c f(t)``: the component of a ground acceleration ``f`` along one axis."""
+
+    def __init__(self, f, c):
+        self.f, self.c = f, c
+
+    def __call__(self, t):
+        return self.c * np.asarray(self.f(t), dtype=float)
 
 
 def structure_results(structure, model, cases: dict, *, rule, load_samples=None, ground_motions=(),

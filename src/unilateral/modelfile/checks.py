@@ -188,6 +188,11 @@ def _mode_problems(document: ModelFile) -> list[str]:
             if motion.influence is not None:
                 problems.append(value_problem(("loads", "ground_motion", k, "influence"), motion.influence,
                                               "only for matrix-level models (a frame uses direction)"))
+            if isinstance(motion.direction, tuple) and motion.at != "surface":
+                problems.append(value_problem(("loads", "ground_motion", k, "direction"), list(motion.direction),
+                                              f'a vector with at = "{motion.at}": the site response takes S waves '
+                                              'along "ux" or "uy" and P waves along "uz"; give one record per '
+                                              "direction"))
         return problems
     needs_frame = "not allowed with [matrices] (a matrix-level model has no frame)"
     problems = [f"{name}: {needs_frame}" for name in FRAME_SECTIONS if getattr(document, name, None)]

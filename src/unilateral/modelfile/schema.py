@@ -1003,12 +1003,27 @@ class DistributedLoad3D(Table):
     time_function: TimeFunction = ConstantLoad(type="constant")
 
 
+def _ground_direction3(value):
+    if isinstance(value, str):
+        if value not in ("ux", "uy", "uz"):
+            raise PydanticCustomError("direction", "unknown ground motion direction (valid: ux, uy, uz or a vector "
+                                                   "[dx, dy, dz])")
+        return value
+    return _vector3(value)
+
+
+GroundDirection3 = Annotated[str | tuple[float, float, float], PlainValidator(_ground_direction3), WithJsonSchema(
+    {"anyOf": [{"enum": ["ux", "uy", "uz"]}, {"type": "array", "items": _NUMBER_SCHEMA, "minItems": 3,
+                                             "maxItems": 3}]})]
+
+
 class GroundMotion3D(GroundMotion):
     """[[loads.ground_motion]] of a 3-D frame: one component of the ground motion (give one record per
     direction for several components)."""
 
-    direction: Literal["ux", "uy", "uz"] | None = Field(None, title="ground motion direction",
-                                                        description="The direction of the ground motion.")
+    direction: GroundDirection3 | None = Field(None, title="ground motion direction", description=(
+        'The direction of the ground motion: "ux", "uy", "uz" or a vector [dx, dy, dz] (normalised), e.g. '
+        "[cos a, sin a, 0] and [-sin a, cos a, 0] for a pair of records rotated by a in plan."))
 
 
 class Loads3D(Table):
