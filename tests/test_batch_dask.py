@@ -205,6 +205,12 @@ def _group(pgid) -> list[str]:
             if line.split()[1] == str(pgid) and not line.split()[2].startswith("Z")]
 
 
+def _results(out) -> list:
+    """The result files of a study's output folder: not the hidden temporary files of atomic writes
+    (``.<name>.<random>.tmp.json``, which ``*.json`` matches too)."""
+    return [p for p in (out / "results").glob("*.json") if not p.name.startswith(".")]
+
+
 @pytest.mark.slow
 def test_ctrl_c_stops_cleanly_and_a_second_run_continues(tmp_path):
     """Ctrl-C (SIGINT to the process group of `python -m unilateral.batch`) half-way; the same command
@@ -232,7 +238,7 @@ t_end = 5.0
         process = subprocess.Popen(command, env=env, start_new_session=True, stdout=subprocess.DEVNULL,
                                    stderr=err, text=True)
     try:
-        _wait_until(lambda: len(list((out / "results").glob("*.json"))) >= 2 or process.poll() is not None,
+        _wait_until(lambda: len(_results(out)) >= 2 or process.poll() is not None,
                     "the first run to write 2 results")
         assert process.poll() is None, "the study ended before it was interrupted"
         os.killpg(process.pid, signal.SIGINT)               # Ctrl-C on a terminal: the whole process group
@@ -246,7 +252,7 @@ t_end = 5.0
     assert "Traceback" not in stderr                         # the workers leave Ctrl-C to the study
     _wait_until(lambda: not _group(process.pid), "the workers to exit with the cluster",
                 lambda: f"processes left behind: {_group(process.pid)}")
-    first = {p.name: p.read_text() for p in (out / "results").glob("*.json")}
+    first = {p.name: p.read_text() for p in _results(out)}
     assert 2 <= len(first) < 9
     assert not list((out / "results").glob(".*tmp*"))
     second = subprocess.run(command, env=env, capture_output=True, text=True, timeout=SAFETY_NET)

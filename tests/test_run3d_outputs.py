@@ -25,7 +25,6 @@ import numpy as np
 import pytest
 from test_modelfile3d import RECORD, portal_2d, portal_3d, write
 
-import unilateral as ul
 from unilateral.analysis.outputs import NOT_IN_3D
 from unilateral.io import load_netcdf
 from unilateral.modelfile import load_model_file

@@ -496,6 +496,25 @@ def _concat_patches(parts):
     return RectangularPatches(np.vstack([p.centres for p in parts]), np.vstack([p.sizes for p in parts]))
 
 
+def shared_medium(footings, elevation: str) -> bool:
+    """True if the footings rest on one half-space or layered soil (their patches interact through
+    it); raise ``ValueError`` unless all do, on the same material and at one ``elevation`` (the name
+    of the vertical coordinate: ``"y"`` in 2-D, ``"z"`` in 3-D)."""
+    specs = [f.spec for f in footings]
+    coupled = [s is not None and s.model in COUPLED_SOILS for s in specs]
+    if not any(coupled):
+        return False
+    names = ", ".join(repr(f.name) for f in footings)
+    if not all(coupled) or len({_material(s) for s in specs}) > 1:
+        raise ValueError(f"foundations {names}: footings on a half-space or a layered soil share that soil "
+                         "(their patches interact through the ground): give every footing the same soil, "
+                         f"got {[_material(s) if s else 'a SoilFlexibility' for s in specs]}")
+    if len({round(f.y, 9) for f in footings}) > 1:
+        raise ValueError(f"foundations {names}: footings on one soil medium lie on its surface, at one "
+                         f"elevation; got {elevation} = {sorted({f.y for f in footings})}")
+    return True
+
+
 def _group_soil(footings):
     """One flexibility of all the footings' patches (see :class:`Footings`)."""
     from ..soil.foundation_model import SoilFlexibility
@@ -503,16 +522,7 @@ def _group_soil(footings):
     if len(footings) == 1:
         return footings[0].soil
     specs = [f.spec for f in footings]
-    coupled = [s is not None and s.model in COUPLED_SOILS for s in specs]
-    if any(coupled):
-        names = ", ".join(repr(f.name) for f in footings)
-        if not all(coupled) or len({_material(s) for s in specs}) > 1:
-            raise ValueError(f"foundations {names}: footings on a half-space or a layered soil share that soil "
-                             "(their patches interact through the ground): give every footing the same soil, "
-                             f"got {[_material(s) if s else 'a SoilFlexibility' for s in specs]}")
-        if len({round(f.y, 9) for f in footings}) > 1:
-            raise ValueError(f"foundations {names}: footings on one soil medium lie on its surface, at one "
-                             f"elevation; got y = {sorted({f.y for f in footings})}")
+    if shared_medium(footings, "y"):
         return soil_flexibility(specs[0], _concat_patches([f.patches for f in footings]),
                                 f"foundation {footings[0].name!r}: soil", "xz" if footings[0].sliding else "z")[0]
     soil = SoilFlexibility.block_diagonal([f.soil for f in footings])

@@ -47,8 +47,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .foundation import (COUPLED_SOILS, Footings, Foundation, _concat_patches, _material, _positive, _rows_matrix,
-                         patch_gaps, soil_flexibility)
+from .foundation import (Footings, Foundation, _concat_patches, _positive, _rows_matrix, patch_gaps, shared_medium,
+                         soil_flexibility)
 
 #: Horizontal restraint of a 3-D footing.
 HORIZONTAL_3D = ("support", "none", "soil")
@@ -416,17 +416,8 @@ def _plan_group_soil(footings):
 
     if len(footings) == 1:
         return footings[0].soil
-    names = ", ".join(repr(f.name) for f in footings)
     specs = [f.spec for f in footings]
-    coupled = [s is not None and s.model in COUPLED_SOILS for s in specs]
-    if any(coupled):
-        if not all(coupled) or len({_material(s) for s in specs}) > 1:
-            raise ValueError(f"foundations {names}: footings on a half-space or a layered soil share that soil "
-                             "(their patches interact through the ground): give every footing the same soil, "
-                             f"got {[_material(s) if s else 'a SoilFlexibility' for s in specs]}")
-        if len({round(f.y, 9) for f in footings}) > 1:
-            raise ValueError(f"foundations {names}: footings on one soil medium lie on its surface, at one "
-                             f"elevation; got z = {sorted({f.y for f in footings})}")
+    if shared_medium(footings, "z"):
         return plan_soil(specs[0], _concat_patches([f.patches for f in footings]),
                          f"foundation {footings[0].name!r}: soil")[0]
     soil = SoilFlexibility.block_diagonal([f.soil for f in footings])
