@@ -22,10 +22,10 @@ A new way of summing the history is one module here with those two methods, and 
 from .fft_blocked import FFTBlockedHistory
 from .naive import NaiveHistory
 from .recursive import LinearRecursion, RecursiveHistory
-from .restricted import RestrictedHistory, history_on_coupled_unknowns
+from .restricted import RestrictedHistory, coupled_unknowns, history_on_coupled_unknowns
 
 #: Histories built from stored weights ``W (N+1, m, m)``, by name (``cq_options["history"]``).
 HISTORIES = {"naive": NaiveHistory, "fft": FFTBlockedHistory}
 
 __all__ = ["FFTBlockedHistory", "HISTORIES", "LinearRecursion", "NaiveHistory", "RecursiveHistory",
-           "RestrictedHistory", "history_on_coupled_unknowns"]
+           "RestrictedHistory", "coupled_unknowns", "history_on_coupled_unknowns"]

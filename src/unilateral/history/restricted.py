@@ -50,9 +50,10 @@ class RestrictedHistory:
         self.inner.push(n, np.asarray(dv_n)[self.support])
 
 
-def history_on_coupled_unknowns(history_class, W: np.ndarray):
-    """``history_class(W)``, or a :class:`RestrictedHistory` when ``W_1 .. W_N`` leave unknowns out."""
-    support = coupled_unknowns(W)
+def history_on_coupled_unknowns(history_class, W: np.ndarray, support=None):
+    """``history_class(W)``, or a :class:`RestrictedHistory` when ``W_1 .. W_N`` leave unknowns out
+    (``support``: :func:`coupled_unknowns` of ``W`` if already known; a scan of all weights)."""
+    support = coupled_unknowns(W) if support is None else support
     if support.size == W.shape[1]:
         return history_class(W)
     return RestrictedHistory(history_class, W, support)

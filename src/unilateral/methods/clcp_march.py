@@ -27,13 +27,14 @@ def use_compiled(engine, compiled_ok, run, *, option, needs, steps) -> bool:
 
 
 def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto", option="cq_options",
-                  law=None):
+                  law=None, coupled=None):
     """March the CLCP with stored weights ``W (N+1, m, m)``; return ``(v, psi, log)``.
 
     ``history``: ``"naive"`` or ``"fft"`` (default: FFT-blocked above
     :data:`FFT_HISTORY_MIN_STEPS` steps); ``engine``: ``"auto"``, ``"compiled"`` (naive history
     and block principal pivoting only) or ``"python"``; ``law``: the model's
-    :class:`~unilateral.constraints.StepLaw` (default: contact only).
+    :class:`~unilateral.constraints.StepLaw` (default: contact only); ``coupled``: the unknowns
+    ``W_1 .. W_N`` couple, if known (:func:`~unilateral.history.coupled_unknowns`).
     """
     W0 = 0.5 * (W[0] + W[0].T)
     N = W.shape[0] - 1
@@ -52,6 +53,6 @@ def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto",
                                  max_iter=solver.max_iter or 10 * W.shape[1] + 10, callback=run.callback,
                                  law=law)
     run.stats["engine"] = "python"
-    sums = history_on_coupled_unknowns(HISTORIES[history], W)
+    sums = history_on_coupled_unknowns(HISTORIES[history], W, coupled)
     return march_cq(W0, sums, psi_affine, v_b, solver, dt=disc.dt, bilateral=run.bilateral, callback=run.callback,
                     law=law)

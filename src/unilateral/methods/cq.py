@@ -94,15 +94,18 @@ class CQ(Method):
         return self._solve_foundation(model, load, initial, disc, run, *self._options())
 
     def _solve_foundation(self, model, load, initial, disc, run, weight_options, march):
-        from ..history import HISTORIES, history_on_coupled_unknowns
+        from ..history import HISTORIES, coupled_unknowns, history_on_coupled_unknowns
         from ..soil.foundation_solve import solve_foundation
 
         def operators():
             W = model.weights(disc.N, disc.dt, disc.rule, **weight_options)
             name = march.get("history") or ("fft" if disc.N > FFT_HISTORY_MIN_STEPS else "naive")
             name = V.choice("cq_options['history']", name, HISTORIES)
-            clcp = lambda psi_affine, z_b: march_weights(W, psi_affine, z_b, disc, run, law=model.law, **march)
-            return 0.5 * (W[0] + W[0].T), lambda: history_on_coupled_unknowns(HISTORIES[name], W), clcp
+            coupled = coupled_unknowns(W)          # one scan of the weights for both histories
+            clcp = lambda psi_affine, z_b: march_weights(W, psi_affine, z_b, disc, run, law=model.law,
+                                                         coupled=coupled, **march)
+            return (0.5 * (W[0] + W[0].T), lambda: history_on_coupled_unknowns(HISTORIES[name], W, coupled),
+                    clcp)
 
         return solve_foundation(model, load, initial, disc, run, operators=operators)
 

@@ -36,9 +36,10 @@ class StiffCoordinates:
 
     @classmethod
     def of(cls, model) -> StiffCoordinates | None:
-        """The split of a :class:`Model` with a natural form, or None if it needs none."""
+        """The split of a model with a natural form (a :class:`Model` built from elements), or None
+        if it has none or needs none."""
         nat = getattr(model, "natural", None)
-        if not isinstance(model, Model) or nat is None:
+        if nat is None:
             return None
         massless = dense_diagonal(model.M) == 0
         split = stiff_split(nat.G, nat.E, nat.B, nat.E_v, massless=massless)

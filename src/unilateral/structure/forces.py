@@ -428,15 +428,22 @@ def reactions(structure, h: Histories) -> dict:
             f[:, DOF_NAMES.index(dof)] -= s @ e.a[:, col]
         ground[e.name] = f
         at[e.name] = e.dofs[0][0]
-    forces = _onto_masters(structure, nodal_forces(structure, h))
+    support = support_forces(dofs, _onto_masters(structure, nodal_forces(structure, h)), DOF_NAMES, at)
+    return {"support": support, "ground_elements": ground, "at": at}
+
+
+def support_forces(dofs, forces, dof_names, at: dict) -> dict:
+    """``{"node.dof": (N+1,)}``: the columns of the nodal forces ``forces`` (N+1, all DOFs, slaves'
+    forces carried to their masters) at the supported DOFs, the supports' reactions; ``at`` gains each
+    label's node."""
     support = {}
     for node in dofs.nodes:
-        for dof in DOF_NAMES:
+        for dof in dof_names:
             if (node, dof) in dofs._restrained:
                 label = f"{node}.{dof}"
                 support[label] = forces[:, dofs.full_index(node, dof)]
                 at[label] = node
-    return {"support": support, "ground_elements": ground, "at": at}
+    return support
 
 
 def base_point(structure) -> tuple[float, float]:

@@ -58,7 +58,7 @@ import numpy as np
 from .dofs3d import rigid_rows
 from .elements3d import DOF_NAMES, ROTATIONS
 from .forces import (Histories, _element_vectors, _free_a, _ground_elements, absolute_acceleration, nodal_forces,
-                     stresses)
+                     stresses, support_forces)
 
 __all__ = ["DOF_NAMES", "BASE_COMPONENTS", "END_COMPONENTS", "Histories", "histories", "nodal_forces", "end_forces",
            "local_frame", "reactions", "base_point", "base_forces", "storeys", "storey_drifts",
@@ -238,14 +238,7 @@ def reactions(structure, h: Histories, sol=None) -> dict:
                              "solution of its FoundationModel, for the soil's contact forces")
         footings, where = fnd.ground_reactions(structure, sol)
         at |= where
-    forces = _onto_masters(structure, nodal_forces(structure, h))
-    support = {}
-    for node in dofs.nodes:
-        for dof in DOF_NAMES:
-            if (node, dof) in dofs._restrained:
-                label = f"{node}.{dof}"
-                support[label] = forces[:, dofs.full_index(node, dof)]
-                at[label] = node
+    support = support_forces(dofs, _onto_masters(structure, nodal_forces(structure, h)), DOF_NAMES, at)
     return {"support": support, "ground_elements": ground, "footings": footings, "at": at}
 
 
