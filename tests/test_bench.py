@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import unilateral as ul
-from unilateral.bench import PROBLEMS, ScalingConfig, build, run_one, run_scaling, save_scaling_figure
+from unilateral.bench import PROBLEMS, ScalingConfig, build, run_one, run_scaling
+from unilateral.bench.report import save_scaling_figure
 from unilateral.bench.suite import Limits, infeasible
 from unilateral.loads.synthetic import ENVELOPES, synthetic_accelerogram
 

@@ -23,19 +23,24 @@ def describe(value) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def as_matrix(name: str, value, shape: tuple[int | None, int | None], *, allow_sparse=True):
+def as_matrix(name: str, value, shape: tuple[int | None, int | None], *, allow_sparse=True, copy=True):
     """Return ``value`` as a float dense array or a CSR sparse matrix of the given shape.
 
-    ``None`` in ``shape`` accepts any size along that axis.
+    ``None`` in ``shape`` accepts any size along that axis. ``copy=False`` (internal: a matrix its
+    caller has just computed and hands over) keeps a float ndarray ``value`` itself instead of a
+    copy; every check is the same.
     """
     if value is None:
         raise TypeError(f"{name} is required (got None); pass an array of shape {_shape_text(shape)}")
     _refuse_complex(name, value)
     if sp.issparse(value):
-        value = sp.csr_matrix(value, dtype=float) if allow_sparse else value.toarray().astype(float)
+        if not copy and allow_sparse and type(value) is sp.csr_matrix and value.dtype == np.float64:
+            pass                        # handed over: kept as it is (a new wrapper would share its arrays)
+        else:
+            value = sp.csr_matrix(value, dtype=float) if allow_sparse else value.toarray().astype(float)
     else:
         try:
-            value = np.array(value, dtype=float)
+            value = np.array(value, dtype=float) if copy else np.asarray(value, dtype=float)
         except (TypeError, ValueError) as exc:
             raise TypeError(f"{name} must be a real array, got {describe(value)} ({exc})") from None
         if value.ndim == 1 and shape[1] == 1:
@@ -80,6 +85,8 @@ def _refuse_complex(name: str, value) -> None:
 
 def check_finite(name: str, data) -> None:
     data = np.asarray(data)
+    if data.dtype.kind == "f" and data.size > SMALL_DENSE_SIZE and np.isfinite(np.add.reduce(data, axis=None)):
+        return                  # a finite sum: no inf or nan among the entries (one cheap pass)
     if not np.all(np.isfinite(data)):
         bad = np.argwhere(~np.isfinite(data))[0]
         where = tuple(int(i) for i in bad)
@@ -91,10 +98,20 @@ def check_finite(name: str, data) -> None:
 SMALL_DENSE_SIZE = 64 * 64
 
 
-def check_symmetric(name: str, A) -> None:
-    """Raise ``ValueError`` if ``A`` is not symmetric to ``SYMMETRY_RTOL`` relative."""
+def check_symmetric(name: str, A, *, diagonal=False) -> None:
+    """Raise ``ValueError`` if ``A`` is not symmetric to ``SYMMETRY_RTOL`` relative.
+
+    ``diagonal=True``: ``A`` is known to be a diagonal matrix (:func:`is_diagonal`), symmetric.
+    """
+    if diagonal:
+        return
     if sp.issparse(A) and A.shape[0] * A.shape[1] <= SMALL_DENSE_SIZE:
         A = A.toarray()         # a small sparse matrix: dense arithmetic costs microseconds
+    if _exactly_symmetric(A):
+        return
+    if (not sp.issparse(A) and A.ndim == 2 and A.shape[0] == A.shape[1] and A.size <= SMALL_DENSE_SIZE
+            and bool((A == A.T).all())):
+        return                  # small and exactly symmetric: max |A - A^T| = 0 passes the test below
     diff = A - A.T
     if sp.issparse(diff):
         err = abs(diff).max() if diff.nnz else 0.0
@@ -109,30 +126,64 @@ def check_symmetric(name: str, A) -> None:
         )
 
 
+def _exactly_symmetric(A) -> bool:
+    """Whether ``A`` is large and ``A == A^T`` entry by entry, found cheaply (False: not known; the
+    full check of :func:`check_symmetric` decides). Sparse: the transpose's CSR arrays are those of
+    ``A``; dense: every nonzero entry equals its mirror (the zeros are skipped)."""
+    if A.ndim != 2 or A.shape[0] != A.shape[1] or A.shape[0] * A.shape[1] <= SMALL_DENSE_SIZE:
+        return False
+    if sp.issparse(A):
+        if A.format != "csr" or not A.has_canonical_format:
+            return False                # (a product's unsorted indices: sorting costs as much as the full check)
+        At = A.T.tocsr()
+        return (np.array_equal(A.indptr, At.indptr) and np.array_equal(A.indices, At.indices)
+                and np.array_equal(A.data, At.data))
+    flat = np.ravel(A)
+    nonzero = flat != 0
+    if np.count_nonzero(nonzero) == np.count_nonzero(np.diagonal(A)):
+        return True                     # diagonal
+    where = nonzero.nonzero()[0]
+    rows, cols = np.divmod(where, A.shape[1])
+    return bool(np.array_equal(A[cols, rows], flat[where]))
+
+
+def is_diagonal(A) -> bool:
+    """Whether the dense square ``A`` is larger than :data:`SMALL_DENSE_SIZE` entries and diagonal
+    (every nonzero entry on the diagonal), as :func:`check_symmetric` and :func:`check_psd` find it;
+    False: not known."""
+    if sp.issparse(A) or A.ndim != 2 or A.shape[0] != A.shape[1] or A.size <= SMALL_DENSE_SIZE:
+        return False
+    return np.count_nonzero(A) == np.count_nonzero(np.diagonal(A))
+
+
 #: Matrices larger than this are checked block by block (their uncoupled diagonal blocks).
 PSD_BLOCKS_MIN_M = 64
 
 
-def check_psd(name: str, A: np.ndarray, *, strict=False) -> None:
+def check_psd(name: str, A: np.ndarray, *, strict=False, diagonal=False) -> None:
     """Raise ``ValueError`` if the dense symmetric ``A`` has a negative (or, if strict, zero) eigenvalue.
 
     The eigenvalues of a block-diagonal matrix are those of its blocks: above
     :data:`PSD_BLOCKS_MIN_M` rows the uncoupled blocks (connected components of the pattern of
     ``A``) are checked one by one, so that a diagonal ``H`` (one soil spring per contact) costs
-    O(m), not an O(m^3) eigendecomposition.
+    O(m), not an O(m^3) eigendecomposition. ``diagonal=True``: ``A`` is known to be diagonal
+    (:func:`is_diagonal`).
     """
     if A.size == 0:
         return
     if A.shape[0] > PSD_BLOCKS_MIN_M:
-        from scipy.sparse import csr_matrix
-        from scipy.sparse.csgraph import connected_components
-
-        count, label = connected_components(csr_matrix(A != 0), directed=False)
-        order = np.argsort(label, kind="stable")
-        bounds = np.searchsorted(label[order], np.arange(count + 1))
-        blocks = [order[a:b] for a, b in zip(bounds[:-1], bounds[1:])]
-        eig = np.concatenate([np.diag(A)[idx] if idx.size == 1 else np.linalg.eigvalsh(A[np.ix_(idx, idx)])
-                              for idx in blocks])
+        if diagonal:
+            nonzero = None
+        else:
+            if not strict and not A.any():
+                return              # zero: semidefinite
+            nonzero = np.ravel(A) != 0                 # the pattern of A != 0
+            if np.count_nonzero(nonzero) == np.count_nonzero(np.diagonal(A)):
+                nonzero = None                         # diagonal: 1 x 1 blocks
+        if nonzero is None:
+            eig = np.diag(A).copy()
+        else:
+            eig = _block_eigenvalues(A, nonzero.nonzero()[0])
         eig.sort()
     else:
         eig = np.linalg.eigvalsh(A)
@@ -144,6 +195,25 @@ def check_psd(name: str, A: np.ndarray, *, strict=False) -> None:
             f"{name} must be symmetric {need}; its smallest eigenvalue is {eig[0]:.3g} "
             f"(largest {eig[-1]:.3g})"
         )
+
+
+def _block_eigenvalues(A, where) -> np.ndarray:
+    """The eigenvalues of ``A`` (unsorted), those of the uncoupled blocks of its pattern (the flat
+    indices ``where`` of its nonzero entries)."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = A.shape[0]
+    pattern = csr_matrix((np.ones(where.size, dtype=bool), np.divmod(where, n)), shape=A.shape)
+    count, label = connected_components(pattern, directed=False)
+    order = np.argsort(label, kind="stable")
+    bounds = np.searchsorted(label[order], np.arange(count + 1))
+    single = np.diff(bounds) == 1                      # 1 x 1 blocks: their diagonal entries
+    eig = [np.diag(A)[order[bounds[:-1][single]]]]
+    for k in np.flatnonzero(~single):
+        idx = order[bounds[k]:bounds[k + 1]]
+        eig.append(np.linalg.eigvalsh(A[np.ix_(idx, idx)]))
+    return np.concatenate(eig)
 
 
 def positive_float(name: str, value) -> float:

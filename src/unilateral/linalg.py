@@ -75,6 +75,16 @@ def dense(A) -> np.ndarray:
     return A.toarray() if sp.issparse(A) else np.asarray(A)
 
 
+def is_diagonal(A) -> bool:
+    """True if every nonzero entry of ``A`` (dense or sparse, square) is on its diagonal (one count
+    of the nonzeros: no temporary matrix)."""
+    if sp.issparse(A):
+        C = A.tocoo()
+        return not np.any(C.data[C.row != C.col])
+    A = np.asarray(A)
+    return np.count_nonzero(A) == np.count_nonzero(np.diagonal(A))
+
+
 def transpose_times(F, X) -> np.ndarray:
     """``F^T X`` as a dense array, for F (n, m) dense or sparse and X (n,) or (n, k)."""
     out = F.T @ X

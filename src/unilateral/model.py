@@ -129,22 +129,26 @@ class Model:
 
     def __init__(self, M, K, F, H, C=None, g=None, *, F_v=None, H_v=None, q_imposed=None, gap=None,
                  dof_names=None, constraint_names=None, natural: NaturalForm | None = None,
-                 families=None, on_soil=False):
-        self.K = V.as_matrix("K", K, (None, None))
+                 families=None, on_soil=False, _owned=frozenset()):
+        # _owned (internal, :meth:`from_natural`): the names of the matrices the caller has just
+        # computed and hands over; they are kept as given instead of copied (the same checks)
+        self.K = V.as_matrix("K", K, (None, None), copy="K" not in _owned)
         n = self.K.shape[0]
         if self.K.shape != (n, n):
             raise ValueError(f"K must be square, got shape {self.K.shape}")
         self.M = V.as_matrix("M", M, (n, n))
-        self.C = None if C is None else V.as_matrix("C", C, (n, n))
-        self.F = V.as_matrix("F", F, (n, None))
+        self.C = None if C is None else V.as_matrix("C", C, (n, n), copy="C" not in _owned)
+        self.F = V.as_matrix("F", F, (n, None), copy="F" not in _owned)
         m = self.F.shape[1]
-        self.H = V.as_matrix("H", H, (m, m), allow_sparse=False)
-        self.F_v = None if F_v is None else V.as_matrix("F_v", F_v, (n, m))
-        self.H_v = None if H_v is None else V.as_matrix("H_v", H_v, (m, m), allow_sparse=False)
+        self.H = V.as_matrix("H", H, (m, m), allow_sparse=False, copy="H" not in _owned)
+        self.F_v = None if F_v is None else V.as_matrix("F_v", F_v, (n, m), copy="F_v" not in _owned)
+        self.H_v = None if H_v is None else V.as_matrix("H_v", H_v, (m, m), allow_sparse=False,
+                                                        copy="H_v" not in _owned)
+        diagonal_H = V.is_diagonal(self.H)         # (one look at H's pattern for both checks)
         for name in ("M", "K", "C", "H", "H_v"):
             if getattr(self, name) is not None:
-                V.check_symmetric(name, getattr(self, name))
-        V.check_psd("H", self.H)
+                V.check_symmetric(name, getattr(self, name), diagonal=name == "H" and diagonal_H)
+        V.check_psd("H", self.H, diagonal=diagonal_H)
         if self.H_v is not None:
             V.check_psd("H_v", self.H_v)
         _check_diagonal_nonnegative("M", self.M)
@@ -155,7 +159,7 @@ class Model:
         self.q_imposed, self.q_imposed_is_constant = V.time_function("q_imposed", q_imposed, n)
         if gap is not None:
             self._add_gap(V.as_vector("gap", gap, m))
-        self.dof_names = _names("dof_names", dof_names, n, "u")
+        self.dof_names = _names("dof_names", dof_names, n, "u", strings="dof_names" in _owned)
         self.constraint_names = _names("constraint_names", constraint_names, m, "c")
         self.natural = natural
         self.families = list(families) if families is not None else default_families(m)
@@ -257,9 +261,13 @@ class Model:
         m = B.shape[1]
         V.check_symmetric("E", E)
         _check_diagonal_nonnegative("E", E, strict=True)
-        A = np.zeros((m, m)) if A is None else V.as_matrix("A", A, (m, m), allow_sparse=False)
-        V.check_symmetric("A", A)
-        V.check_psd("A", A)
+        a_zero = A is None
+        if a_zero:
+            A = np.zeros((m, m))                # symmetric and semidefinite: nothing to check
+        else:
+            A = V.as_matrix("A", A, (m, m), allow_sparse=False)
+            V.check_symmetric("A", A)
+            V.check_psd("A", A)
         r = np.zeros(m) if r is None else V.as_vector("r", r, m)
         if np.any(r < 0):
             i = int(np.argmax(r < 0))
@@ -281,26 +289,29 @@ class Model:
         GE = G @ E
         K = GE @ G.T
         F = _dense_if_small(GE @ B)
-        H = A + _dense(B.T @ E @ B)
-        BtE = _dense(B.T @ E)
+        BtE = B.T @ E
+        H = _plus_dense(None if a_zero else A, BtE @ B)    # (B.T @ E @ B, left to right)
+        BtE = _dense_if_small(BtE)
         q_imposed = _load_of(GE, theta_f, theta_const)
         g = _offset_of(BtE, theta_f, theta_const, r)
         F_v = H_v = None
         C_total = C
+        owned = {"K", "F", "H"}                 # computed here: handed to __init__ without a copy
         if E_v is not None:
+            owned |= {"C", "F_v", "H_v"}
             GEv = G @ E_v
             C_v = GEv @ G.T
             C_total = C_v if C is None else V.as_matrix("C", C, (n, n)) + C_v
             F_v = _dense_if_small(GEv @ B)
             H_v = _dense(B.T @ E_v @ B)
             if rate_f is not None:
-                BtEv = _dense(B.T @ E_v)
+                BtEv = _dense_if_small(B.T @ E_v)
                 q_imposed = _sum(q_imposed, lambda t: np.asarray(GEv @ rate_f(t)).ravel())
-                g = _sum(g, lambda t: BtEv @ rate_f(t))
+                g = _sum(g, lambda t: np.asarray(BtEv @ rate_f(t)).ravel())
         natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=theta_f, E_v=E_v, theta_rate=rate_f)
         return cls(M=M, K=K, F=F, H=H, C=C_total, g=g, F_v=F_v, H_v=H_v, q_imposed=q_imposed,
                    dof_names=dof_names, constraint_names=constraint_names, natural=natural,
-                   families=families, on_soil=on_soil)
+                   families=families, on_soil=on_soil, _owned=frozenset(owned))
 
     def __repr__(self) -> str:
         kind = "sparse" if self.sparse else "dense"
@@ -313,6 +324,17 @@ class Model:
 # ---------------------------------------------------------------------- helpers
 def _dense(A) -> np.ndarray:
     return A.toarray() if sp.issparse(A) else np.asarray(A, dtype=float)
+
+
+def _plus_dense(A: np.ndarray | None, S) -> np.ndarray:
+    """``A + S`` dense, ``S`` sparse or dense (the same sums; with a zero ``A``, ``S`` alone), a new
+    array. ``A=None``: a zero ``A``, known without looking at it (the sums of a zero array)."""
+    if not sp.issparse(S):
+        return np.asarray(S, dtype=float) + 0.0 if A is None else A + np.asarray(S, dtype=float)
+    out = S.toarray(order="C")
+    if A is not None and A.any():       # (a zero A: its pages are never touched)
+        out += A
+    return out
 
 
 def _dense_if_small(A, limit=2_000_000):
@@ -330,8 +352,8 @@ def _load_of(GE, theta_f, constant):
 
 def _offset_of(BtE, theta_f, constant, r):
     if constant:
-        return BtE @ theta_f(0.0) + r
-    return lambda t: BtE @ theta_f(t) + r
+        return np.asarray(BtE @ theta_f(0.0)).ravel() + r
+    return lambda t: np.asarray(BtE @ theta_f(t)).ravel() + r
 
 
 def _sum(a, f):
@@ -341,12 +363,17 @@ def _sum(a, f):
     return lambda t: a + f(t)
 
 
-def _names(arg, names, size, prefix):
+def _names(arg, names, size, prefix, strings=False):
+    """``names`` as a list of ``size`` unique str (``strings``: a new list of str already), or
+    ``prefix0``, ``prefix1``, ... for None."""
     if names is None:
         return [f"{prefix}{i}" for i in range(size)]
-    names = [str(x) for x in names]
+    if not (strings and type(names) is list):
+        names = list(map(str, names))
     if len(names) != size:
         raise ValueError(f"{arg} must have {size} entries, got {len(names)}")
+    if len(set(names)) == size:
+        return names
     seen = set()
     for name in names:
         if name in seen:

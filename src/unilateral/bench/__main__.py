@@ -10,7 +10,6 @@ from pathlib import Path
 
 from ..io.atomic import to_jsonable, write_json_atomic
 from .problems import PROBLEMS
-from .report import format_table, save_scaling_figure
 from .suite import METHODS, Limits, ScalingConfig, machine_info, run_one, run_scaling, run_suite
 
 #: Default results file: in ./bench-results of the current directory, never inside the package.
@@ -67,6 +66,8 @@ def main(argv=None) -> int:
     if not args.no_figure:
         results["scaling"] = run_scaling(ScalingConfig.default(args.quick), limits=limits,
                                          progress=_progress)
+    from .report import format_table, save_scaling_figure     # matplotlib: not in the runs' subprocesses
+
     args.out.parent.mkdir(parents=True, exist_ok=True)
     write_json_atomic(args.out, results)
     print(format_table(records))

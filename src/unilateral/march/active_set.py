@@ -24,7 +24,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .direct import direct_outputs
-from ..linalg import Factorization
+from ..linalg import Factorization, is_diagonal
 
 #: Sparse models with more constraints than this solve the LCP in the full sparse space (with
 #: ``lcp="bpp"`` and constraints of the trivial law): the condensed ``W0`` would be large and dense.
@@ -61,7 +61,7 @@ class ActiveSetSolver:
         self.a = a
         self.Fp = sp.csc_matrix(Fp)
         self.Hs = np.asarray(Hs)
-        self.diagonal = not np.any(self.Hs - np.diag(np.diag(self.Hs)))
+        self.diagonal = is_diagonal(self.Hs)
         self.D_eff = sp.csc_matrix(D)
         self.v_b = v_b
         self.shift = self.a * (self.Fp @ v_b)

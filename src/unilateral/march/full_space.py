@@ -178,9 +178,9 @@ def full_space_steps(rule, env, cons, mats, tables, carry, steps):
     lcp_state = (active, factored, bad, count)
     for k in range(steps[0], steps[1]):
         row = k - row_first
-        _rule_history(kind, rp, us[0], us[1], us[2], us[3], us[4], h1, h2)
+        _rule_history(kind, rp, us, h1, h2)
         if viscous:
-            _rule_history(kind, rp, vs[0], vs[1], vs[2], vs[3], vs[4], k1, k2)
+            _rule_history(kind, rp, vs, k1, k2)
         for i in range(n):
             rhs[i] = a * f[row, perm[i]]
         _matvec_add(M, h2, 1.0, rhs)
@@ -230,12 +230,12 @@ def full_space_steps(rule, env, cons, mats, tables, carry, steps):
             ud[i] = c1 * x[i] - h1[i]
             dud[k, perm[i]] = ud[i]
             acc[i] = c0 * x[i] - h2[i]
-        _advance(us[0], us[1], us[2], us[3], us[4], x, ud, acc)
+        _advance(us, x, ud, acc)
         if viscous:
             for b in range(m):
                 dvd[b] = c1 * dv[b] - k1[b]
                 dvdd[b] = c0 * dv[b] - k2[b]
-            _advance(vs[0], vs[1], vs[2], vs[3], vs[4], dv, dvd, dvdd)
+            _advance(vs, dv, dvd, dvdd)
         for b in range(m):
             v[k, b] = vn[b]
             psi[k, b] = psin[b]

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ..linalg import Factorization, SingularMatrixError, dense, transpose_times
+from ..linalg import Factorization, SingularMatrixError, dense, is_diagonal, transpose_times
 
 #: Models with at most this many DOFs are stepped with dense arrays.
 DENSE_STEPPING_MAX_N = 64
@@ -215,7 +215,7 @@ class StructureStepper:
             offset = np.array([self.offset(k) for k in range(N + 1)], dtype=float).reshape(N + 1, m)
         as_dense = lambda A, shape: (np.zeros(shape) if A is None
                                      else np.ascontiguousarray(dense(A), dtype=float))
-        mats = (np.ascontiguousarray(lu_piv[0], dtype=float), lu_piv[1].astype(np.int64),
+        mats = (np.ascontiguousarray(lu_piv[0].T, dtype=float), lu_piv[1].astype(np.int64),
                 as_dense(self.Fp, (n, m)).T.copy(), as_dense(self.F, (n, m)), as_dense(self.F_v, (n, m)),
                 as_dense(self.F_v, (n, m)).T.copy(), as_dense(self.model.H_v, (m, m)),
                 as_dense(self.X, (n, m)), as_dense(self.W0, (m, m)))
@@ -270,7 +270,7 @@ DENSE_FRACTION = 0.25
 def _matvec_operand(A):
     """``(indptr, indices, data, full)`` of :func:`unilateral.march.compiled._matvec_add`: CSR
     arrays, and ``A`` itself (dense) if more than :data:`DENSE_FRACTION` of it is nonzero."""
-    S = sp.csr_matrix(A)
+    S = A if sp.issparse(A) and A.format == "csr" else sp.csr_matrix(A)     # (no new matrix of a CSR one)
     n = S.shape[0]
     full = dense(A).astype(float) if S.nnz > DENSE_FRACTION * n * n else np.zeros((0, 0))
     return (S.indptr.astype(np.int64), S.indices.astype(np.int64), S.data.astype(float),
@@ -279,13 +279,17 @@ def _matvec_operand(A):
 
 def _initial_acceleration(M, rhs):
     """Solve ``M a0 = rhs``; for a singular (lumped, partly massless) M use the massive DOFs."""
+    diag = M.diagonal() if sp.issparse(M) else np.diag(M)
+    if is_diagonal(M):                      # lumped masses: what both factorisations below give
+        massive = diag > 0
+        return np.where(massive, rhs / np.where(massive, diag, 1.0), 0.0)
     try:
         return Factorization(M, what="M").solve(rhs)
     except SingularMatrixError:
-        diag = M.diagonal() if sp.issparse(M) else np.diag(M)
         idx = np.flatnonzero(diag > 0)
         a0 = np.zeros_like(rhs)
         if idx.size:
             Mm = M[idx][:, idx]
             a0[idx] = Factorization(Mm, what="M on the DOFs with mass").solve(rhs[idx])
         return a0
+

@@ -44,8 +44,9 @@ def step_loads(model, load, disc) -> StepLoads:
     """
     n, dt, N = model.n, disc.dt, disc.N
     imposed = model.q_imposed
-    with_imposed = lambda Q: Q + (model.q_imposed(0.0) if model.q_imposed_is_constant
-                                  else np.array([imposed(k * dt) for k in range(N + 1)]))
+    none_imposed = model.q_imposed_is_constant and not model.q_imposed(0.0).any()
+    with_imposed = lambda Q: Q if none_imposed else Q + (
+        model.q_imposed(0.0) if model.q_imposed_is_constant else np.array([imposed(k * dt) for k in range(N + 1)]))
     if load is None:
         q = lambda k: imposed(k * dt)
         return StepLoads(q, q(0), lambda: with_imposed(np.zeros((N + 1, n))))
@@ -168,7 +169,6 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     if hasattr(log, "factorizations"):
         stats["factorizations"] = log.factorizations
     stats["steps_done"] = len(t) - 1
-    stats["time"] = run.timer.laps()
     if log.failure:
         success = False
         message = f"stopped after {len(t) - 1} of {N} steps: {log.failure}" + _friction_hint(model)
@@ -185,6 +185,8 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     if warnings:
         stats["warnings"] = warnings
         message = message + "; WARNING: " + "; ".join(warnings)
+    run.timer.lap("results")                # the histories formed and checked after the last lap
+    stats["time"] = run.timer.laps()
     return Solution(t=t, v=v, psi=psi, psiL=psiL, u=u, udot=udot, success=success,
                     message=message, stats=stats, dof_names=list(getattr(model, "dof_names", [])),
                     constraint_names=list(model.constraint_names))

@@ -338,13 +338,12 @@ def _march_small(kind, coefficients, factors, operands, loads, N1):
     n = lu.shape[0]
     m, r = basis.shape
     W = np.zeros((N1, m, r))
-    state = np.zeros((5, r, n))                     # y0, y1, y0', y1', y0'' of each impulse
+    state = np.zeros((r, 5, n))                     # y0, y1, y0', y1', y0'' of each impulse
     h1, h2, rhs, x = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     ud, acc = np.empty(n), np.empty(n)
     for k in range(N1):
         for j in range(r):
-            y0, y1, yd0, yd1, ydd0 = state[0, j], state[1, j], state[2, j], state[3, j], state[4, j]
-            _c_history(kind, dt, y0, y1, yd0, yd1, ydd0, h1, h2)
+            _c_history(kind, dt, state[j], h1, h2)
             for i in range(n):
                 t = 0.0
                 if k == 0:
@@ -362,7 +361,7 @@ def _march_small(kind, coefficients, factors, operands, loads, N1):
             for i in range(n):
                 ud[i] = c1 * x[i] - h1[i]
                 acc[i] = c0 * x[i] - h2[i]
-            _c_advance(y0, y1, yd0, yd1, ydd0, x, ud, acc)
+            _c_advance(state[j], x, ud, acc)
     return W
 
 

@@ -50,27 +50,45 @@ class DofMap:
         offset = {s: np.asarray(coords[s]) - np.asarray(coords[m]) for s, m in self.masters.items()}
         rotating = set(rotated) - set(self.masters)
         rotating |= {m for s, m in self.masters.items() if s in rotated or offset[s].any()}
-        self.free = [(node, dof) for node in self.nodes if node not in self.masters for dof in self.dof_names
-                     if (node, dof) not in restrained and (dof != "rz" or node in rotating)]
-        self._index = {key: k for k, key in enumerate(self.free)}
+        width, names = len(self.dof_names), self.dof_names
+        keep = np.ones((len(self.nodes), width), dtype=bool)       # free: not slave, not supported, used
+        if self.masters:
+            keep[[self._position[s] for s in self.masters]] = False
+        if "rz" in names:
+            keep[:, names.index("rz")] &= np.array([node in rotating for node in self.nodes], dtype=bool)
+        for node, dof in restrained:
+            if dof in names and self._known(node):
+                keep[self._position[node], names.index(dof)] = False
+        rows = np.flatnonzero(keep)                                 # the rows of T with a 1
+        nodes = self.nodes
+        self.free = list(zip(map(nodes.__getitem__, (rows // width).tolist()),
+                             map(names.__getitem__, (rows % width).tolist())))
+        self._index = dict(zip(self.free, range(len(self.free))))
         self._restrained = set(restrained)
-        rows, cols, vals = [], [], []
-        for node in self.nodes:
-            p = len(self.dof_names) * self._position[node]
-            if node in self.masters:
-                m = self.masters[node]
-                dx, dy = offset[node]
-                terms = [(p, "ux", 1.0, m), (p, "rz", -dy, m), (p + 1, "uy", 1.0, m),
-                         (p + 1, "rz", dx, m), (p + 2, "rz", 1.0, m)]
-            else:
-                terms = [(p + d, dof, 1.0, node) for d, dof in enumerate(self.dof_names)]
-            for row, dof, value, owner in terms:
-                col = self._index.get((owner, dof))
+        tied_rows, tied_cols, tied_vals = [], [], []
+        for node, m in self.masters.items():         # a slave follows its master's rigid-body motion
+            p = width * self._position[node]
+            dx, dy = offset[node]
+            for row, dof, value in ((p, "ux", 1.0), (p, "rz", -dy), (p + 1, "uy", 1.0), (p + 1, "rz", dx),
+                                    (p + 2, "rz", 1.0)):
+                col = self._index.get((m, dof))
                 if col is not None and value != 0.0:
-                    rows.append(row)
-                    cols.append(col)
-                    vals.append(value)
-        self.T = sp.csr_matrix((vals, (rows, cols)), shape=(len(self.dof_names) * len(self.nodes), len(self.free)))
+                    tied_rows.append(row)
+                    tied_cols.append(col)
+                    tied_vals.append(value)
+        n = len(self.free)
+        self._free_rows = rows                       # T's row of each free DOF (its only entry: 1)
+        rows = np.concatenate([rows, np.array(tied_rows, dtype=rows.dtype)])
+        cols = np.concatenate([np.arange(n), np.array(tied_cols, dtype=int)])
+        vals = np.concatenate([np.ones(n), np.array(tied_vals, dtype=float)])
+        self.T = csr_of_entries(vals, rows, cols, (width * len(self.nodes), n))
+
+    def _known(self, node) -> bool:
+        """Whether ``node`` is a node of the map (False for an unhashable ``node``)."""
+        try:
+            return node in self._position
+        except TypeError:
+            return False
 
     @property
     def n(self) -> int:
@@ -127,6 +145,26 @@ class DofMap:
     def gather(self, f_full) -> np.ndarray:
         """Free-DOF load ``T^T f_full`` (n,) of nodal loads ``f_full`` (``len(dof_names) n_nodes``,)."""
         return np.asarray(self.T.T @ f_full).ravel()
+
+
+def csr_of_entries(vals, rows, cols, shape) -> sp.csr_matrix:
+    """``sp.csr_matrix((vals, (rows, cols)), shape=shape)``, made without the COO route when no
+    ``(row, col)`` repeats: the same canonical arrays (rows in order, sorted columns, explicit zeros
+    kept), without the overhead of scipy's conversions (tens of microseconds on a small matrix)."""
+    rows, cols = np.asarray(rows), np.asarray(cols)
+    vals = np.asarray(vals)
+    if (rows.ndim != 1 or rows.shape != cols.shape or rows.shape != vals.shape or vals.dtype != np.float64
+            or rows.dtype.kind not in "iu" or cols.dtype.kind not in "iu" or len(shape) != 2):
+        return sp.csr_matrix((vals, (rows, cols)), shape=shape)
+    if rows.size and (min(rows.min(), cols.min()) < 0 or rows.max() >= shape[0] or cols.max() >= shape[1]):
+        return sp.csr_matrix((vals, (rows, cols)), shape=shape)    # (its message)
+    order = np.lexsort((cols, rows))
+    r, c = rows[order], cols[order]
+    if r.size > 1 and np.any((r[1:] == r[:-1]) & (c[1:] == c[:-1])):
+        return sp.csr_matrix((vals, (rows, cols)), shape=shape)    # repeated entries: summed there
+    indptr = np.zeros(shape[0] + 1, dtype=np.intp)
+    np.cumsum(np.bincount(r, minlength=shape[0]), out=indptr[1:])
+    return sp.csr_matrix((vals[order], c, indptr), shape=shape)
 
 
 def node_list(nodes, limit=10) -> str:

@@ -46,6 +46,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+_hypot = np.hypot                           # not math.hypot: the same rounding as before
+
 DOF_NAMES = ("ux", "uy", "rz")
 #: Elements between two ends along a direction (either end may be the ground).
 DIRECTIONAL_KINDS = ("spring", "dashpot", "soil", "gap", "yield", "slider")
@@ -165,8 +167,27 @@ class Element:
     def strain_labels(self) -> tuple[str, ...]:
         """Names of the natural strains, e.g. ``("col.axial", "col.rot_i", "col.rot_j")``."""
         if self.kind == "beam":
-            return tuple(f"{self.name}.{s}" for s in ("axial", "rot_i", "rot_j"))
+            name = self.name
+            return (f"{name}.axial", f"{name}.rot_i", f"{name}.rot_j")
         return (self.name, f"{self.name}.tangential")[: self.E.shape[0]]
+
+
+def contact_unknown(name, r=0.0) -> Unknown:
+    """``Unknown(name, 0, 1.0, r)``: the contact of a directional element's strain, made without the
+    frozen dataclass's ``__setattr__`` per field (the same fields, defaults and object)."""
+    unknown = object.__new__(Unknown)
+    unknown.__dict__.update(name=name, row=0, b=1.0, r=r, kind="contact", normal=None, mu=0.0, node=None, k=None,
+                            extra=())
+    return unknown
+
+
+def _element(name, kind, dofs, a, E, theta, **optional) -> Element:
+    """``Element(name, kind, dofs, a, E, theta, **optional)``, made without the frozen dataclass's
+    ``__setattr__`` per field (the builder makes thousands): the same fields, defaults and object."""
+    element = object.__new__(Element)
+    element.__dict__.update(name=name, kind=kind, dofs=dofs, a=a, E=E, theta=theta, E_v=None, unknowns=(), A=None)
+    element.__dict__.update(optional)
+    return element
 
 
 def chord(where: str, i: Hashable, xi: np.ndarray, j: Hashable, xj: np.ndarray):
@@ -174,14 +195,23 @@ def chord(where: str, i: Hashable, xi: np.ndarray, j: Hashable, xj: np.ndarray):
 
     Raises ``ValueError`` for a zero-length chord.
     """
-    d = np.asarray(xj, dtype=float) - np.asarray(xi, dtype=float)
-    L = float(np.hypot(d[0], d[1]))
+    L, c, s = _chord(where, i, xi, j, xj)
+    return L, np.array([c, s])
+
+
+def _chord(where, i, xi, j, xj) -> tuple[float, float, float]:
+    """``(L, c, s)`` of :func:`chord` as floats (the same numbers, without the arrays). ``where`` may
+    be a pair ``(kind, name)``, made the text ``"kind 'name'"`` only for a message."""
+    dx, dy = float(xj[0]) - float(xi[0]), float(xj[1]) - float(xi[1])
+    L = abs(dx) if dy == 0.0 else abs(dy) if dx == 0.0 else float(_hypot(dx, dy))   # hypot(x, 0) = |x| exactly
     if L == 0.0:
+        if type(where) is tuple:
+            where = f"{where[0]} {where[1]!r}"
         raise ValueError(
             f"{where}: nodes i={i!r} and j={j!r} are both at ({xi[0]:g}, {xi[1]:g}): "
             "zero-length element"
         )
-    return L, d / L
+    return L, dx / L, dy / L
 
 
 def beam(name, i, xi, j, xj, *, E, A, I, axial_strain=0.0, curvature=0.0) -> Element:
@@ -195,16 +225,19 @@ def beam(name, i, xi, j, xj, *, E, A, I, axial_strain=0.0, curvature=0.0) -> Ele
     curvature : imposed curvature ``w''`` (positive: concave towards the left of ``i -> j``);
         imposed end rotations relative to the chord ``(-curvature L/2, +curvature L/2)``
     """
-    L, (c, s) = chord(f"beam {name!r}", i, xi, j, xj)
-    dofs = tuple((node, dof) for node in (i, j) for dof in DOF_NAMES)
-    axial = np.array([-c, -s, 0.0, c, s, 0.0])
-    beta = np.array([s, -c, 0.0, -s, c, 0.0]) / L
-    rot_i, rot_j = np.eye(6)[2], np.eye(6)[5]
-    a = np.vstack([axial, rot_i - beta, rot_j - beta])
+    L, c, s = _chord(("beam", name), i, xi, j, xj)
+    dofs = ((i, "ux"), (i, "uy"), (i, "rz"), (j, "ux"), (j, "uy"), (j, "rz"))
+    bs, bc = s / L, c / L                   # beta = [bs, -bc, 0, -bs, bc, 0] . u_elem
     EA, EI = E * A, E * I
-    stiffness = np.array([[EA / L, 0.0, 0.0], [0.0, 4 * EI / L, 2 * EI / L], [0.0, 2 * EI / L, 4 * EI / L]])
-    theta = np.array([axial_strain * L, -curvature * L / 2, curvature * L / 2])
-    return Element(name, "beam", dofs, a, stiffness, theta)
+    k4, k2 = 4 * EI / L, 2 * EI / L
+    numbers = np.array([-c, -s, 0.0, c, s, 0.0,                                      # a (3, 6)
+                        0.0 - bs, 0.0 + bc, 1.0, 0.0 + bs, 0.0 - bc, 0.0,
+                        0.0 - bs, 0.0 + bc, 0.0, 0.0 + bs, 0.0 - bc, 1.0,
+                        EA / L, 0.0, 0.0, 0.0, k4, k2, 0.0, k2, k4,                  # stiffness (3, 3)
+                        axial_strain * L, -curvature * L / 2, curvature * L / 2])    # theta (3,)
+    a, stiffness, theta = numbers[:18], numbers[18:27], numbers[27:]
+    a.shape, stiffness.shape = (3, 6), (3, 3)                      # (views of numbers, as reshape's)
+    return _element(name, "beam", dofs, a, stiffness, theta)
 
 
 def bar(name, i, xi, j, xj, *, E, A, axial_strain=0.0) -> Element:
@@ -223,7 +256,7 @@ def cable(name, i, xi, j, xj, *, E, A, slack=0.0, capacity=0.0) -> Element:
 
 def _axial(kind, name, i, xi, j, xj):
     """Length, DOFs and elongation row ``(1, 4)`` of an axial member ``i -> j``."""
-    L, (c, s) = chord(f"{kind} {name!r}", i, xi, j, xj)
+    L, c, s = _chord(f"{kind} {name!r}", i, xi, j, xj)
     dofs = ((i, "ux"), (i, "uy"), (j, "ux"), (j, "uy"))
     return L, dofs, np.array([[-c, -s, c, s]])
 
@@ -245,7 +278,7 @@ def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, unknowns=(), A=
     """
     dofs, a = _relative(i, j, (terms,), dof_names)
     E_v = np.array([[c]]) if c > 0 else None
-    return Element(name, kind, dofs, a, np.array([[k]]), np.array([theta]), E_v=E_v, unknowns=tuple(unknowns), A=A)
+    return _element(name, kind, dofs, a, np.array([[k]]), np.array([theta]), E_v=E_v, unknowns=tuple(unknowns), A=A)
 
 
 def frictional(name, kind, i, j, terms, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, capacity=0.0) -> Element:
@@ -311,8 +344,14 @@ def _relative(i, j, directions, dof_names=DOF_NAMES):
     """DOFs and strain rows ``(len(directions), d)`` of the motions ``dir . (u_j - u_i)``
     (``directions``: the ``(dof, coefficient)`` pairs of each direction; ``None`` = ground; the
     DOFs in the order of ``dof_names``, the 2-D or the 3-D ones)."""
-    names = [dof for dof in dof_names if any(dof == d for terms in directions for d, _ in terms)]
+    if len(directions) == 1 and len(directions[0]) == 1 and directions[0][0][0] in dof_names:
+        (dof, x), = directions[0]            # one DOF (a spring or a contact along "uy"): the same rows
+        if i is None and j is not None:
+            return ((j, dof),), np.array([[1.0 * x]])
+        if i is not None and j is not None:
+            return ((i, dof), (j, dof)), np.array([[-1.0 * x, 1.0 * x]])
     ends = [(node, sign) for node, sign in ((i, -1.0), (j, 1.0)) if node is not None]
+    names = [dof for dof in dof_names if any(dof == d for terms in directions for d, _ in terms)]
     dofs = tuple((node, dof) for node, _ in ends for dof in names)
     a = np.array([[sign * dict(terms).get(dof, 0.0) for _, sign in ends for dof in names] for terms in directions])
     return dofs, a
@@ -344,6 +383,8 @@ def direction_terms(where: str, direction, dof_names=DOF_NAMES, axes=("dx", "dy"
         :mod:`.elements3d`)
     axes : the names of a vector's components in the message of a bad vector (see :func:`vector`)
     """
+    if type(direction) is str and direction in dof_names:
+        return ((direction, 1.0),)
     translations = tuple(dof for dof in dof_names if dof.startswith("u"))
     choices = f"{', '.join(map(repr, dof_names))} or a vector ({', '.join('d' + dof[1:] for dof in translations)})"
     if isinstance(direction, str):

@@ -19,19 +19,24 @@ Strain and sign conventions of the elements are in :mod:`unilateral.structure.el
 
 from __future__ import annotations
 
+import math
 import numbers
+import operator
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, replace
+from itertools import accumulate, chain
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.linalg import block_diag
 
 from ..loads.units import STANDARD_GRAVITY
 from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
 from . import elements as el
-from .dofs import DofMap, node_list
+from .dofs import DofMap, csr_of_entries, node_list
+
+_isfinite = math.isfinite
+_INF = math.inf
 
 
 class _Frame(ABC):
@@ -126,7 +131,9 @@ class _Frame(ABC):
     # ------------------------------------------------------------------ shared parts of the builders
     def _define_node(self, node_id, xyz) -> None:
         """Define node ``node_id`` at the coordinates ``xyz`` (``(x, y)`` or ``(x, y, z)``)."""
-        if isinstance(node_id, numbers.Integral) and not isinstance(node_id, bool):
+        if type(node_id) is int or type(node_id) is str:
+            pass
+        elif isinstance(node_id, numbers.Integral) and not isinstance(node_id, bool):
             node_id = int(node_id)
         elif not isinstance(node_id, str):
             raise TypeError(f"node id must be an int or a str, got {node_id!r}")
@@ -134,7 +141,10 @@ class _Frame(ABC):
             at = ", ".join(f"{x:g}" for x in self._coords[node_id])
             raise ValueError(f"node {node_id!r} is already defined (at ({at}))")
         where = f"node {node_id!r}"
-        self._coords[node_id] = np.array([_real(where, axis, value) for axis, value in zip("xyz", xyz)])
+        if len(xyz) == 2:
+            self._coords[node_id] = np.array([_real(where, "x", xyz[0]), _real(where, "y", xyz[1])])
+        else:
+            self._coords[node_id] = np.array([_real(where, axis, value) for axis, value in zip("xyz", xyz)])
 
     def _support_flags(self, node, values) -> tuple[str, dict]:
         """``(where, {dof: flag})`` of a support of ``node`` with the flags ``values`` of the
@@ -186,24 +196,24 @@ class _Frame(ABC):
             raise ValueError("every DOF is supported or linked: the frame has no free DOF")
         elements = self._elements
         G = _compatibility(elements, dofs)
-        E = _block_diagonal([e.E for e in elements])
+        stiffness = [e.E for e in elements]
+        E = _block_diagonal(stiffness)
         kelvin = any(e.E_v is not None for e in elements)
         E_v = _block_diagonal([np.zeros_like(e.E) if e.E_v is None else e.E_v for e in elements]) if kelvin else None
         theta = np.concatenate([e.theta for e in elements]) if elements else np.zeros(0)
-        starts = np.cumsum([0] + [e.E.shape[0] for e in elements])
-        columns = [(int(starts[p]), u) for p, e in enumerate(elements) for u in e.unknowns]
+        starts = accumulate([block.shape[0] for block in stiffness], initial=0)
+        columns = [(start, u) for start, e in zip(starts, elements) for u in e.unknowns]
         rows = np.array([start + u.row for start, u in columns], dtype=int)     # each unknown's primary strain
         m = len(columns)
         # one entry (row, b) per unknown, and the extra entries of an unknown on several strains
         # (a facet of a polygonal friction cone: both tangential strains)
         entries = np.array([(start + row, col, b) for col, (start, u) in enumerate(columns) for row, b in u.entries],
                            dtype=float).reshape(-1, 3)
-        B = sp.csr_matrix((entries[:, 2], (entries[:, 0].astype(int), entries[:, 1].astype(int))),
-                          shape=(G.shape[1], m))
+        B = csr_of_entries(entries[:, 2], entries[:, 0].astype(int), entries[:, 1].astype(int), (G.shape[1], m))
         r = np.array([u.r for _, u in columns])
-        A = block_diag(*[e.interaction for e in elements if e.unknowns]) if m else np.zeros((0, 0))
-        nodal_mass = np.array([self._mass.get(node, np.zeros(len(dofs.dof_names))) for node in dofs.nodes])
-        M = (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
+        A = _interaction([e for e in elements if e.unknowns], m)
+        nodal_mass = _nodal_mass(self._mass, dofs)
+        M = _lumped_mass(dofs, nodal_mass)
         K = (G @ E @ G.T).tocsr()
         _check_stiffness(K, dofs, exempt=exempt)
         C = self._damping(dofs, M, K)
@@ -211,7 +221,7 @@ class _Frame(ABC):
         return dict(
             natural=natural, M=M, C=C, dofs=dofs,
             element_names=tuple(e.name for e in elements),
-            strain_names=tuple(s for e in elements for s in e.strain_labels),
+            strain_names=_strain_names(elements),
             constraint_names=tuple(u.name for _, u in columns),
             constraint_strains=rows, nodal_mass=nodal_mass,
             elements=tuple(elements), dashpots=tuple(self._dashpots),
@@ -306,7 +316,7 @@ class _Frame(ABC):
         if self._rayleigh is not None:
             a0, a1 = self._rayleigh
             R = a0 * M
-            bilateral = [e for e in self._elements if not e.unilateral]
+            bilateral = [e for e in self._elements if not e.unilateral] if a1 else []
             if a1 and bilateral:
                 Gb = _compatibility(bilateral, dofs)
                 R = R + a1 * (Gb @ _block_diagonal([e.E for e in bilateral]) @ Gb.T)
@@ -390,6 +400,11 @@ class Frame2D(_Frame):
     # ------------------------------------------------------------------ nodes and supports
     def node(self, node_id, x, y) -> None:
         """Define node ``node_id`` (int or str) at ``(x, y)``."""
+        coords = self._coords
+        if ((type(node_id) is int or type(node_id) is str) and type(x) is float and type(y) is float
+                and _isfinite(x) and _isfinite(y) and node_id not in coords):
+            coords[node_id] = np.array([x, y])          # what the checks below give these arguments
+            return
         self._define_node(node_id, (x, y))
 
     def support(self, node, ux=True, uy=True, rz=False) -> None:
@@ -416,10 +431,14 @@ class Frame2D(_Frame):
 
         Repeated calls add up. A slave node's mass acts on its master through ``T^T M T``.
         """
-        where = f"mass at node {node!r}"
-        self._node(where, "node", node)
-        add = np.array([_real(where, "m", m, ">=0")] * 2 + [_real(where, "J", J, ">=0")])
-        self._mass[node] = self._mass.get(node, np.zeros(3)) + add
+        if not (type(m) is float and type(J) is float and 0.0 <= m < _INF and 0.0 <= J < _INF
+                and self._known(node)):           # (else the checks, in their order)
+            where = f"mass at node {node!r}"
+            self._node(where, "node", node)
+            m, J = _real(where, "m", m, ">=0"), _real(where, "J", J, ">=0")
+        before = self._mass.get(node)
+        # 0.0 + x: the sum of the first call with a zero array, as later calls add to the sum
+        self._mass[node] = np.array([0.0 + m, 0.0 + m, 0.0 + J]) if before is None else before + np.array([m, m, J])
 
     # The damping of :class:`_Frame`, listed as this class's own: the API reference documents those only.
     rayleigh = _Frame.rayleigh
@@ -463,17 +482,29 @@ class Frame2D(_Frame):
         moments ``+- w L^2/12`` (use :meth:`Structure.distributed_load` for those).
         """
         where = self._label("beam", name)
-        self._two_nodes(where, i, j)
-        E, A, I = (_real(where, arg, value, ">0") for arg, value in (("E", E), ("A", A), ("I", I)))
-        element = el.beam(name, i, self._coords[i], j, self._coords[j], E=E, A=A, I=I,
-                          axial_strain=_real(where, "axial_strain", axial_strain),
-                          curvature=_real(where, "curvature", curvature))
+        coords = self._coords
+        try:
+            defined = i in coords and j in coords and i != j
+        except TypeError:
+            defined = False
+        if not defined:
+            self._two_nodes(where, i, j)
+        # the checks of _real, made inline for floats (else by _real, in the same order)
+        if not (type(E) is float and type(A) is float and type(I) is float
+                and 0.0 < E < _INF and 0.0 < A < _INF and 0.0 < I < _INF):
+            E, A, I = _real(where, "E", E, ">0"), _real(where, "A", A, ">0"), _real(where, "I", I, ">0")
+        if not (type(axial_strain) is float and type(curvature) is float
+                and _isfinite(axial_strain) and _isfinite(curvature)):
+            axial_strain, curvature = _real(where, "axial_strain", axial_strain), _real(where, "curvature", curvature)
+        element = el.beam(name, i, coords[i], j, coords[j], E=E, A=A, I=I, axial_strain=axial_strain,
+                          curvature=curvature)
         if rho is not None:
-            half = _real(where, "rho", rho, ">=0") * A * el.chord(where, i, self._coords[i], j, self._coords[j])[0] / 2
+            half = _real(where, "rho", rho, ">=0") * A * el.chord(where, i, coords[i], j, coords[j])[0] / 2
             for node in (i, j):
                 self.mass(node, half)
         self._beams[name] = element
-        self._add(element)
+        self._elements.append(element)
+        self._names.add(name)
 
     def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
         """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
@@ -731,7 +762,7 @@ class Frame2D(_Frame):
         contact = dict(k=_real(where, "k", k, ">0"), c=_real(where, "c", c, ">=0"), theta=-_real(where, "gap", gap))
         capacity = _real(where, "capacity", capacity, ">=0")
         if friction is None:
-            return el.directional(name, kind, i, j, terms, unknowns=(el.Unknown(name, 0, 1.0, capacity),), **contact)
+            return el.directional(name, kind, i, j, terms, unknowns=(el.contact_unknown(name, capacity),), **contact)
         mu, kt, ct = friction
         return el.frictional(name, kind, i, j, terms, kt=kt, ct=ct, mu=mu, capacity=capacity, **contact)
 
@@ -860,7 +891,7 @@ class Structure:
             return to_foundation_model(self)
         nat = self.natural
         model = Model.from_natural(
-            nat.G, nat.E, nat.B, M=self.M, A=nat.A, r=nat.r,
+            nat.G, nat.E, nat.B, M=self.M, A=_nonzero_interaction(nat.A, np.shape(nat.B)[1]), r=nat.r,
             theta=nat.theta(0.0),                   # the builder's imposed strains are constant
             C=self.C, E_v=nat.E_v, dof_names=self.dofs.names,
             constraint_names=list(self.constraint_names), families=self.families(),
@@ -1110,31 +1141,215 @@ def modal_damping_matrix(K, M, zeta, modes=None) -> np.ndarray:
 
 
 def _compatibility(elements, dofs: DofMap) -> sp.csr_matrix:
-    """``G = T^T L^T`` (n, ne) with ``e = L u_full`` the elements' strains of the nodal DOFs."""
-    rows, cols, vals = [], [], []
+    """``G = T^T L^T`` (n, ne) with ``e = L u_full`` the elements' strains of the nodal DOFs.
+
+    The entries of ``L^T`` are gathered per group of elements of one shape of ``a`` (a beam's
+    (3, 6), a soil spring's (1, 1), ...): one array operation per group, not per element.
+    """
+    full = dofs.T.shape[0]
+    if not elements:
+        return (dofs.T.T @ sp.csr_matrix((full, 0))).tocsr()
+    at = _full_rows(elements, dofs)
+    if len(elements) <= SMALL_ASSEMBLY:
+        L = _rows_of_blocks([e.a for e in elements], at.tolist(), full)
+    else:
+        L = _rows_of_groups(elements, at, full)
+    if not L.has_canonical_format:
+        L.sum_duplicates()
+    return (dofs.T.T @ L.T).tocsr()     # (L^T in CSC: L's own arrays, as T^T's CSC product takes them)
+
+
+#: Up to this many elements (or blocks) the builder's sparse matrices are gathered by a loop in
+#: Python, which costs less than the array operations by groups on so few.
+SMALL_ASSEMBLY = 64
+
+
+def _rows_of_blocks(blocks, columns, width) -> sp.csr_matrix:
+    """The CSR matrix (sum of the blocks' rows, width) whose rows are those of the 2-D ``blocks``
+    one after the other, block ``p`` on the columns ``columns[c_p:c_p + d_p]`` (``c_p`` the sum of
+    the widths ``d`` of the blocks before), explicit zeros kept."""
+    indptr, indices, data = [0], [], []
     start = 0
+    for block in blocks:
+        values = block.tolist()
+        d = block.shape[1]
+        where = columns[start:start + d]
+        for row in values:
+            indices += where
+            data += row
+            indptr.append(len(indices))
+        start += d
+    return sp.csr_matrix((np.array(data, dtype=float), np.array(indices, dtype=np.intp),
+                          np.array(indptr, dtype=np.intp)), shape=(len(indptr) - 1, width))
+
+
+def _rows_of_groups(elements, at, full) -> sp.csr_matrix:
+    """``L`` (ne, full) of :func:`_compatibility`, gathered per group of elements of one shape of ``a``."""
+    blocks = [e.a for e in elements]
+    shapes = np.fromiter(chain.from_iterable(map(_shape_of, blocks)), dtype=np.intp,
+                         count=2 * len(blocks)).reshape(-1, 2)
+    # L (ne, full) row by row: strain row i of an element of shape (k, d) holds row i of its ``a``
+    # on the columns of its DOFs; then L^T = the transpose, summed and sorted as a COO's would be
+    sizes = shapes[:, 0] * shapes[:, 1]
+    entry_start, dof_start = _exclusive_cumsum(sizes), _exclusive_cumsum(shapes[:, 1])
+    nnz = int(sizes.sum())
+    indices = np.empty(nnz, dtype=np.intp)
+    data = np.empty(nnz)
+    per_row = np.empty(int(shapes[:, 0].sum()), dtype=np.intp)
+    strain_start = _exclusive_cumsum(shapes[:, 0])
+    for (k, d), members in _groups(shapes):
+        count = members.size
+        where = np.add.outer(entry_start[members], np.arange(k * d))                       # (count, k d)
+        index = at[np.add.outer(dof_start[members], np.arange(d))]                         # (count, d)
+        indices[where] = np.broadcast_to(index[:, None, :], (count, k, d)).reshape(count, k * d)
+        data[where] = _stacked([blocks[p] for p in members.tolist()]).reshape(count, k * d)
+        per_row[np.add.outer(strain_start[members], np.arange(k))] = d
+    indptr = np.zeros(per_row.size + 1, dtype=np.intp)
+    np.cumsum(per_row, out=indptr[1:])
+    return sp.csr_matrix((data, indices, indptr), shape=(per_row.size, full))
+
+
+_shape_of = operator.attrgetter("shape")
+
+
+def _exclusive_cumsum(sizes) -> np.ndarray:
+    """``[0, s0, s0 + s1, ...]`` without the total: where each block starts."""
+    out = np.zeros(len(sizes), dtype=np.intp)
+    np.cumsum(sizes[:-1], out=out[1:])
+    return out
+
+
+def _groups(keys):
+    """``(key, members)`` of the rows of ``keys`` (count, w) ints >= 0 that are equal, in the order of
+    their first occurrence; ``members`` the indices of the rows (ascending)."""
+    if len(keys) <= 64:                 # a few elements: a dict costs less than the array operations
+        found: dict = {}
+        for p, key in enumerate(map(tuple, keys.tolist())):
+            found.setdefault(key, []).append(p)
+        return [(key, np.array(members, dtype=np.intp)) for key, members in found.items()]
+    width = keys.max(axis=0) + 1
+    code = np.ravel_multi_index(tuple(keys.T), tuple(width)) if keys.shape[1] > 1 else keys[:, 0]
+    _, first, inverse = np.unique(code, return_index=True, return_inverse=True)
+    order = np.argsort(inverse, kind="stable")
+    bounds = np.searchsorted(inverse[order], np.arange(first.size + 1))
+    groups = [(first[g], order[bounds[g]:bounds[g + 1]]) for g in range(first.size)]
+    groups.sort(key=lambda item: item[0])
+    return [(tuple(int(x) for x in keys[at]), members) for at, members in groups]
+
+
+def _stacked(blocks) -> np.ndarray:
+    """The entries of the equally shaped 2-D ``blocks``, one after the other, as floats
+    (``np.asarray(blocks, dtype=float).ravel()``)."""
+    return np.concatenate(blocks).astype(float, copy=False).ravel()
+
+
+def _full_rows(elements, dofs: DofMap) -> np.ndarray:
+    """The rows in ``u_full`` of the DOFs of every element, one after the other
+    (:meth:`DofMap.full_index` of each)."""
+    width, position = len(dofs.dof_names), dofs._position
+    offset = {dof: d for d, dof in enumerate(dofs.dof_names)}
+    try:
+        return np.array([width * position[node] + offset[dof] for e in elements for node, dof in e.dofs],
+                        dtype=np.intp)
+    except (KeyError, TypeError):
+        return np.array([dofs.full_index(node, dof) for e in elements for node, dof in e.dofs], dtype=np.intp)
+
+
+def _strain_names(elements) -> tuple:
+    """The names of the elements' strains, one after the other (their ``strain_labels``)."""
+    names = []
     for e in elements:
-        k, d = e.a.shape
-        rows.append(np.tile([dofs.full_index(node, dof) for node, dof in e.dofs], k))
-        cols.append(np.repeat(np.arange(start, start + k), d))
-        vals.append(e.a.ravel())
-        start += k
-    Lt = _coo(rows, cols, vals, (dofs.T.shape[0], start))
-    return (dofs.T.T @ Lt).tocsr()
+        name = e.name
+        if e.kind == "beam" and type(e) is el.Element and type(name) is str:
+            names += (name + ".axial", name + ".rot_i", name + ".rot_j")
+        else:
+            names += e.strain_labels
+    return tuple(names)
+
+
+def _lumped_mass(dofs, nodal_mass) -> sp.csr_matrix:
+    """``M = (T^T diag(m) T).tocsr()`` of the lumped masses ``nodal_mass`` (n_nodes, 3).
+
+    Without rigid links ``T`` picks the free rows of ``u_full`` (one 1 per column, at most one per
+    row): ``M`` is then the diagonal of the masses of the free DOFs, the zero ones not stored (as
+    the product stores no zero), made directly; with links, the product."""
+    if type(dofs) is DofMap and not dofs.masters and nodal_mass.dtype == np.float64:
+        n = dofs.n
+        d = nodal_mass.ravel()[dofs._free_rows]
+        if np.all(d >= 0):
+            stored = d != 0
+            indptr = np.zeros(n + 1, dtype=np.intp)
+            np.cumsum(stored, out=indptr[1:])
+            return sp.csr_matrix((d[stored], np.flatnonzero(stored), indptr), shape=(n, n))
+    d = nodal_mass.ravel()
+    if nodal_mass.dtype == np.float64 and np.all(d >= 0):
+        # T^T @ sp.diags(d) converts the diagonal to CSC (dropping its zeros): made so here
+        stored = d != 0
+        indptr = np.zeros(d.size + 1, dtype=np.intp)
+        np.cumsum(stored, out=indptr[1:])
+        D = sp.csc_matrix((d[stored], np.flatnonzero(stored), indptr), shape=(d.size, d.size))
+        return (dofs.T.T @ D @ dofs.T).tocsr()
+    return (dofs.T.T @ sp.diags(nodal_mass.ravel()) @ dofs.T).tocsr()
+
+
+def _nodal_mass(masses, dofs) -> np.ndarray:
+    """``(n_nodes, len(dofs.dof_names))`` lumped masses of the nodes of ``dofs`` (zero without one)."""
+    width = len(dofs.dof_names)
+    zero = np.zeros(width)
+    per_node = [masses.get(node, zero) for node in dofs.nodes]
+    if per_node and {(type(x), x.shape, x.dtype) for x in masses.values()} <= {(np.ndarray, (width,), zero.dtype)}:
+        return np.concatenate(per_node).reshape(len(per_node), width)    # (the same rows as np.array's)
+    return np.array(per_node)
 
 
 def _block_diagonal(blocks) -> sp.csr_matrix:
-    """Sparse block-diagonal matrix of small dense blocks."""
-    rows, cols, vals = [], [], []
+    """Sparse block-diagonal matrix of small dense blocks (grouped by size: one array operation per
+    size, not per block)."""
+    if not blocks:
+        return _coo([], [], [], (0, 0))
+    if len(blocks) <= SMALL_ASSEMBLY and all(block.ndim == 2 for block in blocks):
+        columns = list(range(sum(len(block) for block in blocks)))
+        E = _rows_of_blocks(blocks, columns, len(columns))
+        if E.shape[0] == len(columns):
+            return E
+    sizes = np.fromiter(map(len, blocks), dtype=np.intp, count=len(blocks))
+    starts, entry_start = _exclusive_cumsum(sizes), _exclusive_cumsum(sizes * sizes)
+    total, nnz = int(sizes.sum()), int((sizes * sizes).sum())
+    # row by row (CSR): row i of a block of size k starting at s holds its row i on columns s .. s + k - 1
+    indices = np.empty(nnz, dtype=np.intp)
+    data = np.empty(nnz)
+    per_row = np.empty(total, dtype=np.intp)
+    for (k,), members in _groups(sizes[:, None]):
+        count = members.size
+        where = np.add.outer(entry_start[members], np.arange(k * k))                       # (count, k k)
+        idx = np.add.outer(starts[members], np.arange(k))                                  # (count, k)
+        indices[where] = np.broadcast_to(idx[:, None, :], (count, k, k)).reshape(count, k * k)
+        data[where] = _stacked([blocks[p] for p in members.tolist()]).reshape(count, k * k)
+        per_row[idx] = k
+    indptr = np.zeros(total + 1, dtype=np.intp)
+    np.cumsum(per_row, out=indptr[1:])
+    return sp.csr_matrix((data, indices, indptr), shape=(total, total))
+
+
+def _interaction(elements, m) -> np.ndarray:
+    """``A`` (m, m): the elements' interactions of their unknowns on the diagonal (zero without
+    hardening)."""
+    A = np.zeros((m, m))
     start = 0
-    for block in blocks:
-        k = block.shape[0]
-        idx = np.arange(start, start + k)
-        rows.append(np.repeat(idx, k))
-        cols.append(np.tile(idx, k))
-        vals.append(block.ravel())
-        start += k
-    return _coo(rows, cols, vals, (start, start))
+    for e in elements:
+        u = len(e.unknowns)
+        if u and e.A is not None:
+            A[start:start + u, start:start + u] = e.A
+        start += u
+    return A
+
+
+def _nonzero_interaction(A, m):
+    """``A``, or None if it is a zero float array of shape ``(m, m)`` (which
+    :meth:`Model.from_natural` then makes itself, without copying or checking a zero matrix)."""
+    if type(A) is np.ndarray and A.dtype == np.float64 and A.shape == (m, m) and not A.any():
+        return None
+    return A
 
 
 def _coo(rows, cols, vals, shape) -> sp.csr_matrix:
@@ -1163,6 +1378,11 @@ def _check_stiffness(K, dofs: DofMap, exempt=frozenset()) -> None:
 
 def _real(where, arg, value, bound=None) -> float:
     """``float(value)``, finite, and ``> 0`` (bound ``">0"``) or ``>= 0`` (``">=0"``)."""
+    kind = type(value)
+    if kind is float or kind is int:            # the common case, checked without the ABCs
+        x = float(value)
+        if _isfinite(x) and (bound is None or (x > 0 if bound == ">0" else x >= 0 if bound == ">=0" else True)):
+            return x
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"{where}: {arg} must be a real number, got {value!r}")
     x = float(value)
@@ -1177,6 +1397,8 @@ def _real(where, arg, value, bound=None) -> float:
 
 def _friction(where, mu, kt, ct):
     """``(mu, kt, ct)`` of a contact with Coulomb friction, or None without ``mu``."""
+    if mu is None and kt is None and (ct is None or (type(ct) is float and ct == 0.0)):
+        return None
     if mu is None:
         extra = [arg for arg, value in (("kt", kt), ("ct", ct)) if value is not None and value != 0.0]
         if extra:
