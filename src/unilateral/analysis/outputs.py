@@ -455,8 +455,8 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
     energy balance (``energy_*``), and their peaks."""
     from ..structure import forces3d as F3
     from .inelastic import Inelastic
-    from .results import (_abs_peak, _energy_keys, _extreme, _kind, _put, acceleration_peaks, acceleration_results,
-                          bilateral_modes, energy_peaks, energy_results, ground_motions_of)
+    from .results import (_abs_peak, _energy_keys, _extreme, _put, acceleration_peaks, acceleration_results,
+                          bilateral_modes, element_end_forces, energy_peaks, energy_results, ground_motions_of)
 
     units = units or {}
     force, length, time = units.get("force", ""), units.get("length", ""), units.get("time", "")
@@ -479,11 +479,7 @@ def _structure_results_3d(structure, model, cases, *, load, units, rule, point, 
         acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
         _node_accelerations(variables, structure, h, motions, case=case, unit=acc_unit)
         ends = F3.end_forces(structure, h)
-        names = list(ends)
-        coords["element"] = names
-        coords["element_kind"] = ("element", [_kind(structure, name) for name in names])
-        coords["end_component"] = list(F3.END_COMPONENTS)
-        end = np.stack([ends[name] for name in names], axis=1)
+        end = element_end_forces(coords, structure, ends, F3.END_COMPONENTS)
         _put(variables, "end_force", ("time", "element", "end_component"), case, end,
              "end forces and moments on the element in its local axes x' (i->j), y', z' (N, Vy, Vz along them; T, "
              "My, Mz about them, right-hand positive)", f"{force} (N, V); {moment} (T, M)".strip())

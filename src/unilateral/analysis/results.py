@@ -146,11 +146,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         t = h.t
         acceleration_results(variables, coords, structure, h, ground_motions, case=case, unit=acc_unit)
         ends = F.end_forces(structure, h)
-        names = list(ends)
-        coords["element"] = names
-        coords["element_kind"] = ("element", [_kind(structure, name) for name in names])
-        coords["end_component"] = list(F.END_COMPONENTS)
-        end = np.stack([ends[name] for name in names], axis=1)
+        end = element_end_forces(coords, structure, ends, F.END_COMPONENTS)
         put("end_force", ("time", "element", "end_component"), case, end,
             "end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
             f"{Fu} (N, V); {moment_unit} (M)".strip())
@@ -304,6 +300,17 @@ def _energy_keys(structure) -> tuple:
     """:data:`ENERGY_KEYS` without the plastic and friction work of families the structure lacks."""
     kinds = set(unknown_kinds(structure).tolist()) if structure.m else set()
     return tuple(key for key in ENERGY_KEYS if key not in FAMILY_ENERGY or FAMILY_ENERGY[key] in kinds)
+
+
+def element_end_forces(coords, structure, ends, components) -> np.ndarray:
+    """The end forces ``ends`` (element name -> (N+1, c)) as one array (N+1, elements, c), with the
+    coordinates ``element``, ``element_kind`` and ``end_component`` (``components``) set in ``coords``
+    (2-D and 3-D frames alike)."""
+    names = list(ends)
+    coords["element"] = names
+    coords["element_kind"] = ("element", [_kind(structure, name) for name in names])
+    coords["end_component"] = list(components)
+    return np.stack([ends[name] for name in names], axis=1)
 
 
 def _kind(structure, name):
