@@ -9,8 +9,10 @@ from the left end at 40 m/s (shared linearly between the two nodes of the elemen
 :func:`unilateral.structure.winkler_beam`), so that parts of the beam lift off and land again.
 ``n = 3 nodes - 1`` DOFs. It is built twice:
 
-* with :class:`unilateral.structure.Frame2D` (``Frame2D.soil``: the separations are the
-  unknowns of one LCP per step) and solved by ``method="auto"`` and ``method="direct"`` with the
+* with :class:`unilateral.structure.Frame2D`, its nodes, beams, masses and soil springs given as
+  arrays (``Frame2D.nodes``, ``beams``, ``masses``, ``soils``: the elements of a loop of
+  ``Frame2D.beam``... without a Python call per element; the separations are the unknowns of one
+  LCP per step) and solved by ``method="auto"`` and ``method="direct"`` with the
   trapezoidal rule (Newmark's average acceleration) on point samples of the load;
 * in OpenSees (``elasticBeamColumn``, ``zeroLength`` elements of an ``ENT`` material, elastic
   no-tension, from a fixed ground node to the beam node in ``uy``: compression when the beam
@@ -191,15 +193,13 @@ def frame2d(spec):
     """The :class:`~unilateral.structure.Structure`, the load ``q(t)`` and the middle node."""
     from unilateral.structure import Frame2D
 
-    fr = Frame2D()
-    for i, x in enumerate(x_of(spec)):
-        fr.node(i, float(x), 0.0)
-    for i in range(spec.nodes - 1):
-        fr.beam(f"b{i}", i, i + 1, E=1.0, A=spec.EA, I=spec.EI)
-    for i, mass in enumerate(masses(spec)):
-        fr.mass(i, float(mass))
-    for node, k in zip(*springs(spec)):
-        fr.soil(f"s{node}", int(node), float(k))
+    fr = Frame2D()                  # the nodes and elements from arrays (a loop of fr.beam(...): the same model)
+    nodes = np.arange(spec.nodes)
+    fr.nodes(nodes, x_of(spec), 0.0)
+    fr.beams([f"b{i}" for i in range(spec.nodes - 1)], nodes[:-1], nodes[1:], E=1.0, A=spec.EA, I=spec.EI)
+    fr.masses(nodes, masses(spec))
+    on_soil, k = springs(spec)
+    fr.soils([f"s{node}" for node in on_soil], on_soil, k)
     fr.support(0, ux=True, uy=False)
     fr.rayleigh(spec.a0, 0.0)
     st = fr.build()

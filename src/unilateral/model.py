@@ -410,6 +410,16 @@ def _check_definite(name, A, *, strict):
         return
     if not strict:
         return           # a sparse M with massless DOFs has no LDL^T; its diagonal was checked
+    banded = _banded_upper(A)
+    if banded is not None:
+        import scipy.linalg as sla
+
+        try:
+            sla.cholesky_banded(banded, overwrite_ab=True, check_finite=False)
+        except sla.LinAlgError as exc:
+            raise ValueError(f"{name} must be symmetric {need}; its Cholesky factorisation fails: the "
+                             f"{exc} (an unstable or indefinite structure)") from None
+        return
     import scipy.sparse.linalg as spla
     try:
         lu = spla.splu(sp.csc_matrix(A), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
@@ -420,6 +430,30 @@ def _check_definite(name, A, *, strict):
     if np.any(d <= 0):
         raise ValueError(f"{name} must be symmetric {need}; its LDL^T factorisation has {int(np.sum(d <= 0))} "
                          "nonpositive pivots (an unstable or indefinite structure)")
+
+
+#: A sparse matrix whose nonzeros lie within this many diagonals of the main one is checked for
+#: definiteness by a banded Cholesky factorisation (``n b^2`` operations, no ordering): a beam or a
+#: chain of elements numbered along it.
+DEFINITENESS_BANDED_MAX = 16
+
+
+def _banded_upper(A):
+    """The upper band of the sparse symmetric ``A`` in LAPACK's storage ``(b + 1, n)`` (row ``b`` the
+    diagonal), or None if its half-bandwidth ``b`` exceeds :data:`DEFINITENESS_BANDED_MAX`."""
+    A = A.tocsr() if A.format != "csr" else A
+    if not A.has_canonical_format:
+        return None
+    n = A.shape[0]
+    rows = np.repeat(np.arange(n), np.diff(A.indptr))
+    offset = A.indices - rows                                    # column - row
+    if offset.size == 0 or np.abs(offset).max() > DEFINITENESS_BANDED_MAX:
+        return None
+    b = int(offset.max(initial=0))
+    upper = offset >= 0
+    band = np.zeros((b + 1, n))
+    band[b - offset[upper], A.indices[upper]] = A.data[upper]
+    return band
 
 
 def _check_diagonal_nonnegative(name, A, *, strict=False):

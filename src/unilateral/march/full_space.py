@@ -327,7 +327,8 @@ def _pairs(env, cols, m):
     pair_ptr = np.zeros(m + 1, dtype=np.int64)
     np.cumsum(np.bincount(col[e], minlength=m), out=pair_ptr[1:])
     row0 = np.full(m, env.n, dtype=np.int64)
-    np.minimum.at(row0, col, indices)
+    held = counts > 0                                   # the columns with an entry: their least row
+    row0[held] = np.minimum.reduceat(indices, indptr[:-1][held])
     return (pair_ptr, env.position(indices[e], indices[f]).astype(np.int64), data[e] * data[f], row0)
 
 

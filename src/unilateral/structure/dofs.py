@@ -98,7 +98,8 @@ class DofMap:
     @property
     def names(self) -> list[str]:
         """DOF names ``"node.dof"``, e.g. ``"3.uy"``."""
-        return [f"{node}.{dof}" for node, dof in self.free]
+        prefix = {node: f"{node}." for node in self.nodes}
+        return [prefix[node] + dof for node, dof in self.free]
 
     def full_index(self, node: Hashable, dof: str) -> int:
         """Row of nodal DOF ``dof`` of ``node`` in ``u_full``."""

@@ -181,12 +181,12 @@ def contact_unknown(name, r=0.0) -> Unknown:
     return unknown
 
 
-def _element(name, kind, dofs, a, E, theta, **optional) -> Element:
-    """``Element(name, kind, dofs, a, E, theta, **optional)``, made without the frozen dataclass's
-    ``__setattr__`` per field (the builder makes thousands): the same fields, defaults and object."""
+def _element(name, kind, dofs, a, E, theta, *, E_v=None, unknowns=(), A=None) -> Element:
+    """``Element(name, kind, dofs, a, E, theta, E_v, unknowns, A)``, made without the frozen
+    dataclass's ``__setattr__`` per field (the builder makes thousands): the same fields, defaults
+    and object."""
     element = object.__new__(Element)
-    element.__dict__.update(name=name, kind=kind, dofs=dofs, a=a, E=E, theta=theta, E_v=None, unknowns=(), A=None)
-    element.__dict__.update(optional)
+    element.__dict__.update(name=name, kind=kind, dofs=dofs, a=a, E=E, theta=theta, E_v=E_v, unknowns=unknowns, A=A)
     return element
 
 

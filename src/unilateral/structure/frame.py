@@ -24,7 +24,7 @@ import numbers
 import operator
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, replace
-from itertools import accumulate, chain
+from itertools import accumulate, chain, compress
 
 import numpy as np
 import scipy.sparse as sp
@@ -32,7 +32,7 @@ import scipy.sparse as sp
 from ..loads.units import STANDARD_GRAVITY
 from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
-from . import elements as el
+from . import bulk, elements as el
 from .dofs import DofMap, csr_of_entries, node_list
 
 _isfinite = math.isfinite
@@ -225,7 +225,8 @@ class _Frame(ABC):
             constraint_names=tuple(u.name for _, u in columns),
             constraint_strains=rows, nodal_mass=nodal_mass,
             elements=tuple(elements), dashpots=tuple(self._dashpots),
-            coords={node: x.copy() for node, x in self._coords.items()}, rayleigh=self._rayleigh,
+            coords=dict(zip(self._coords, np.array(list(self._coords.values())))),      # (copies)
+            rayleigh=self._rayleigh,
         )
 
     # ------------------------------------------------------------------ plasticity and friction
@@ -407,6 +408,14 @@ class Frame2D(_Frame):
             return
         self._define_node(node_id, (x, y))
 
+    def nodes(self, ids, x, y) -> None:
+        """Many nodes at once: :meth:`node` ``(ids[k], x[k], y[k])`` for every row ``k``.
+
+        ``ids`` (n,) ints or strs; ``x``, ``y`` (n,) or one number for all. All rows are checked
+        before any node is added (a call that fails adds none); see :mod:`.bulk`.
+        """
+        bulk.add_nodes(self, ids, x, y)
+
     def support(self, node, ux=True, uy=True, rz=False) -> None:
         """Restrain DOFs of ``node`` (True = restrained); restrained DOFs are removed from ``u``."""
         where, flags = self._support_flags(node, (ux, uy, rz))
@@ -439,6 +448,12 @@ class Frame2D(_Frame):
         before = self._mass.get(node)
         # 0.0 + x: the sum of the first call with a zero array, as later calls add to the sum
         self._mass[node] = np.array([0.0 + m, 0.0 + m, 0.0 + J]) if before is None else before + np.array([m, m, J])
+
+    def masses(self, nodes, m, *, J=0.0) -> None:
+        """Many lumped masses at once: :meth:`mass` ``(nodes[k], m[k], J=J[k])`` for every row ``k``
+        (``m``, ``J``: (n,) or one number for all; a node given twice gets the sum). All rows are
+        checked before any mass is added."""
+        bulk.add_masses(self, nodes, m, J=J)
 
     # The damping of :class:`_Frame`, listed as this class's own: the API reference documents those only.
     rayleigh = _Frame.rayleigh
@@ -506,6 +521,16 @@ class Frame2D(_Frame):
         self._elements.append(element)
         self._names.add(name)
 
+    def beams(self, names, i, j, E, A, I, *, axial_strain=0.0, curvature=0.0) -> None:
+        """Many beam-columns at once: :meth:`beam` ``(names[k], i[k], j[k], E[k], A[k], I[k], ...)``
+        for every row ``k``: the same elements, without a Python call per beam.
+
+        ``names``, ``i``, ``j`` (n,); ``E``, ``A``, ``I``, ``axial_strain``, ``curvature`` (n,) or
+        one number for all (a beam's own mass: :meth:`masses`). All rows are checked before any
+        beam is added (a call that fails adds none); the message names the argument and the row.
+        """
+        bulk.add_beams(self, names, i, j, E=E, A=A, I=I, axial_strain=axial_strain, curvature=curvature)
+
     def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
         """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
         where = self._label("bar", name)
@@ -559,6 +584,13 @@ class Frame2D(_Frame):
         self._node(where, "node", node)
         self._add(self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap,
                                 capacity=capacity, friction=_friction(where, mu, kt, ct)))
+
+    def soils(self, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy") -> None:
+        """Many tensionless soil elements at once: :meth:`soil` ``(names[k], nodes[k], k[k], c=c[k],
+        gap=gap[k], capacity=capacity[k], direction=direction)`` for every row (the numbers: (n,) or
+        one for all; one ``direction``; without friction: contacts with friction by :meth:`soil`).
+        All rows are checked before any element is added."""
+        bulk.add_soils(self, names, nodes, k, c=c, gap=gap, capacity=capacity, direction=direction)
 
     def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None, mu=None, kt=None, ct=0.0) -> None:
         """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
@@ -727,7 +759,8 @@ class Frame2D(_Frame):
         if not self._coords:
             raise ValueError("the frame has no nodes; add nodes with Frame2D.node()")
         everything = self._elements + self._dashpots
-        rotated = {node for e in everything for node, dof in e.dofs if dof == "rz"}
+        nodes, names = _node_and_dof_columns(everything)
+        rotated = set(compress(nodes, map("rz".__eq__, names)))
         rotated |= {node for node, mass in self._mass.items() if mass[2] > 0}
         for footing in self._foundations:
             if footing.rigid and footing.m > 1:
@@ -1248,11 +1281,22 @@ def _full_rows(elements, dofs: DofMap) -> np.ndarray:
     (:meth:`DofMap.full_index` of each)."""
     width, position = len(dofs.dof_names), dofs._position
     offset = {dof: d for d, dof in enumerate(dofs.dof_names)}
+    nodes, names = _node_and_dof_columns(elements)
     try:
-        return np.array([width * position[node] + offset[dof] for e in elements for node, dof in e.dofs],
-                        dtype=np.intp)
+        return (width * np.fromiter(map(position.__getitem__, nodes), dtype=np.intp, count=len(nodes))
+                + np.fromiter(map(offset.__getitem__, names), dtype=np.intp, count=len(names)))
     except (KeyError, TypeError):
         return np.array([dofs.full_index(node, dof) for e in elements for node, dof in e.dofs], dtype=np.intp)
+
+
+_FIRST, _SECOND = operator.itemgetter(0), operator.itemgetter(1)
+
+
+def _node_and_dof_columns(elements) -> tuple[list, list]:
+    """The nodes and the DOF names of the ``(node, dof)`` pairs of every element, one after the
+    other: two lists (gathered by the interpreter's iterators, not a loop of Python code)."""
+    pairs = list(chain.from_iterable([e.dofs for e in elements]))
+    return list(map(_FIRST, pairs)), list(map(_SECOND, pairs))
 
 
 def _strain_names(elements) -> tuple:
