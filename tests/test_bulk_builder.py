@@ -121,10 +121,13 @@ def test_numpy_integer_ids_and_one_number_for_all():
     fr.nodes(nodes, np.linspace(0.0, 4.0, 5), 0.0)
     fr.beams([f"b{k}" for k in range(4)], nodes[:-1], nodes[1:], E=1.0, A=2.0, I=3.0)
     fr.masses(nodes, 1.5)
-    assert all(type(node) is int for node in fr._coords)
+    fr.nodes(np.array(["p", "q"]), [9.0, 10.0], [1.0, 1.0])               # numpy strings: plain strs
+    fr.beams(np.array(["bp"]), np.array(["p"]), ["q"], E=1.0, A=2.0, I=3.0)
+    assert all(type(node) in (int, str) for node in fr._coords) and type(fr._elements[-1].name) is str
+    assert fr._elements[-1].dofs[0] == ("p", "ux") and type(fr._elements[-1].dofs[0][0]) is str
     st = fr.build()
     assert st.dofs.free[0] == (0, "ux") and type(st.dofs.free[0][0]) is int
-    np.testing.assert_array_equal(st.nodal_mass[:, :2], 1.5)
+    np.testing.assert_array_equal(st.nodal_mass[:5, :2], 1.5)
 
 
 def snapshot(fr):

@@ -30,7 +30,9 @@ def ids(where, arg, values) -> list:
     for k, value in enumerate(out):
         if isinstance(value, numbers.Integral) and not isinstance(value, bool):
             out[k] = int(value)
-        elif not isinstance(value, str):
+        elif isinstance(value, str):
+            out[k] = str(value)                         # (a numpy string: the plain str)
+        else:
             raise TypeError(f"{where}: {arg}[{k}] = {value!r} must be an int or a str")
     return out
 
@@ -72,6 +74,7 @@ def check_names(where, names, used, size) -> list:
     for k, name in enumerate(names):
         if not isinstance(name, str) or not name:
             raise TypeError(f"{where}: names[{k}] must be a non-empty str, got {name!r}")
+        names[k] = str(name)                            # (a numpy string: the plain str)
     if len(set(names)) != size or not used.isdisjoint(names):
         seen = set()
         for k, name in enumerate(names):
