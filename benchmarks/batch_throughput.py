@@ -1,6 +1,7 @@
 """Throughput of studies: analyses per second of the IDA example, in process vs on Dask workers.
 
     python benchmarks/batch_throughput.py [--workers 2] [--out results.json] [--study examples/ida.toml]
+                                          [--analyses K] [--ceiling-rounds 3]
 
 Measures, for the 100 analyses of ``examples/ida.toml`` (the rocking tower under 10 records at
 10 levels of Sa(T1)):
@@ -166,12 +167,21 @@ def main(argv=None):
     parser.add_argument("--study", type=Path, default=ROOT / "examples" / "ida.toml")
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--out", type=Path, default=None, help="JSON file (default: in a temporary folder)")
+    parser.add_argument("--analyses", type=int, default=None,
+                        help="only the first K analyses of the study (a smoke test: 2); default all")
+    parser.add_argument("--ceiling-rounds", type=int, default=3, help="pairs of runs of the machine's ceiling")
     args = parser.parse_args(argv)
+    if args.analyses is not None and args.analyses < 1:
+        parser.error(f"--analyses {args.analyses}: give at least 1")
+
+    from dataclasses import replace
 
     from unilateral.batch import load_study
     from unilateral.batch.inputs import study_inputs
 
     study = load_study(args.study)
+    if args.analyses is not None:
+        study = replace(study, analyses=study.analyses[:args.analyses])
     inputs = study_inputs(study.analyses)
     folder = Path(tempfile.mkdtemp(prefix="unilateral-batch-bench-"))
     load_before = _loadavg()
@@ -179,7 +189,7 @@ def main(argv=None):
     tasks, whole = dask(study, inputs, folder, args.workers)
     rows.append(tasks)
     load_after = _loadavg()
-    machine = ceiling(args.workers)
+    machine = ceiling(args.workers, max(1, args.ceiling_rounds))
     plain = rows[0]["per_second"]
     efficiency = rows[2]["per_second"] / (args.workers * rows[1]["per_second"])
     report = {"study": str(args.study), "analyses": len(study.analyses), "cpu_count": os.cpu_count(),

@@ -219,6 +219,7 @@ def test_the_banded_definiteness_check_decides_as_the_inertia(b):
     eig = np.linalg.eigvalsh(A.toarray())
     shifted = (A - sp.identity(60) * (eig[0] + 0.5 * (eig[1] - eig[0]))).tocsr()   # one eigenvalue < 0
     assert np.sum(np.linalg.eigvalsh(shifted.toarray()) < 0) == 1
-    expected = "Cholesky factorisation fails" if b <= DEFINITENESS_BANDED_MAX else "LDL\\^T factorisation has 1 nonpositive"
+    expected = ("Cholesky factorisation fails" if b <= DEFINITENESS_BANDED_MAX
+                else "LDL\\^T factorisation has 1 nonpositive")
     with pytest.raises(ValueError, match=f"^K must be symmetric positive definite; its {expected}"):
         _check_definite("K", shifted, strict=True)

@@ -49,7 +49,8 @@ class Envelope:
         self.inverse[self.perm] = np.arange(self.n)
         P = S[self.perm][:, self.perm].tocsr()
         # every row holds its diagonal: the first column of row i is the least of its columns
-        self.first = np.minimum.reduceat(P.indices, P.indptr[:-1]).astype(np.int64) if self.n else np.zeros(0, np.int64)
+        first = np.minimum.reduceat(P.indices, P.indptr[:-1]) if self.n else np.zeros(0)
+        self.first = first.astype(np.int64)
         self.ptr = np.zeros(self.n + 1, dtype=np.int64)
         np.cumsum(np.arange(self.n) - self.first + 1, out=self.ptr[1:])
 

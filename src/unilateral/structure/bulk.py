@@ -116,7 +116,8 @@ def add_beams(frame, names, i, j, *, E, A, I, axial_strain=0.0, curvature=0.0) -
         if i[k] == j[k]:
             raise ValueError(f"{where}: i[{k}] and j[{k}] are the same node {i[k]!r} (beam {names[k]!r})")
     E, A, I = reals(where, "E", E, size, ">0"), reals(where, "A", A, size, ">0"), reals(where, "I", I, size, ">0")
-    axial_strain, curvature = reals(where, "axial_strain", axial_strain, size), reals(where, "curvature", curvature, size)
+    axial_strain = reals(where, "axial_strain", axial_strain, size)
+    curvature = reals(where, "curvature", curvature, size)
     xi = np.array([coords[node] for node in i]).reshape(size, 2)
     xj = np.array([coords[node] for node in j]).reshape(size, 2)
     dx, dy = xj[:, 0] - xi[:, 0], xj[:, 1] - xi[:, 1]
