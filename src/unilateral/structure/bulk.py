@@ -126,16 +126,9 @@ def add_beams(frame, names, i, j, *, E, A, I, axial_strain=0.0, curvature=0.0) -
     if not L.all():
         k = int(np.argmin(L != 0.0))
         el._chord(("beam", names[k]), i[k], xi[k], j[k], xj[k])     # its message
-    c, s = dx / L, dy / L
-    bs, bc = s / L, c / L
-    EI = E * I
-    k4, k2 = 4 * EI / L, 2 * EI / L
-    table = np.zeros((size, 30))               # the 30 numbers of elements.beam, a row per beam
-    for column, value in enumerate((-c, -s, 0.0, c, s, 0.0,
-                                    0.0 - bs, 0.0 + bc, 1.0, 0.0 + bs, 0.0 - bc, 0.0,
-                                    0.0 - bs, 0.0 + bc, 0.0, 0.0 + bs, 0.0 - bc, 1.0,
-                                    E * A / L, 0.0, 0.0, 0.0, k4, k2, 0.0, k2, k4,
-                                    axial_strain * L, -curvature * L / 2, curvature * L / 2)):
+    table = np.empty((size, 30))               # the 30 numbers of elements.beam, a row per beam
+    numbers = el.beam_numbers(L, dx / L, dy / L, E, A, I, axial_strain=axial_strain, curvature=curvature)
+    for column, value in enumerate(numbers):
         table[:, column] = value
     a = table[:, :18].reshape(size, 3, 6)
     stiffness = table[:, 18:27].reshape(size, 3, 3)

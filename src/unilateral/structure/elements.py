@@ -227,17 +227,24 @@ def beam(name, i, xi, j, xj, *, E, A, I, axial_strain=0.0, curvature=0.0) -> Ele
     """
     L, c, s = _chord(("beam", name), i, xi, j, xj)
     dofs = ((i, "ux"), (i, "uy"), (i, "rz"), (j, "ux"), (j, "uy"), (j, "rz"))
-    bs, bc = s / L, c / L                   # beta = [bs, -bc, 0, -bs, bc, 0] . u_elem
-    EA, EI = E * A, E * I
-    k4, k2 = 4 * EI / L, 2 * EI / L
-    numbers = np.array([-c, -s, 0.0, c, s, 0.0,                                      # a (3, 6)
-                        0.0 - bs, 0.0 + bc, 1.0, 0.0 + bs, 0.0 - bc, 0.0,
-                        0.0 - bs, 0.0 + bc, 0.0, 0.0 + bs, 0.0 - bc, 1.0,
-                        EA / L, 0.0, 0.0, 0.0, k4, k2, 0.0, k2, k4,                  # stiffness (3, 3)
-                        axial_strain * L, -curvature * L / 2, curvature * L / 2])    # theta (3,)
+    numbers = np.array(beam_numbers(L, c, s, E, A, I, axial_strain=axial_strain, curvature=curvature))
     a, stiffness, theta = numbers[:18], numbers[18:27], numbers[27:]
     a.shape, stiffness.shape = (3, 6), (3, 3)                      # (views of numbers, as reshape's)
     return _element(name, "beam", dofs, a, stiffness, theta)
+
+
+def beam_numbers(L, c, s, E, A, I, *, axial_strain, curvature) -> tuple:
+    """The 30 numbers of a beam of length ``L`` and unit chord ``(c, s)``: ``a`` (3, 6), the
+    stiffness (3, 3) and ``theta`` (3,), row after row; of floats (one beam, :func:`beam`) or of
+    arrays (one entry per beam, :func:`unilateral.structure.bulk.add_beams`), the same arithmetic."""
+    bs, bc = s / L, c / L                   # beta = [bs, -bc, 0, -bs, bc, 0] . u_elem
+    EA, EI = E * A, E * I
+    k4, k2 = 4 * EI / L, 2 * EI / L
+    return (-c, -s, 0.0, c, s, 0.0,                                          # a (3, 6)
+            0.0 - bs, 0.0 + bc, 1.0, 0.0 + bs, 0.0 - bc, 0.0,
+            0.0 - bs, 0.0 + bc, 0.0, 0.0 + bs, 0.0 - bc, 1.0,
+            EA / L, 0.0, 0.0, 0.0, k4, k2, 0.0, k2, k4,                      # stiffness (3, 3)
+            axial_strain * L, -curvature * L / 2, curvature * L / 2)         # theta (3,)
 
 
 def bar(name, i, xi, j, xj, *, E, A, axial_strain=0.0) -> Element:
