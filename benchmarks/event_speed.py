@@ -80,9 +80,10 @@ class Clock:
     def __init__(self):
         from unilateral.march import event
 
-        self.march = event._March
-        names = ("_follow", "_locate", "decide", "advance", "_glide")
+        self.march, self.puller = event._March, event.EventMarch
+        names = ("_locate", "decide", "advance", "_glide")
         self.saved = {name: getattr(self.march, name) for name in names if hasattr(self.march, name)}
+        self.saved["extend"] = self.puller.extend           # the march is followed as it is pulled
         self.reset()
 
     def reset(self):
@@ -95,7 +96,7 @@ class Clock:
         def follow(self, *args):
             start = time.perf_counter()
             try:
-                return saved["_follow"](self, *args)
+                return saved["extend"](self, *args)
             finally:
                 clock.follow += time.perf_counter() - start
 
@@ -122,7 +123,7 @@ class Clock:
             clock.stretches += count
             return count, Y
 
-        self.march._follow, self.march._locate, self.march.decide = follow, locate, decide
+        self.puller.extend, self.march._locate, self.march.decide = follow, locate, decide
         self.march.advance = advance
         if "_glide" in saved:
             self.march._glide = glide
@@ -130,7 +131,7 @@ class Clock:
 
     def __exit__(self, *exc):
         for name, method in self.saved.items():
-            setattr(self.march, name, method)
+            setattr(self.puller if name == "extend" else self.march, name, method)
 
 
 def measure(name, model, load, dt, N, initial, repeat):

@@ -9,8 +9,9 @@ Entry points: :class:`Model` (matrices or the natural form), :class:`KernelModel
 ``Lambda(s)`` and ``psiL``), :class:`TimeKernelModel` (a time-domain kernel ``Lambda(t)``, e.g.
 by numerical Laplace inversion, :func:`invert_laplace`), and :func:`solve` (loads as callables,
 arrays or a :class:`LoadHistory`). Structures are built with :class:`unilateral.structure.Frame2D`
-or read from model files (:func:`unilateral.modelfile.load_model_file`); :func:`run` analyses a
-model file and writes every output, as ``unilateral run`` does.
+or read from model files (:func:`unilateral.modelfile.load_model_file`); :class:`Simulation` advances
+an analysis step by step (``step``, ``advance``, ``advance_to``, ``state``, ``solution``);
+:func:`run` analyses a model file and writes every output, as ``unilateral run`` does.
 
 The names are imported lazily, on first use: ``import unilateral`` (and the command line's
 ``--help``) does not import numpy, scipy, xarray or matplotlib.
@@ -40,9 +41,9 @@ _LAZY = {
     **dict.fromkeys(("FoundationModel", "SoilFlexibility"), "unilateral.soil"),
     **dict.fromkeys(("METHODS", "solve_time_kernel"), "unilateral.methods"),
     **dict.fromkeys(("Model", "NaturalForm"), "unilateral.model"),
-    "Solution": "unilateral.result",
+    **dict.fromkeys(("Solution", "State"), "unilateral.result"),
     **dict.fromkeys(("BDF", "HHT", "Newmark", "get_rule"), "unilateral.rules"),
-    "solve": "unilateral.solve",
+    **dict.fromkeys(("Simulation", "solve"), "unilateral.solve"),
     "run": "unilateral.analysis",
 }
 _ALIASES = {"run": "run_model_file"}

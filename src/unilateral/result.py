@@ -59,6 +59,26 @@ class Solution:
                 f"m={self.v.shape[1]}, n={None if self.u is None else self.u.shape[1]})")
 
 
+@dataclass(frozen=True)
+class State:
+    """The state of an analysis after step ``k``: what :attr:`unilateral.Simulation.state` gives.
+
+    Attributes
+    ----------
+    t : float, time ``t_k = k dt``, s
+    k : int, the step
+    u, udot : (n,) displacements and velocities, or None (kernel-only models)
+    v : (m,) unilateral deformations;  psi : (m,) constraint reactions
+    """
+
+    t: float
+    k: int
+    u: np.ndarray | None
+    udot: np.ndarray | None
+    v: np.ndarray
+    psi: np.ndarray
+
+
 def _index(kind, name, names):
     try:
         return names.index(name)

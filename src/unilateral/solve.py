@@ -1,24 +1,38 @@
-"""One entry point for dynamic analyses: :func:`solve` checks, chooses a method and calls it."""
+"""The entry point of dynamic analyses: :class:`Simulation`, advanced step by step, and :func:`solve`,
+a simulation advanced to its end.
+
+``sim = Simulation(model, load, dt=..., t_end=...)`` checks the problem, chooses the method and
+finds the initial state; ``sim.step()``, ``sim.advance(n)`` and ``sim.advance_to(t)`` perform
+steps (the shape of scipy's ``OdeSolver``); ``sim.t``, ``sim.n`` and ``sim.state`` tell where it
+is; ``sim.solution()`` is the :class:`~unilateral.result.Solution` of the steps so far. A step
+performs the operations of a whole run: stepping in any pieces gives the same solution.
+"""
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import os
+
+import numpy as np
 
 from . import _validate as V
 from .discretization import Discretization
-from .rules import alias_note
 from .kernels import KernelModel, TimeKernelModel
 from .methods import METHODS, choose_method, fallback, get_method
 from .methods.stiff import StiffCoordinates
 from .model import Model
-from .result import Solution
-from .soil.foundation_model import FoundationModel
+from .result import Solution, State
+from .rules import alias_note
 from .run_context import RunContext
+from .soil.foundation_model import FoundationModel
 
-__all__ = ["METHODS", "solve"]
+__all__ = ["METHODS", "MODEL_CLASSES", "Simulation", "solve"]
 
-#: The problems :func:`solve` takes.
+#: The problems a simulation takes.
 MODEL_CLASSES = (Model, KernelModel, TimeKernelModel, FoundationModel)
+#: A run may use at most this fraction of the machine's memory.
+MEMORY_FRACTION = 0.5
 
 
 def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="static",
@@ -78,57 +92,239 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
     -------
     Solution
     """
-    disc = Discretization.from_user(dt, t_end, rule)
-    if not isinstance(model, MODEL_CLASSES):          # the boundary: what solve() takes
-        raise TypeError(f"model must be a unilateral.Model, KernelModel, TimeKernelModel or FoundationModel, "
-                        f"got {V.describe(model)}")
     options = {name: value for name, value in (("cq", cq_options), ("modal", modal_options),
                                                ("direct", direct_options)) if value is not None}
-    if isinstance(model, TimeKernelModel) and (method != "auto" or load is not None or options
-                                               or disc.rule.name != "bdf2"):
-        raise ValueError(
-            "a TimeKernelModel is solved by product integration of its time-domain kernel: "
-            "pass only dt, t_end, initial, lcp, lcp_options, bilateral (method='auto', load=None)")
-    run = RunContext.from_user(lcp, lcp_options, bilateral, callback)
-    if run.solver.symmetric_only and not model.law.symmetric:
-        raise ValueError(f"lcp={run.solver.name!r} needs a symmetric step LCP, but the friction constraints make "
-                         "it nonsymmetric (rows +-T - mu N): use lcp='bpp' (the default) or 'lemke'")
-    stiff = StiffCoordinates.of(model)      # penalty-stiff elements: solve in separated coordinates
-    if stiff is not None:
-        model, load, initial = stiff.conditioned, stiff.load(load, disc.N), stiff.initial(initial)
-    auto = isinstance(method, str) and method.lower() == "auto"
-    if auto:
-        chosen, reason = choose_method(model, disc.rule, run.solver, options)
-    else:
-        chosen = get_method(method)
-        for name, value in options.items():
-            if name != chosen.name:
-                raise ValueError(f"{name}_options apply to method={name!r} only (method={chosen.name!r})")
-            chosen = type(chosen)(**value)
-    chosen.check(model, disc.rule)
-    _check_memory(chosen, model, disc)
-    run.stats.update(method=chosen.name, rule=disc.rule.name, lcp_solver=run.solver.name, steps=disc.N,
-                     dt=disc.dt, m=model.m)
-    if auto:
-        run.stats["method_reason"] = reason
-    note = alias_note(rule, disc.rule)
-    if note:
-        run.stats["rule_note"] = note
-    run.timer.lap("setup")
+    return Simulation(model, load, dt=dt, t_end=t_end, method=method, rule=rule, initial=initial, lcp=lcp,
+                      lcp_options=lcp_options, bilateral=bilateral, options=options,
+                      callback=callback).run_to_end()
+
+
+class Simulation:
+    """A dynamic analysis of a structure with unilateral constraints, advanced on request.
+
+    Parameters
+    ----------
+    model, load, dt, t_end, method, rule, initial, lcp, lcp_options, bilateral, callback
+        As for :func:`unilateral.solve`.
+    options : dict, optional
+        The options of the method by its name (``{"cq": {...}}``, ``{"direct": {"engine": ...}}``):
+        what :func:`unilateral.solve` takes as ``cq_options``, ``modal_options``, ``direct_options``.
+
+    Attributes
+    ----------
+    n : int, the last step performed (0 at the start);  N : int, the steps of the grid
+    t : float, ``n dt`` (s);  dt, t_end : float (s)
+    status : ``"running"``, ``"finished"`` (step N performed) or ``"failed"``
+    message : str, why the last step failed ("" otherwise)
+    method : Method, the method chosen;  stats : dict, the run's statistics so far
+
+    Notes
+    -----
+    ``method="direct"`` steps one step at a time in Python and in chunks computed ahead in
+    compiled code (a call into compiled code per step would cost more than a small model's step;
+    the march is deterministic, so the chunk holds the steps the next calls ask for). Methods
+    that march in one call (``cq``, ``modal``, ``event``, the full sparse space) march all their
+    steps at the first step asked for and then hand them out: ``stats["stepping"]`` says which
+    (``"step"``, ``"chunk"``, ``"whole"``).
+    """
+
+    def __init__(self, model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="static",
+                 lcp="bpp", lcp_options=None, bilateral=False, options=None, callback=None):
+        disc = Discretization.from_user(dt, t_end, rule)
+        if not isinstance(model, MODEL_CLASSES):          # the boundary: what a simulation takes
+            raise TypeError("model must be a unilateral.Model, KernelModel, TimeKernelModel or "
+                            f"FoundationModel, got {V.describe(model)}")
+        options = _method_options(options)
+        if isinstance(model, TimeKernelModel) and (method != "auto" or load is not None or options
+                                                   or disc.rule.name != "bdf2"):
+            raise ValueError(
+                "a TimeKernelModel is solved by product integration of its time-domain kernel: "
+                "pass only dt, t_end, initial, lcp, lcp_options, bilateral (method='auto', load=None)")
+        run = RunContext.from_user(lcp, lcp_options, bilateral, callback)
+        if run.solver.symmetric_only and not model.law.symmetric:
+            raise ValueError(f"lcp={run.solver.name!r} needs a symmetric step LCP, but the friction constraints "
+                             "make it nonsymmetric (rows +-T - mu N): use lcp='bpp' (the default) or 'lemke'")
+        self.model, self.disc, self.dt, self.t_end, self.N = model, disc, disc.dt, disc.N * disc.dt, disc.N
+        self._stiff = StiffCoordinates.of(model)      # penalty-stiff elements: separated coordinates
+        if self._stiff is not None:
+            model, load, initial = (self._stiff.conditioned, self._stiff.load(load, disc.N),
+                                    self._stiff.initial(initial))
+        self._problem = (model, load, initial)
+        self._auto = isinstance(method, str) and method.lower() == "auto"
+        reason = None
+        if self._auto:
+            chosen, reason = choose_method(model, disc.rule, run.solver, options)
+        else:
+            chosen = _given_method(method, options)
+        self._begin(chosen, run, reason, rule)
+
+    def _begin(self, chosen, run, reason, rule):
+        """Check ``chosen`` and start its run at step 0."""
+        model, load, initial = self._problem
+        disc = self.disc
+        why_not = chosen.applies(model, disc.rule)
+        if why_not is not None:
+            raise ValueError(f"{why_not}; the methods that apply to this problem: "
+                             + (", ".join(map(repr, _applicable(model, disc.rule))) or "none"))
+        _check_memory(chosen, model, disc)
+        run.stats.update(method=chosen.name, rule=disc.rule.name, lcp_solver=run.solver.name, steps=disc.N,
+                         dt=disc.dt, m=model.m)
+        if reason is not None:                  # method="auto": the choice, and what the others say
+            run.stats["method_reason"] = reason
+            run.stats["method_alternatives"] = {
+                name: cls().applies(model, disc.rule) or "applies; not the fastest for this problem"
+                for name, cls in METHODS.items() if name != chosen.name}
+        note = alias_note(rule, disc.rule)
+        if note:
+            run.stats["rule_note"] = note
+        run.timer.lap("setup")
+        self.method, self._context, self._rule_given = chosen, run, rule
+        self._run = chosen.start(model, load, initial, disc, run)
+        self.n, self._state = 0, None
+        self.status, self.message = ("failed", self._run.failure) if self._run.failure else ("running", "")
+
+    # ------------------------------------------------------------------ where it is
+    @property
+    def t(self) -> float:
+        """The time of the last step performed, ``n dt`` (s)."""
+        return self.n * self.dt
+
+    @property
+    def stats(self) -> dict:
+        return self._context.stats
+
+    @property
+    def state(self) -> State:
+        """The state after step :attr:`n`: ``t``, ``k``, ``u``, ``udot``, ``v``, ``psi`` (copies)."""
+        if self._state is None or self._state.k != self.n:
+            state = self._run.state(self.n)
+            if self._stiff is not None and state.u is not None:
+                T = self._stiff.split.T
+                state = dataclasses.replace(state, u=T @ state.u, udot=T @ state.udot)
+            self._state = state
+        return self._state
+
+    def solution(self) -> Solution:
+        """The :class:`~unilateral.result.Solution` of the steps ``0..n`` (a new object at each call)."""
+        sol = self._run.solution(self.n)
+        return sol if self._stiff is None else self._stiff.solution(sol)
+
+    # ------------------------------------------------------------------ stepping
+    def step(self):
+        """Perform the next step; None on success, the reason if it failed (then :attr:`status`
+        is ``"failed"`` and :attr:`state` stays at the last good step)."""
+        return self.advance(1)
+
+    def advance(self, steps: int = 1):
+        """Perform the next ``steps`` steps (>= 1, at most those left); None, or why a step failed."""
+        steps = _step_count(steps)
+        self._check_can_step()
+        left = self.N - self.n
+        if steps > left:
+            raise ValueError(f"steps = {steps} goes past t_end = {self.t_end:g} s: {left} step(s) are left "
+                             f"(n = {self.n} of N = {self.N}); use advance_to(t_end) to finish")
+        return self._advance_to_step(self.n + steps)
+
+    def advance_to(self, t: float):
+        """Perform the steps up to time ``t`` (the first grid time ``k dt >= t``); None, or why a
+        step failed."""
+        if isinstance(t, (str, bytes, bool)) or t is None or not np.isfinite(_as_float(t)):
+            raise ValueError(f"t must be a finite time in s, got {V.describe(t)}")
+        t = float(t)
+        eps = 1e-9 * self.dt
+        if t < self.t - eps:
+            raise ValueError(f"t = {t:g} s is before the current time {self.t:g} s (step {self.n}): a "
+                             "simulation only goes forward; start a new Simulation to go back")
+        if t > self.t_end + eps:
+            raise ValueError(f"t = {t:g} s is after t_end = {self.t_end:g} s: valid is {self.t:g} <= t <= "
+                             f"{self.t_end:g}")
+        self._check_can_step(allow_finished=True)
+        k = min(self.N, max(self.n, math.ceil(t / self.dt - 1e-9)))
+        return None if k == self.n else self._advance_to_step(k)
+
+    def _check_can_step(self, allow_finished=False):
+        if self.status == "failed":
+            raise RuntimeError(f"the simulation failed at step {self.n + 1} (t = {self.t + self.dt:g} s): "
+                               f"{self.message}; nothing more can be stepped (solution() holds steps 0..{self.n})")
+        if self.status == "finished" and not allow_finished:
+            raise RuntimeError(f"the simulation is at its end, t_end = {self.t_end:g} s (step {self.N}): "
+                               "no step is left; start a new Simulation with a larger t_end to go further")
+
+    def _advance_to_step(self, k: int):
+        done = self._extend(k)
+        self.n = min(done, k)
+        if done >= k:
+            self.status = "finished" if self.n == self.N else "running"
+            return None
+        self.status, self.message = "failed", self._run.failure
+        return self.message
+
+    def _extend(self, k: int) -> int:
+        """Extend the run to step ``k``; with ``method="auto"``, a method refused on its first steps
+        hands over to the fallback (:func:`unilateral.methods.fallback`)."""
+        try:
+            return self._run.extend(k)
+        except ValueError as exc:
+            other = fallback(exc) if self._auto and self._run.done == 0 else None
+            if other is None:
+                raise
+            run = self._context
+            self._begin(other[0], run, f"{run.stats.get('method_reason')}; {other[1]}", self._rule_given)
+            return self._run.extend(k)
+
+    def run_to_end(self) -> Solution:
+        """Perform every step left (or up to the one that fails); the solution."""
+        if self.status == "running":
+            self._advance_to_step(self.N)
+        return self.solution()
+
+    def __repr__(self) -> str:
+        return (f"Simulation({self.status}: step {self.n} of {self.N}, t = {self.t:g} s, "
+                f"method={self.method.name!r})")
+
+
+def _applicable(model, rule) -> list:
+    """The names of the registered methods that apply to ``model`` with ``rule``."""
+    return [name for name, cls in METHODS.items() if cls().applies(model, rule) is None]
+
+
+def _step_count(steps) -> int:
+    """``steps`` as an int >= 1 (an integral number; booleans and strings are refused)."""
+    if isinstance(steps, (bool, str, bytes)) or not isinstance(steps, (int, np.integer)) or steps < 1:
+        raise ValueError(f"steps must be an integer >= 1, got {V.describe(steps)}")
+    return int(steps)
+
+
+def _as_float(x) -> float:
     try:
-        sol = chosen.solve(model, load, initial, disc, run)
-    except ValueError as exc:
-        other = fallback(exc) if auto else None
-        if other is None:
-            raise
-        chosen, run.stats["method_reason"] = other[0], f"{reason}; {other[1]}"
-        run.stats["method"] = chosen.name
-        sol = chosen.solve(model, load, initial, disc, run)
-    return sol if stiff is None else stiff.solution(sol)
+        return float(x)
+    except (TypeError, ValueError):
+        return float("nan")
 
 
-#: A run may use at most this fraction of the machine's memory.
-MEMORY_FRACTION = 0.5
+def _method_options(options) -> dict:
+    """``{"cq": {...}, ...}``: the options by method name, checked."""
+    if options is None:
+        return {}
+    if not isinstance(options, dict):
+        raise TypeError(f"options must be a dict of method name -> options, got {V.describe(options)}")
+    valid = ("cq", "modal", "direct")
+    for name, value in options.items():
+        if name not in valid:
+            raise ValueError(f"options has the key {name!r}; valid keys: {', '.join(map(repr, valid))}")
+        if not isinstance(value, dict):
+            raise TypeError(f"options[{name!r}] must be a dict, got {V.describe(value)}")
+    return dict(options)
+
+
+def _given_method(method, options):
+    """The method instance of a name, class or instance, with its options applied."""
+    chosen = get_method(method)
+    for name, value in options.items():
+        if name != chosen.name:
+            raise ValueError(f"{name}_options apply to method={name!r} only (method={chosen.name!r})")
+        chosen = type(chosen)(**value)
+    return chosen
 
 
 def _check_memory(method, model, disc) -> None:

@@ -134,25 +134,54 @@ class ActiveSetSolver:
 def march_direct_active_set(stepper, N, v_b, psi0, *, dt, bilateral=False, callback=None,
                             max_iter=50):
     """:func:`~unilateral.march.direct.march_direct` for large sparse models (same returns)."""
-    du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
-    solver = ActiveSetSolver.of_stepper(stepper, v_b, max_iter)
-    active = v_b > 0
-    for k in range(1, N + 1):
-        rhs, c = stepper.free_terms()
-        if bilateral:                       # v held at v_b: the plain effective stiffness
-            duk = stepper.lu.solve(rhs)
-            vk, psik, it = v_b, c + stepper.Fp.T @ duk, 1
-        else:
-            vk, psik, duk, active, it = solver.solve(rhs, c, active)
-        res = _Result(vk, -psik, it, scale=1.0 + np.linalg.norm(c))
-        if not log.record(k, k * dt, res):
-            return du[:k], dud[:k], v[:k], psi[:k], log
-        du[k], dud[k] = stepper.correct(vk - v_b, du=duk)
-        v[k], psi[k] = vk, psik
-        if callback is not None:
-            callback(k, N)
-    log.factorizations = solver.factorizations
-    return du, dud, v, psi, log
+    march = ActiveSetMarch(stepper, N, v_b, psi0, dt=dt, bilateral=bilateral, callback=callback,
+                           max_iter=max_iter)
+    march.extend(N)
+    return march.outputs()
+
+
+class ActiveSetMarch:
+    """The march of :func:`march_direct_active_set`, advanced a step at a time on request.
+
+    Same interface as :class:`~unilateral.march.direct.DirectMarch` (``done``, ``failure``,
+    ``extend(k)``, ``outputs()``); stepping in any pieces performs the same operations.
+    """
+
+    def __init__(self, stepper, N, v_b, psi0, *, dt, bilateral=False, callback=None, max_iter=50):
+        self.stepper, self.N, self.v_b, self.dt = stepper, N, v_b, dt
+        self.bilateral, self.callback = bilateral, callback
+        self.du, self.dud, self.v, self.psi, self.log = direct_outputs(stepper, N, v_b, psi0)
+        self.solver = ActiveSetSolver.of_stepper(stepper, v_b, max_iter)
+        self.active = v_b > 0
+        self.done, self.failure = 0, ""
+
+    def extend(self, k: int) -> int:
+        """Perform the steps up to ``k`` (at most N), or up to the one that fails; the last step done."""
+        stepper, v_b, log = self.stepper, self.v_b, self.log
+        while self.done < min(k, self.N) and not self.failure:
+            j = self.done + 1
+            rhs, c = stepper.free_terms()
+            if self.bilateral:                  # v held at v_b: the plain effective stiffness
+                duk = stepper.lu.solve(rhs)
+                vk, psik, it = v_b, c + stepper.Fp.T @ duk, 1
+            else:
+                vk, psik, duk, self.active, it = self.solver.solve(rhs, c, self.active)
+            res = _Result(vk, -psik, it, scale=1.0 + np.linalg.norm(c))
+            if not log.record(j, j * self.dt, res):
+                self.failure = log.failure
+                break
+            self.du[j], self.dud[j] = stepper.correct(vk - v_b, du=duk)
+            self.v[j], self.psi[j] = vk, psik
+            self.done = j
+            if self.callback is not None:
+                self.callback(j, self.N)
+        return self.done
+
+    def outputs(self):
+        """``(du, dudot, v, psi, log)`` of the steps done (``done + 1`` rows)."""
+        K = self.done + 1
+        self.log.factorizations = self.solver.factorizations
+        return self.du[:K], self.dud[:K], self.v[:K], self.psi[:K], self.log
 
 
 class _Result:

@@ -159,21 +159,74 @@ def march_event(model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=Non
     ValueError
         A time-dependent ``g``, a load without an exact form, friction on a Kelvin contact.
     """
-    t_grid = np.asarray(t_grid, dtype=float)
-    if t_grid.ndim != 1 or t_grid.size < 1 or np.any(np.diff(t_grid) <= 0):
-        raise ValueError("t_grid must be a 1-D array of increasing times")
-    n, m = model.n, model.m
-    if not model.g_is_constant:
-        raise ValueError("method='event' needs a constant constraint offset g; this model's g is a "
-                         "function of time")
-    gen = load_generator(model, load, t_grid)
-    mats = _matrices(model)
-    _check_law(model.law, mats)
-    u0, udot0, v0 = (np.asarray(a, dtype=float).reshape(size) for a, size in ((u0, n), (udot0, n), (v0, m)))
-    if max_events is None:
-        max_events = default_max_events(t_grid.size - 1, m)
-    march = _March(model.law, mats, gen, t_grid, (u0, udot0, v0), tol=tol, max_events=max_events)
-    return march.run()
+    march = EventMarch.of(model, load, t_grid, u0, udot0, v0, tol=tol, max_events=max_events)
+    march.extend(march.N)
+    return march.outputs()
+
+
+class EventMarch:
+    """The event march of :func:`march_event`, advanced on request (as far as it is pulled).
+
+    ``EventMarch(march)`` of a prepared :class:`_March`; :meth:`extend` follows the motion up to a
+    grid index, :meth:`outputs` returns ``(u, udot, v, psi, info)`` of the grid times reached.
+    Pulled in any pieces it performs the same operations as one call of :func:`march_event`.
+
+    Attributes
+    ----------
+    N : int;  done : int, the last grid index written;  failure : str ("" if none)
+    """
+
+    def __init__(self, march):
+        self.march, self.N = march, march.grid.size - 1
+        N1, n, m = self.N + 1, march.n, march.m
+        self.out = (np.empty((N1, n)), np.empty((N1, n)), np.empty((N1, m)), np.empty((N1, m)))
+        for array, x in zip(self.out, (march.u0, march.udot0, march.v0, march.psi0)):
+            array[0] = x
+        self._steps = None
+        self.failure = ""
+
+    @classmethod
+    def of(cls, model, load, t_grid, u0, udot0, v0, *, tol=1e-13, max_events=None):
+        """The march of :func:`march_event` (same arguments), begun at ``t_grid[0]``."""
+        t_grid = np.asarray(t_grid, dtype=float)
+        if t_grid.ndim != 1 or t_grid.size < 1 or np.any(np.diff(t_grid) <= 0):
+            raise ValueError("t_grid must be a 1-D array of increasing times")
+        n, m = model.n, model.m
+        if not model.g_is_constant:
+            raise ValueError("method='event' needs a constant constraint offset g; this model's g is a "
+                             "function of time")
+        gen = load_generator(model, load, t_grid)
+        mats = _matrices(model)
+        _check_law(model.law, mats)
+        u0, udot0, v0 = (np.asarray(a, dtype=float).reshape(size) for a, size in ((u0, n), (udot0, n), (v0, m)))
+        if max_events is None:
+            max_events = default_max_events(t_grid.size - 1, m)
+        return cls(_March(model.law, mats, gen, t_grid, (u0, udot0, v0), tol=tol, max_events=max_events))
+
+    @property
+    def done(self) -> int:
+        return self.march.done
+
+    def extend(self, k: int) -> int:
+        """Follow the motion up to grid index ``k`` at least (or to where it stops); the last index."""
+        march = self.march
+        if self._steps is None and k > 0:
+            self._steps = march._follow(march._stops(), self.out)
+        try:
+            with np.errstate(over="ignore", invalid="ignore"):     # a diverging motion: stopped below
+                while march.done < min(k, self.N) and not self.failure:
+                    next(self._steps)
+        except EventMarchStop as exc:
+            self.failure = str(exc)
+        except StopIteration:
+            pass
+        return march.done
+
+    def outputs(self):
+        """``(u, udot, v, psi, info)`` of the grid times reached (``done + 1`` rows)."""
+        K = self.march.done + 1
+        u, ud, v, psi = (array[:K] for array in self.out)
+        return u, ud, v, psi, self.march.info(self.failure or None)
 
 
 # ---------------------------------------------------------------------- the march
@@ -286,18 +339,9 @@ class _March:
         return np.where(open_mask, np.where(self.law.rate, self.rateref, self.vref), self.psiref)
 
     # ------------------------------------------------------------------ main loop
-    def run(self):
-        N = self.grid.size - 1
-        u, ud = np.empty((N + 1, self.n)), np.empty((N + 1, self.n))
-        v, psi = np.empty((N + 1, self.m)), np.empty((N + 1, self.m))
-        u[0], ud[0], v[0], psi[0] = self.u0, self.udot0, self.v0, self.psi0
-        failure = None
-        try:
-            with np.errstate(over="ignore", invalid="ignore"):     # a diverging motion: stopped below
-                K = self._follow(self._stops(), (u, ud, v, psi))
-        except EventMarchStop as exc:
-            K, failure = self.done, str(exc)
-        info = {
+    def info(self, failure):
+        """The statistics of the march so far, with ``failure`` (None or why it stopped)."""
+        return {
             "event_times": np.array(self.event_times),
             "event_constraints": np.array(self.event_constraints, dtype=int),
             "event_kinds": np.array(self.event_kinds, dtype=object),
@@ -309,7 +353,6 @@ class _March:
             "tol": self.tol,
             "failure": failure,
         }
-        return u[:K + 1], ud[:K + 1], v[:K + 1], psi[:K + 1], info
 
     def _stops(self):
         """``(time, grid index or None, is a load breakpoint)`` of the grid times and of the load
@@ -334,7 +377,8 @@ class _March:
 
     def _follow(self, stops, out):
         """March through ``stops`` (time, grid index or None, is a load breakpoint), writing the grid
-        outputs into ``out = (u, ud, v, psi)``; return the last grid index written."""
+        outputs into ``out = (u, ud, v, psi)``; a generator that yields the last grid index written
+        after each stop (the march advances as far as it is pulled)."""
         grid, gen = self.grid, self.gen
         cfg = self.config((self.v0 > 0) & ~self.law.rate)
         Y = cfg.state_from(self.u0, self.udot0, self.v0, gen.state(grid[0], "right"))
@@ -349,6 +393,7 @@ class _March:
                 if count:
                     s += count
                     t = stops[s - 1][0]
+                    yield self.done
                     continue
             cfg, Y, pending = self.advance(cfg, Y, t, t_stop, self.dt if full else None)
             t = t_stop
@@ -360,7 +405,7 @@ class _March:
             if is_bp or pending:
                 cfg, Y = self.decide(cfg, Y, t, pending or ())
             s += 1
-        return self.done
+            yield self.done
 
     def _glide(self, cfg, Y, t, stops, s, out):
         """Several full output steps at once from ``stops[s]`` on, as :meth:`advance` takes them one by

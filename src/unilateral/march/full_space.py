@@ -23,7 +23,7 @@ from numba import njit
 
 from . import envelope
 from .compiled import _BLOCK_TRIES, REASSOCIATE, _advance, _matvec_add, _rule_history
-from .direct import _chunked, direct_outputs
+from .direct import ChunkedMarch, direct_outputs
 from .step_log import StepLog
 
 #: Loads of at most this many entries (steps x DOFs) are evaluated at once (a chunk of steps).
@@ -339,6 +339,16 @@ def march_full_space(stepper, N, v_b, psi0, *, dt, bilateral=False, callback=Non
     fresh full-space ``stepper`` (``condensed=False``) with a rule of :mod:`unilateral.rules`
     (BDF1, BDF2, Newmark, HHT-alpha).
     """
+    march = full_space_march(stepper, N, v_b, psi0, dt=dt, bilateral=bilateral, callback=callback,
+                             max_iter=max_iter)
+    if march is None:
+        return None
+    march.extend(N)
+    return march.outputs()
+
+
+def full_space_march(stepper, N, v_b, psi0, *, dt, bilateral=False, callback=None, max_iter=50):
+    """The march of :func:`march_full_space` begun at step 0 (a :class:`FullSpaceMarch`), or None."""
     compiled_rule = stepper.compiled_rule()
     if compiled_rule is None:
         return None
@@ -376,17 +386,26 @@ def march_full_space(stepper, N, v_b, psi0, *, dt, bilateral=False, callback=Non
                 return failed
         return 0
 
-    failed = run(1, N + 1) if callback is None else _chunked(run, N, callback)
-    log = StepLog.of_compiled(v_b, stats, 0, dt=dt, max_iter=max_iter, tol=np.inf)
-    log.factorizations = int(count[0])
-    if failed:
-        log.failure = (f"the LCP of step {failed} (t = {failed * dt:.6g}) failed: block principal pivoting in "
-                       f"the full space did not converge in {max_iter} trial contact sets, or a trial set left "
-                       "the structure without stiffness (a mechanism); try lcp='lemke' with a condensed method "
-                       "(method='cq')")
-        du, dud, v, psi = du[:failed], dud[:failed], v[:failed], psi[:failed]
-    log.active = v[-1] > 0
-    return du, dud, v, psi, log
+    return FullSpaceMarch(run, carry, N, v_b, dt=dt, max_iter=max_iter, callback=callback)
+
+
+class FullSpaceMarch(ChunkedMarch):
+    """The compiled full-space march (:func:`march_full_space`) as a
+    :class:`~unilateral.march.direct.ChunkedMarch`."""
+
+    def __init__(self, call, carry, N, v_b, *, dt, max_iter, callback=None):
+        super().__init__(call, carry[:4], N, callback=callback)
+        self.carry, self.v_b, self.dt, self.max_iter = carry, v_b, dt, max_iter
+
+    def log(self, failed=0):
+        log = StepLog.of_compiled(self.v_b, self.carry[4], 0, dt=self.dt, max_iter=self.max_iter, tol=np.inf)
+        log.factorizations = int(self.carry[11][0])
+        if failed:
+            log.failure = (f"the LCP of step {failed} (t = {failed * self.dt:.6g}) failed: block principal "
+                           f"pivoting in the full space did not converge in {self.max_iter} trial contact sets, "
+                           "or a trial set left the structure without stiffness (a mechanism); try lcp='lemke' "
+                           "with a condensed method (method='cq')")
+        return log
 
 
 def _rows(stepper, k0, k1):

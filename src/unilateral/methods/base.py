@@ -6,6 +6,7 @@ from abc import ABC, abstractmethod
 from typing import ClassVar
 
 from ..model import Model
+from .stepping import SolvedRun
 
 
 class Method(ABC):
@@ -43,17 +44,23 @@ class Method(ABC):
         """How the options are called in messages (``cq_options`` and the like)."""
         return f"{self.name.replace('-', '_')}_options"
 
-    def check(self, model, rule) -> None:
-        """Raise ``ValueError``/``TypeError`` if this method cannot solve ``model`` with ``rule``."""
+    def applies(self, model, rule) -> str | None:
+        """None if this method solves ``model`` with ``rule``; otherwise the reason it does not."""
         if not isinstance(model, self.models):
             kinds = " or ".join(cls.__name__ for cls in self.models)
             hint = ("; it needs matrices: a KernelModel is solved with method='cq'"
                     if type(model).__name__ == "KernelModel" else "")
-            raise ValueError(f"method={self.name!r} solves a {kinds}, not a {type(model).__name__}{hint}")
+            return f"method={self.name!r} solves a {kinds}, not a {type(model).__name__}{hint}"
         if self.cq_rules_only and not rule.supports_cq:
-            raise ValueError(
-                f"rule={rule.name!r} has no convolution-quadrature form; valid for method={self.name!r}: "
-                "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")
+            return (f"rule={rule.name!r} has no convolution-quadrature form; valid for method={self.name!r}: "
+                    "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")
+        return None
+
+    def check(self, model, rule) -> None:
+        """Raise ``ValueError`` if this method cannot solve ``model`` with ``rule`` (:meth:`applies`)."""
+        reason = self.applies(model, rule)
+        if reason is not None:
+            raise ValueError(reason)
 
     def memory_estimate(self, model, disc) -> dict:
         """Bytes the run will hold, by what: ``{"histories of ...": bytes, ...}`` (a lower bound).
@@ -77,6 +84,15 @@ class Method(ABC):
         disc : Discretization
         run : RunContext
         """
+
+    def start(self, model, load, initial, disc, run):
+        """The run of ``model`` begun at step 0, advanced on request (same arguments as :meth:`solve`).
+
+        The default marches all steps in one call of :meth:`solve` at the first request
+        (:class:`~unilateral.methods.stepping.SolvedRun`); a method that can step overrides it and
+        returns a run that performs its steps as they are asked for (:class:`Direct`).
+        """
+        return SolvedRun(lambda: self.solve(model, load, initial, disc, run), disc.N)
 
     def __repr__(self) -> str:
         args = ", ".join(f"{k}={v!r}" for k, v in self.config.items())

@@ -172,6 +172,9 @@ def finish(model, run, log, *, t, v, psi, psiL=None, u=None, udot=None) -> Solut
     if log.failure:
         success = False
         message = f"stopped after {len(t) - 1} of {N} steps: {log.failure}" + _friction_hint(model)
+    elif len(t) - 1 < N:                    # a simulation's solution so far
+        success = True
+        message = f"{len(t) - 1} of {N} steps so far, {stats['contact_changes']} contact changes"
     else:
         success = True
         message = f"{N} steps, {stats['contact_changes']} contact changes"

@@ -2,18 +2,17 @@
 
 from __future__ import annotations
 
-import functools
-
 from .. import _validate as V
 from ..lcp import BlockPrincipalPivoting
-from ..march.active_set import FULL_SPACE_MIN_M, full_space_applies, march_direct_active_set
+from ..march.active_set import FULL_SPACE_MIN_M, ActiveSetMarch, full_space_applies
 from ..march.jit import compiled_pays
-from ..march.direct import march_direct, march_direct_compiled
+from ..march.direct import ChunkedMarch, CompiledDirectMarch, DirectMarch, march_direct
 from ..march.stepper import COMPILED_MAX_N
 from ..model import Model
 from .base import Method
 from .clcp_march import ENGINES
-from .common import BaseState, failed_at_start, finish
+from .common import BaseState, failed_at_start
+from .stepping import MarchRun, SolvedRun, WholeMarch
 
 
 class Direct(Method):
@@ -47,6 +46,16 @@ class Direct(Method):
     cq_rules_only = False
 
     def solve(self, model, load, initial, disc, run):
+        march = self.start(model, load, initial, disc, run)
+        return march.solution(march.extend(disc.N))
+
+    def start(self, model, load, initial, disc, run):
+        """The direct march of ``model`` begun at step 0 (a run that advances on request).
+
+        The marches in Python step one step at a time, the compiled ones (condensed and full
+        space) in chunks (``stats["stepping"]``: ``"step"``, ``"chunk"``); the bilateral sweep in
+        Python marches in one call at the first request (``"whole"``).
+        """
         engine = V.choice(f"{self.option_name}['engine']", self.config.get("engine", "auto"), ENGINES)
         run.stats["n"] = model.n
         bpp = isinstance(run.solver, BlockPrincipalPivoting)
@@ -55,8 +64,7 @@ class Direct(Method):
         # sparse models stepped in compiled code in the full space (envelope factorisation)
         sparse_ok = model.sparse and model.law.trivial and bpp and ours and (full_space or model.n > COMPILED_MAX_N)
         condensed_ok = not full_space and bpp and ours
-        compiled_ok = sparse_ok or condensed_ok
-        if engine == "compiled" and not compiled_ok:
+        if engine == "compiled" and not (sparse_ok or condensed_ok):
             raise ValueError(f"{self.option_name}['engine']='compiled' needs lcp='bpp', a rule of "
                              "unilateral.rules and the condensed LCP (a sparse model with at most "
                              f"{FULL_SPACE_MIN_M} constraints or a dense model) or a sparse model with "
@@ -67,32 +75,37 @@ class Direct(Method):
         compiled = condensed_ok and wanted and (engine == "compiled" or model.n <= COMPILED_MAX_N)
         base = BaseState.prepare(model, load, initial, disc, run, tables=compiled or compiled_sparse)
         if base.init.message:
-            return failed_at_start(model, base.init, run)
+            return SolvedRun.of(failed_at_start(model, base.init, run), disc.N)
         run.timer.lap("initial")
-        march_args = (disc.N, base.init.v, base.init.psi)
+        args = (disc.N, base.init.v, base.init.psi)
         options = dict(dt=disc.dt, bilateral=run.bilateral, callback=run.callback)
-        out = None
+        march = None
         if compiled_sparse:
-            from ..march.full_space import march_full_space     # lazily: numba
+            from ..march.full_space import full_space_march     # lazily: numba
 
-            stepper = base.stepper(disc, condensed=False)
-            run.timer.lap("factorize")
-            out = march_full_space(stepper, *march_args, **options, max_iter=run.solver.max_iter or 50)
-            full_space = full_space or out is not None
-        if out is None:
-            stepper = base.stepper(disc, condensed=not full_space)
-            run.timer.lap("factorize")
-        if out is None and compiled and not full_space:
-            solver = run.solver
-            out = march_direct_compiled(stepper, *march_args, max_iter=solver.max_iter or 10 * model.m + 10,
-                                        tol=solver.tol, **options)
+            march = full_space_march(base.stepper(disc, condensed=False), *args, **options,
+                                     max_iter=run.solver.max_iter or 50)
+            full_space = full_space or march is not None
+        stepper = None if march is not None else base.stepper(disc, condensed=not full_space)
+        run.timer.lap("factorize")
+        if march is None and compiled and not full_space:
+            march = CompiledDirectMarch.of(stepper, *args, dt=disc.dt, bilateral=run.bilateral,
+                                           max_iter=run.solver.max_iter or 10 * model.m + 10,
+                                           tol=run.solver.tol, callback=run.callback)
         run.stats["lcp_space"] = "full" if full_space else "condensed"
-        run.stats["engine"] = "compiled" if out is not None else "python"
-        if out is None:
-            march = (march_direct_active_set if full_space
-                     else functools.partial(march_direct, solver=run.solver))
-            out = march(stepper, *march_args, **options)
-        du, dud, v, psi, log = out
-        run.timer.lap("steps")
-        K = v.shape[0] - 1
-        return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, u=base.init.u + du, udot=dud)
+        run.stats["engine"] = "compiled" if march is not None else "python"
+        if march is None:
+            march = _python_march(stepper, args, options, run.solver, full_space)
+        stepping = ("chunk" if isinstance(march, ChunkedMarch) else "whole" if isinstance(march, WholeMarch)
+                    else "step")
+        return MarchRun(model, run, disc, base.init, march, stepping)
+
+
+def _python_march(stepper, args, options, solver, full_space):
+    """The march in Python: the condensed LCP a step at a time, the full space or the bilateral
+    sweep in one call."""
+    if full_space:
+        return ActiveSetMarch(stepper, *args, **options)
+    if options["bilateral"]:
+        return WholeMarch(lambda: march_direct(stepper, *args, solver=solver, **options), args[0])
+    return DirectMarch(stepper, *args, solver, dt=options["dt"], callback=options["callback"])

@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..march.event import march_event
+from ..march.event import EventMarch
 from ..march.event_load import load_generator
 from ..model import Model
-from ..result import Solution
+from ..result import Solution, State
 from .base import Method
 from .common import failed_at_start, initial_state, step_loads
+from .stepping import SolvedRun
 
 
 class Event(Method):
@@ -55,6 +56,11 @@ class Event(Method):
     cq_rules_only = False
 
     def solve(self, model, load, initial, disc, run):
+        march = self.start(model, load, initial, disc, run)
+        return march.solution(march.extend(disc.N))
+
+    def start(self, model, load, initial, disc, run):
+        """The event march begun at the initial state, followed as far as it is asked for."""
         if run.bilateral:
             raise ValueError("method='event' follows the contact changes; for the bilateral case "
                              "(bilateral=True) use method='direct' or 'modal'")
@@ -64,20 +70,52 @@ class Event(Method):
         loads = step_loads(model, load, disc)
         init = initial_state(model, loads.q_static, initial, run.solver)
         if init.message:
-            return failed_at_start(model, init, run)
+            return SolvedRun.of(failed_at_start(model, init, run), disc.N)
         run.timer.lap("initial")
-        u, udot, v, psi, info = march_event(model, load, disc.t, init.u, init.udot, init.v,
-                                            tol=self.config.get("tol", 1e-13),
-                                            max_events=self.config.get("max_events"))
-        run.timer.lap("steps")
-        failure = info.pop("failure")
-        K = u.shape[0] - 1
-        run.stats.update({key: (value.tolist() if isinstance(value, np.ndarray) else value)
-                          for key, value in info.items()})
-        run.stats.update(contact_changes=int(info["events"]), steps_done=K, time=run.timer.laps())
-        message = (f"stopped after {K} of {disc.N} steps: {failure}" if failure else
-                   f"{disc.N} steps, {info['events']} contact changes (exact, events to "
-                   f"{self.config.get('tol', 1e-13):g} s)")
-        return Solution(t=disc.t[:K + 1], v=v, psi=psi, psiL=None, u=u, udot=udot, success=failure is None,
-                        message=message, stats=run.stats, dof_names=list(model.dof_names),
-                        constraint_names=list(model.constraint_names))
+        march = EventMarch.of(model, load, disc.t, init.u, init.udot, init.v,
+                              tol=self.config.get("tol", 1e-13), max_events=self.config.get("max_events"))
+        return EventRun(model, run, disc, march, self.config.get("tol", 1e-13))
+
+
+class EventRun:
+    """The event march as a run (:mod:`unilateral.methods.stepping`): pulled step by step."""
+
+    def __init__(self, model, run, disc, march, tol):
+        self.model, self.run, self.disc, self.march, self.tol = model, run, disc, march, tol
+        self.N = disc.N
+        run.stats["stepping"] = "step"
+
+    @property
+    def done(self) -> int:
+        return self.march.done
+
+    @property
+    def failure(self) -> str:
+        return self.march.failure
+
+    def extend(self, k: int) -> int:
+        return self.march.extend(k)
+
+    def state(self, k: int) -> State:
+        u, ud, v, psi = (array[k].copy() for array in self.march.out)
+        return State(t=float(self.disc.t[k]), k=k, u=u, udot=ud, v=v, psi=psi)
+
+    def solution(self, K: int) -> Solution:
+        u, udot, v, psi, info = self.march.outputs()
+        u, udot, v, psi = u[:K + 1], udot[:K + 1], v[:K + 1], psi[:K + 1]
+        self.run.timer.lap("steps")
+        failure = info.pop("failure") if K == self.done else None     # before the failed step: none yet
+        info.pop("failure", None)
+        stats = dict(self.run.stats)
+        stats.update({key: (value.tolist() if isinstance(value, np.ndarray) else value)
+                      for key, value in info.items()})
+        stats.update(contact_changes=int(info["events"]), steps_done=K, time=self.run.timer.laps())
+        N = self.N
+        if failure:
+            message = f"stopped after {K} of {N} steps: {failure}"
+        else:
+            so_far = f"{K} of {N} steps so far" if K < N else f"{N} steps"
+            message = f"{so_far}, {info['events']} contact changes (exact, events to {self.tol:g} s)"
+        return Solution(t=self.disc.t[:K + 1], v=v, psi=psi, psiL=None, u=u, udot=udot, success=failure is None,
+                        message=message, stats=stats, dof_names=list(self.model.dof_names),
+                        constraint_names=list(self.model.constraint_names))
