@@ -34,7 +34,7 @@ def _readme_command() -> list[str]:
 #: Modules of subpackages documented on pages of their own: their packages' ``__all__`` lists the
 #: functions the package exports, so pdoc does not walk to them from there (the structure's results,
 #: the energy balance, the modes and the outputs of a run are looked up by users).
-DEEP_MODULES = {"unilateral.analysis.energy", "unilateral.analysis.modes", "unilateral.analysis.outputs",
+DEEP_MODULES = {"unilateral.analysis.energy", "unilateral.structure.modes", "unilateral.analysis.outputs",
                 "unilateral.analysis.results", "unilateral.structure.forces", "unilateral.structure.forces3d"}
 
 

@@ -134,7 +134,7 @@ def test_units_in_mathtext_and_a_legend_of_the_kinds(figures):
 
 
 def test_the_first_modes_are_drawn_with_their_periods(figures):
-    from unilateral.analysis.modes import modes
+    from unilateral.structure.modes import modes
     from unilateral.modelfile import load_model_file
 
     _, drawing, fig = figures["pounding"]

@@ -273,3 +273,24 @@ def test_a_method_that_does_not_apply_names_those_that_do():
     assert auto.method.name == "direct" and set(others) == {"cq", "modal", "time-kernel", "event"}
     assert others["time-kernel"].startswith("method='time-kernel' solves a TimeKernelModel")
     assert others["cq"].startswith("applies")
+
+
+def test_a_small_model_runs_with_one_blas_thread_and_the_process_keeps_its_own():
+    """The threads of OpenBLAS are set to one while a small model is solved (its products are too
+    small to share), and given back afterwards; the answer does not depend on it."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    blas = lambda: {i["filepath"]: i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"}  # noqa: E731
+    model, load, kw = yielding_frame()
+    seen = []
+
+    def recording(t):
+        seen.append(max(blas().values()))
+        return load(t)
+
+    with threadpool_limits(limits=2, user_api="blas"):
+        before = blas()
+        sol = ul.solve(model, recording, **kw)
+        assert blas() == before
+    assert seen and set(seen) == {1}
+    assert_equal_solutions(sol, ul.solve(model, load, **kw), 0.0)

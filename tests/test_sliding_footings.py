@@ -86,7 +86,7 @@ def test_a_footing_that_rocks_lifts_and_slides_equals_the_papers_kelvin_elements
     dual = ul.solve(model, load, method="cq", **kw)
     primal = ul.solve(model.kelvin_model(), load, method="direct", **kw)
     assert dual.success and primal.success, dual.message
-    from unilateral.soil.foundation_solve import primal_columns
+    from unilateral.methods.foundation_solve import primal_columns
 
     v, psi = primal_columns(model, primal.v, primal.psi)
     assert rel(dual.u, primal.u) < 1e-8

@@ -15,7 +15,7 @@ import pytest
 import unilateral as ul
 from unilateral.loads import LoadHistory, Rectangular
 from unilateral.soil.foundation_model import facet_normals
-from unilateral.soil.foundation_solve import primal_columns
+from unilateral.methods.foundation_solve import primal_columns
 from unilateral.structure import Frame2D, Frame3D
 
 HALF = {"model": "halfspace", "Vs": 97.0, "nu": 1 / 3, "rho": 2.0}

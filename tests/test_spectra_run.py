@@ -70,7 +70,7 @@ def write_frame(tmp_path, *, output='floor_spectra = [4, 1]\nspectra_periods = {
 
 # ---------------------------------------------------------------------- the spectrum itself
 def test_the_spectrum_is_the_batch_spectrum_for_every_period_and_record():
-    from unilateral.batch.spectrum import response_spectrum
+    from unilateral.analysis.response_spectrum import response_spectrum
 
     rng = np.random.default_rng(3)
     records = rng.normal(size=(600, 2))

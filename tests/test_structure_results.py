@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import unilateral as ul
-from unilateral.analysis.modes import modes
+from unilateral.structure.modes import modes
 from unilateral.rules import Newmark
 from unilateral.structure import Frame2D
 from unilateral.structure import forces as F

@@ -5,7 +5,7 @@
 writes ``results.nc``, CSV tables, ``summary.json`` and the figures atomically; :func:`report` is
 the terminal summary. The structure's results (end forces, reactions, base shear, drifts,
 accelerations) are in :mod:`unilateral.analysis.results`, the energy balance in
-:mod:`unilateral.analysis.energy`, periods and mode shapes in :mod:`unilateral.analysis.modes`.
+:mod:`unilateral.analysis.energy`, periods and mode shapes in :mod:`unilateral.structure.modes`.
 """
 
 from importlib import import_module

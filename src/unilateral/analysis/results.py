@@ -44,7 +44,7 @@ from ..model import Model
 from ..structure import forces as F
 from .energy import energy_balance, unknown_kinds
 from .inelastic import Inelastic
-from .modes import modes
+from ..structure.modes import modes
 
 #: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
 MODES_MAX_N = 3000

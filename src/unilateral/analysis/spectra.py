@@ -3,8 +3,8 @@
 The pseudo-acceleration spectrum ``Sa(T, zeta) = (2 pi / T)^2 max |u|`` is the peak response of a
 linear oscillator ``u'' + 2 zeta w u' + w^2 u = -a(t)`` at rest at the first sample, ``w = 2 pi / T``.
 The acceleration ``a`` is taken as piecewise linear between its samples and the oscillator is
-stepped by the exact recurrence of :func:`unilateral.batch.spectrum.oscillator_recurrence` (the
-one the batch's :func:`~unilateral.batch.spectrum.response_spectrum` steps), here for all periods
+stepped by the exact recurrence of :func:`unilateral.analysis.response_spectrum.oscillator_recurrence` (the
+one the batch's :func:`~unilateral.analysis.response_spectrum.response_spectrum` steps), here for all periods
 and all histories at once.
 
 A run with a ground motion gets (:func:`run_spectra`):
@@ -88,7 +88,7 @@ def pseudo_acceleration(acceleration, dt: float, periods, damping: float = DEFAU
     (p,) or (p, r) ndarray
         ``Sa`` [length/time^2]; the peak is taken over the samples of each history.
     """
-    from ..batch.spectrum import oscillator_recurrence
+    from .response_spectrum import oscillator_recurrence
 
     a = np.asarray(acceleration, dtype=float)
     T = np.asarray(periods, dtype=float).ravel()

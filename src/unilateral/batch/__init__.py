@@ -20,7 +20,8 @@ from __future__ import annotations
 _EXPORTS = {
     "load_study": "study", "Study": "study", "StudyFileError": "study",
     "run_study": "runner", "StudyResult": "runner", "StudyInterrupted": "runner",
-    "response_spectrum": "spectrum", "first_period": "spectrum", "natural_periods": "spectrum",
+    # the spectra of the records and the periods of the structure live in unilateral.analysis
+    **dict.fromkeys(("response_spectrum", "first_period", "natural_periods"), "unilateral.analysis.response_spectrum"),
     "fit_fragility": "fragility", "FragilityFit": "fragility",
     "study_table": "table", "study_file_schema": "schema", "write_study_schema": "schema",
 }
@@ -32,7 +33,8 @@ def __getattr__(name):
     if name in _EXPORTS:
         from importlib import import_module
 
-        value = getattr(import_module(f"{__name__}.{_EXPORTS[name]}"), name)
+        where = _EXPORTS[name]
+        value = getattr(import_module(where if where.startswith("unilateral.") else f"{__name__}.{where}"), name)
         globals()[name] = value         # later lookups (and pdoc) find it in the module
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -699,7 +699,7 @@ def _variants(doc: StudyFile, folder: Path) -> list[Variant]:
             settings = {key: spec.analysis[key] for key in ("dt", "t_end", "method", "rule", "lcp", "initial")}
             seconds = TIME_UNITS[spec.units["time"]]
             try:
-                from .spectrum import first_period
+                from ..analysis.response_spectrum import first_period
 
                 T1 = first_period(spec.model) * seconds
             except Exception:                                   # noqa: BLE001 - T1 is informative only
@@ -860,7 +860,7 @@ def _sa(record: Record, variant: Variant, period: float, zeta: float) -> float:
 
 
 def _sa_cached(digest: str, motion, period: float, zeta: float) -> float:
-    from .spectrum import response_spectrum
+    from ..analysis.response_spectrum import response_spectrum
 
     key = (digest, float(period), float(zeta))
     if key not in _SA_CACHE:

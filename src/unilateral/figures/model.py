@@ -14,7 +14,7 @@ draws it:
   lumped masses (black dots, area proportional to the mass) and footings (a grey strip across
   their width, cut into their contact patches, each patch numbered: the patch ``k`` of footing
   ``A`` is the contact ``A.k``);
-* below, the first mode shapes of the bilateral structure (:mod:`unilateral.analysis.modes`:
+* below, the first mode shapes of the bilateral structure (:mod:`unilateral.structure.modes`:
   every constraint held), the translations scaled to a tenth of the structure's size.
 
 Names are placed where they overlap the fewest names already placed (the unilateral elements
@@ -133,7 +133,7 @@ def model_drawing(structure, *, shapes=None, periods=None, units=None, title="")
     ----------
     structure : unilateral.structure.Structure
     shapes : (k, n) array_like, optional
-        Mode shapes over the free DOFs (``mode_shape`` of :func:`unilateral.analysis.modes.modes`);
+        Mode shapes over the free DOFs (``mode_shape`` of :func:`unilateral.structure.modes.modes`);
         the first :data:`MODE_COUNT` are drawn. None: no modes.
     periods : (k,) array_like, optional
         Their periods [time].
@@ -227,7 +227,7 @@ def model_file_drawing(path):
     unilateral.modelfile.ModelFileError
         The file is invalid or is a matrix-level model (no frame to draw).
     """
-    from ..analysis.modes import modes
+    from ..structure.modes import modes
     from ..modelfile import ModelFileError, load_model_file
 
     spec = load_model_file(path)

@@ -26,7 +26,7 @@ class CQ(Method):
 
     A :class:`~unilateral.soil.FoundationModel` (a structure on a soil given by ``Phi(s)``) is
     solved in its dual form, in the contact forces, with the weights of
-    ``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)`` (:func:`unilateral.soil.foundation_solve.solve_foundation`).
+    ``Lambda_D(s) = T^T D(s)^-1 T + Phi(s)`` (:func:`unilateral.methods.foundation_solve.solve_foundation`).
 
     Options
     -------
@@ -95,7 +95,7 @@ class CQ(Method):
 
     def _solve_foundation(self, model, load, initial, disc, run, weight_options, march):
         from ..history import HISTORIES, coupled_unknowns, history_on_coupled_unknowns
-        from ..soil.foundation_solve import solve_foundation
+        from .foundation_solve import solve_foundation
 
         def operators():
             W = model.weights(disc.N, disc.dt, disc.rule, **weight_options)

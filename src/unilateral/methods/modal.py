@@ -95,7 +95,7 @@ class Modal(Method):
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
 
     def _solve_foundation(self, model, load, initial, disc, run, engine):
-        from ..soil.foundation_solve import foundation_base_state, primal_columns, solve_foundation
+        from .foundation_solve import foundation_base_state, primal_columns, solve_foundation
 
         if self.config.get("modes") is not None:
             raise ValueError("modal_options['modes'] does not apply to a FoundationModel (every pole is used)")

@@ -18,7 +18,7 @@ Modules (one concept each):
 * :mod:`.timedomain` - step responses of soil kernels by convolution quadrature (``step_response``).
 * :mod:`.foundation_model` - ``FoundationModel``: a structure on the soil through unilateral contacts,
   ``SoilFlexibility`` (``Phi(s)`` from any of the above), ``FoundationKernel`` (the dual kernel).
-* :mod:`.foundation_solve` - the route of ``method="cq"`` and ``"modal"`` for a ``FoundationModel``.
+  Its solution route (``method="cq"`` and ``"modal"``) is :mod:`unilateral.methods.foundation_solve`.
 
 Sign convention: vertical forces and displacements positive downward (into the soil); kernels are
 Laplace transforms, evaluated for ``Re s >= 0``, real for real ``s``.

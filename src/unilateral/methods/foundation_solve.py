@@ -22,7 +22,7 @@ from ..initial import InitialState, static_state
 from ..march.direct import sweep_direct
 from ..march.step_log import StepLog
 from ..march.stepper import StructureStepper
-from ..methods.common import failed_at_start, finish, step_loads
+from .common import failed_at_start, finish, step_loads
 from ..linalg import transpose_times
 
 __all__ = ["foundation_base_state", "hold_openings", "primal_columns", "solve_foundation"]
