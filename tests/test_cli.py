@@ -86,13 +86,15 @@ def test_bad_options_name_the_option():
     assert result.exit_code == 2 and "Invalid value for '--dt': -1 is not a positive finite number" in result.output
 
 
-def test_a_short_cli_run_stays_in_python_and_leaves_the_library_policy_alone(tmp_path, monkeypatch):
-    """A CLI process runs short analyses without loading compiled code; the library default is
-    restored; once numba is loaded (an earlier compiled run), every run compiles."""
+def test_a_short_cli_run_stays_in_python_and_leaves_the_library_policy_alone(tmp_path):
+    """A CLI run (in its own process or in this one) runs short analyses in the Python loops, whatever
+    the process imported before; the library's policy is in force again afterwards."""
     import subprocess
     import sys
 
-    from unilateral.march import jit
+    import numba  # noqa: F401  (imported: it no longer changes the choice)
+
+    from unilateral.march.policy import COMMAND_LINE, LIBRARY, current_policy
 
     out = tmp_path / "ex"
     subprocess.run([sys.executable, "-m", "unilateral", "example", "liolios1990", "--out", str(out), "--t-end",
@@ -102,13 +104,10 @@ def test_a_short_cli_run_stays_in_python_and_leaves_the_library_policy_alone(tmp
     result = CliRunner().invoke(main, ["example", "liolios1990", "--out", str(tmp_path / "in"), "--t-end", "0.2",
                                        "--figures", "none", "--method", "modal"])
     assert result.exit_code == 0, result.output
-    assert jit.COMPILE_MIN_STEPS == 0 and jit.compiled_pays(10)
-    monkeypatch.setattr(jit, "COMPILE_MIN_STEPS", 2000)
-    import numba  # noqa: F401  (the import is paid)
-
-    assert jit.numba_loaded() and jit.compiled_pays(10)
-    monkeypatch.setattr(jit, "numba_loaded", lambda: False)
-    assert not jit.compiled_pays(10) and jit.compiled_pays(2000)
+    stats = [json.loads(text) for text in load_netcdf(tmp_path / "in" / "results.nc")["stats"].values]
+    assert [s["engine"] for s in stats] == ["python", "python"]
+    assert current_policy() is LIBRARY and LIBRARY.compiled_pays(10)
+    assert not COMMAND_LINE.compiled_pays(10) and COMMAND_LINE.compiled_pays(2000)
 
 
 def test_an_energy_balance_off_by_more_than_one_percent_is_warned_about_with_what_to_change():

@@ -208,7 +208,7 @@ def _without_timings(ds):
     return ds
 
 
-def test_results_nc_without_xarray_is_the_file_xarray_writes(tmp_path, monkeypatch):
+def test_results_nc_without_xarray_is_the_file_xarray_writes(tmp_path):
     """``run`` and ``example`` write results.nc without xarray: the file reads back as the one xarray
     writes for the same run (variables, coordinates, attributes, dtypes, _FillValue)."""
     import xarray as xr
@@ -216,10 +216,6 @@ def test_results_nc_without_xarray_is_the_file_xarray_writes(tmp_path, monkeypat
 
     from unilateral.cli import main
     from unilateral.io import load_netcdf
-    from unilateral.march import jit
-
-    # the same run in this process: the Python loops of a fresh CLI process (here numba may be loaded)
-    monkeypatch.setattr(jit, "numba_loaded", lambda: False)
 
     args = ["example", "liolios1990", "--t-end", "0.05", "--figures", "none"]
     lean = _in_subprocess([*args, "--out", str(tmp_path / "lean")], tmp_path)

@@ -44,6 +44,7 @@ _LAZY = {
     **dict.fromkeys(("Solution", "State"), "unilateral.result"),
     **dict.fromkeys(("BDF", "HHT", "Newmark", "get_rule"), "unilateral.rules"),
     **dict.fromkeys(("Simulation", "solve"), "unilateral.solve"),
+    **dict.fromkeys(("SizePolicy", "size_policy"), "unilateral.march.policy"),
     "run": "unilateral.analysis",
 }
 _ALIASES = {"run": "run_model_file"}

@@ -269,11 +269,6 @@ def _register_batch():
 _register_batch()
 
 
-#: Runs of fewer steps use the Python loops in a CLI process, which would otherwise spend 1-1.5 s
-#: importing numba and loading compiled code to save less (see :mod:`unilateral.march.jit`).
-CLI_COMPILE_MIN_STEPS = 2000
-
-
 # ---------------------------------------------------------------------- helpers
 def _analysis():
     from . import analysis
@@ -294,11 +289,11 @@ def _run(call, out, overrides, *, figures):
     from .figures.background import FigureProcessError
     from .io.atomic import WriteError
     from .io.folder import OutputFolderError
-    from .march import jit
+    from .march.policy import COMMAND_LINE, size_policy
 
-    compile_min_steps, jit.COMPILE_MIN_STEPS = jit.COMPILE_MIN_STEPS, CLI_COMPILE_MIN_STEPS
     try:
-        result = call(bar, figure_process)          # results.nc is written without xarray (nor pandas, dask)
+        with size_policy(COMMAND_LINE):     # short runs in Python: a CLI process would spend 1-1.5 s loading numba
+            result = call(bar, figure_process)          # results.nc is written without xarray (nor pandas, dask)
     except OutputFolderError as exc:
         raise click.BadParameter(str(exc), param_hint="'--out'") from None
     except WriteError as exc:
@@ -308,7 +303,6 @@ def _run(call, out, overrides, *, figures):
     except MemoryError as exc:                  # solve() refuses runs that would not fit, with the figures
         raise click.ClickException(str(exc) or "out of memory: increase --dt or shorten --t-end") from None
     finally:
-        jit.COMPILE_MIN_STEPS = compile_min_steps       # the CLI may run inside a library process (tests)
         if figure_process is not None:
             figure_process.close()
         if bar is not None:

@@ -21,6 +21,7 @@ import numpy as np
 from . import _validate as V
 from .discretization import Discretization
 from .kernels import KernelModel, TimeKernelModel
+from .march.policy import SizePolicy, current_policy, size_policy
 from .methods import METHODS, choose_method, fallback, get_method
 from .methods.stiff import StiffCoordinates
 from .model import Model
@@ -35,15 +36,11 @@ __all__ = ["METHODS", "MODEL_CLASSES", "Simulation", "solve"]
 MODEL_CLASSES = (Model, KernelModel, TimeKernelModel, FoundationModel)
 #: A run may use at most this fraction of the machine's memory.
 MEMORY_FRACTION = 0.5
-#: Models with at most this many DOFs are solved with one BLAS thread. The products and
-#: factorisations of a small model's step are too small to share: on the 17-DOF tower (2 cores)
-#: OpenBLAS's threads made a run 2.4 times slower (0.026 s against 0.011 s, 10^4 steps).
-BLAS_ONE_THREAD_MAX_N = 2000
 
 
 def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="static",
           lcp="bpp", lcp_options=None, bilateral=False, cq_options=None, modal_options=None,
-          direct_options=None, callback=None) -> Solution:
+          direct_options=None, callback=None, policy=None) -> Solution:
     """Dynamic response of a structure with unilateral constraints.
 
     Parameters
@@ -93,6 +90,10 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         :class:`~unilateral.methods.Direct`.
     callback : callable ``callback(k, N)``, optional
         Called after every step (progress bars).
+    policy : SizePolicy, optional
+        The size thresholds that choose the march and the BLAS threads
+        (:class:`~unilateral.march.policy.SizePolicy`; default: the policy in force,
+        :func:`~unilateral.march.policy.current_policy`).
 
     Returns
     -------
@@ -102,7 +103,7 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
                                                ("direct", direct_options)) if value is not None}
     return Simulation(model, load, dt=dt, t_end=t_end, method=method, rule=rule, initial=initial, lcp=lcp,
                       lcp_options=lcp_options, bilateral=bilateral, options=options,
-                      callback=callback).run_to_end()
+                      callback=callback, policy=policy).run_to_end()
 
 
 class Simulation:
@@ -110,7 +111,7 @@ class Simulation:
 
     Parameters
     ----------
-    model, load, dt, t_end, method, rule, initial, lcp, lcp_options, bilateral, callback
+    model, load, dt, t_end, method, rule, initial, lcp, lcp_options, bilateral, callback, policy
         As for :func:`unilateral.solve`.
     options : dict, optional
         The options of the method by its name (``{"cq": {...}}``, ``{"direct": {"engine": ...}}``):
@@ -135,7 +136,17 @@ class Simulation:
     """
 
     def __init__(self, model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="static",
-                 lcp="bpp", lcp_options=None, bilateral=False, options=None, callback=None):
+                 lcp="bpp", lcp_options=None, bilateral=False, options=None, callback=None, policy=None):
+        if policy is not None and not isinstance(policy, SizePolicy):
+            raise TypeError(f"policy must be a unilateral.SizePolicy or None, got {V.describe(policy)}")
+        self.policy = current_policy() if policy is None else policy
+        with size_policy(self.policy):
+            self._set_up(model, load, initial, grid=(dt, t_end, rule), method=(method, options),
+                         run_args=(lcp, lcp_options, bilateral, callback))
+
+    def _set_up(self, model, load, initial, *, grid, method, run_args):
+        """Check the problem, choose the method and start it (under the simulation's policy)."""
+        (dt, t_end, rule), (method, options) = grid, method
         disc = Discretization.from_user(dt, t_end, rule)
         if not isinstance(model, MODEL_CLASSES):          # the boundary: what a simulation takes
             raise TypeError("model must be a unilateral.Model, KernelModel, TimeKernelModel or "
@@ -146,7 +157,7 @@ class Simulation:
             raise ValueError(
                 "a TimeKernelModel is solved by product integration of its time-domain kernel: "
                 "pass only dt, t_end, initial, lcp, lcp_options, bilateral (method='auto', load=None)")
-        run = RunContext.from_user(lcp, lcp_options, bilateral, callback)
+        run = RunContext.from_user(*run_args)
         if run.solver.symmetric_only and not model.law.symmetric:
             raise ValueError(f"lcp={run.solver.name!r} needs a symmetric step LCP, but the friction constraints "
                              "make it nonsymmetric (rows +-T - mu N): use lcp='bpp' (the default) or 'lemke'")
@@ -185,8 +196,8 @@ class Simulation:
             run.stats["rule_note"] = note
         run.timer.lap("setup")
         self.method, self._context, self._rule_given = chosen, run, rule
-        self._blas = functools.partial(_blas_threads, model)
-        with self._blas():
+        self._scope = functools.partial(_scope, model, self.policy)
+        with self._scope():
             self._run = chosen.start(model, load, initial, disc, run)
         self.n, self._state = 0, None
         self.status, self.message = ("failed", self._run.failure) if self._run.failure else ("running", "")
@@ -214,7 +225,7 @@ class Simulation:
 
     def solution(self) -> Solution:
         """The :class:`~unilateral.result.Solution` of the steps ``0..n`` (a new object at each call)."""
-        with self._blas():
+        with self._scope():
             sol = self._run.solution(self.n)
         return sol if self._stiff is None else self._stiff.solution(sol)
 
@@ -263,7 +274,7 @@ class Simulation:
         if k <= self._run.done:                 # computed ahead (a compiled chunk): no work to do
             done = self._run.done
         else:
-            with self._blas():
+            with self._scope():
                 done = self._extend(k)
         self.n = min(done, k)
         if done >= k:
@@ -296,13 +307,17 @@ class Simulation:
                 f"method={self.method.name!r})")
 
 
-def _blas_threads(model):
-    """A context in which BLAS runs with one thread if ``model`` is small
-    (:data:`BLAS_ONE_THREAD_MAX_N`); the threads are left as they are for larger models."""
+@contextlib.contextmanager
+def _scope(model, policy):
+    """A context in which ``policy`` is in force and BLAS runs with one thread if ``model`` is small
+    (the policy's ``blas_one_thread_max_n``); the threads are left as they are for larger models."""
     n = getattr(model, "n", None)
-    if n is None or n > BLAS_ONE_THREAD_MAX_N:
-        return contextlib.nullcontext()
-    return _blas_controller().limit(limits=1, user_api="blas")
+    with size_policy(policy):
+        if n is None or n > policy.blas_one_thread_max_n:
+            yield
+        else:
+            with _blas_controller().limit(limits=1, user_api="blas"):
+                yield
 
 
 @functools.cache

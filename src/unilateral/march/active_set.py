@@ -23,17 +23,17 @@ from collections import OrderedDict
 import numpy as np
 import scipy.sparse as sp
 
-from .direct import direct_outputs
 from ..linalg import Factorization, is_diagonal
+from .direct import direct_outputs
+from .policy import current_policy
 
-#: Sparse models with more constraints than this solve the LCP in the full sparse space (with
-#: ``lcp="bpp"`` and constraints of the trivial law): the condensed ``W0`` would be large and dense.
-FULL_SPACE_MIN_M = 64
+
 def full_space_applies(model) -> bool:
-    """The full-space LCP applies to a sparse ``model`` with more than :data:`FULL_SPACE_MIN_M`
-    constraints of the trivial law whose ``H`` has no zero on its diagonal (the open constraints'
-    ``H_AA`` are inverted; a rigid contact, ``H = 0``, needs the condensed LCP)."""
-    if not (model.sparse and model.m > FULL_SPACE_MIN_M and model.law.trivial):
+    """The full-space LCP applies to a sparse ``model`` with more constraints than the policy's
+    :attr:`~unilateral.march.policy.SizePolicy.full_space_min_m`, all of the trivial law, whose
+    ``H`` has no zero on its diagonal (the open constraints' ``H_AA`` are inverted; a rigid
+    contact, ``H = 0``, needs the condensed LCP): the condensed ``W0`` would be large and dense."""
+    if not (model.sparse and model.m > current_policy().full_space_min_m and model.law.trivial):
         return False
     H = model.H
     diagonal = H.diagonal() if hasattr(H, "diagonal") and not isinstance(H, np.ndarray) else np.diag(H)

@@ -14,7 +14,7 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from .jit import SWEEP_STEP_COST, compiled_pays
+from .policy import current_policy
 from .step_log import StepLog
 
 
@@ -277,8 +277,9 @@ def sweep_direct(stepper, N, v_b, psi0, dv=None, *, callback=None, compiled=True
     """
     du, dud, v, psi, log = direct_outputs(stepper, N, v_b, psi0)
     m = stepper.model.m
-    arrays = (stepper.sweep_arrays(N) if compiled and callback is None and compiled_pays(N, SWEEP_STEP_COST)
-              else None)
+    policy = current_policy()
+    arrays = (stepper.sweep_arrays(N) if compiled and callback is None
+              and policy.compiled_pays(N, policy.sweep_step_cost) else None)
     if arrays is not None:                  # compiled: the same operations, in machine code
         from .compiled import sweep
 

@@ -23,12 +23,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..linalg import Factorization, SingularMatrixError, dense, is_diagonal, transpose_times
+from .policy import current_policy
 
-#: Models with at most this many DOFs are stepped with dense arrays.
-DENSE_STEPPING_MAX_N = 64
-#: Models with at most this many DOFs may be stepped by compiled code with a dense LU of ``D_eff``
-#: (:meth:`StructureStepper.march_arrays`, :meth:`StructureStepper.sweep_arrays`).
-COMPILED_MAX_N = 400
 
 
 class StructureStepper:
@@ -57,7 +53,7 @@ class StructureStepper:
         self.c1, self.alpha = c1, rule.alpha
         a = 1.0 - self.alpha
         # Small models step with dense arrays: sparse products cost more than they save there.
-        small = model.n <= DENSE_STEPPING_MAX_N
+        small = model.n <= current_policy().dense_stepping_max_n
         as_used = (lambda A: None if A is None else dense(A)) if small else (lambda A: A)
         self.M, self.K, self.F, self.F_v = (as_used(A) for A in (model.M, model.K, model.F, model.F_v))
         C = as_used(model.damping())
@@ -124,14 +120,15 @@ class StructureStepper:
     def sweep_arrays(self, N):
         """Arguments of :func:`unilateral.march.compiled.sweep` for N steps, or None if it does not apply.
 
-        It applies to models of at most :data:`COMPILED_MAX_N` DOFs (``D_eff`` factorised densely
+        It applies to models of at most the policy's
+        :attr:`~unilateral.march.policy.SizePolicy.compiled_max_n` DOFs (``D_eff`` factorised densely
         here if the stepper's factorisation is sparse) stepped by a rule with a
         convolution-quadrature form (BDF1, BDF2, trapezoidal) from a fresh stepper. The loads and
         offsets of all steps are taken from the arrays given, or evaluated here step by step.
         """
         kinds = {"bdf1": 0, "bdf2": 1, "trapezoidal": 2}
         if (self.rule.name not in kinds or self.alpha or self.k != 0
-                or self.model.n > COMPILED_MAX_N):
+                or self.model.n > current_policy().compiled_max_n):
             return None
         lu_piv = self._dense_factors()
         n, m = self.model.n, self.model.m

@@ -6,11 +6,11 @@ import functools
 
 from ..kernels import KernelModel, TimeKernelModel
 from ..lcp import BlockPrincipalPivoting
-from ..march.stepper import COMPILED_MAX_N, DENSE_STEPPING_MAX_N
+from ..march.policy import current_policy
 from ..model import Model
 from ..soil.foundation_model import FoundationModel
 from .cq import CQ
-from .direct import FULL_SPACE_MIN_M, Direct
+from .direct import Direct
 from .modal import FoundationPolesRefused, Modal, PolesRefused
 from .time_kernel import TimeKernelMethod
 
@@ -53,7 +53,8 @@ def _(model: Model, rule, solver, options):
         return Modal(**options["modal"]), "modal_options were given"
     if "direct" in options:
         return Direct(**options["direct"]), "direct_options were given"
-    small = model.n <= DENSE_STEPPING_MAX_N and model.m <= FULL_SPACE_MIN_M
+    policy = current_policy()
+    small = model.n <= policy.dense_stepping_max_n and model.m <= policy.full_space_min_m
     bpp = isinstance(solver, BlockPrincipalPivoting)
     if small and bpp and model.m and type(rule).__module__ == "unilateral.rules":
         return Direct(), ("small model: compiled direct stepping (a dense LU of D_eff, the condensed LCP) "
@@ -61,7 +62,8 @@ def _(model: Model, rule, solver, options):
     if small and rule.supports_cq and bpp and model.m:
         return Modal(), ("small model with a rule of its own: the compiled CLCP march with the exact "
                          "recursive history and compiled linear sweeps")
-    full = model.sparse and model.law.trivial and (model.m > FULL_SPACE_MIN_M or model.n > COMPILED_MAX_N)
+    full = model.sparse and model.law.trivial and (model.m > policy.full_space_min_m
+                                                        or model.n > policy.compiled_max_n)
     space = "the LCP in the full sparse space" if full else "the condensed LCP"
     return Direct(), f"direct stepping ({space}) is the fastest end to end for this model"
 

@@ -6,7 +6,7 @@ from .. import _validate as V
 from ..history import HISTORIES, history_on_coupled_unknowns
 from ..lcp import BlockPrincipalPivoting
 from ..march.clcp import march_cq, march_cq_compiled
-from ..march.jit import compiled_pays
+from ..march.policy import current_policy
 
 ENGINES = ("auto", "compiled", "python")
 #: Above this many steps the history of stored weights is summed by the FFT-blocked algorithm.
@@ -20,10 +20,10 @@ def compiled_applies(run) -> bool:
 
 def use_compiled(engine, compiled_ok, run, *, option, needs, steps) -> bool:
     """Whether to run compiled: ``engine`` asked for it (and it applies), or ``auto``, it applies and
-    a run of ``steps`` steps is long enough (:func:`unilateral.march.jit.compiled_pays`)."""
+    a run of ``steps`` steps is long enough (:meth:`unilateral.march.policy.SizePolicy.compiled_pays`)."""
     if engine == "compiled" and not compiled_ok:
         raise ValueError(f"{option}['engine']='compiled' needs {needs}")
-    return engine == "compiled" or (engine == "auto" and compiled_ok and compiled_pays(steps))
+    return engine == "compiled" or (engine == "auto" and compiled_ok and current_policy().compiled_pays(steps))
 
 
 def march_weights(W, psi_affine, v_b, disc, run, *, history=None, engine="auto", option="cq_options",

@@ -10,7 +10,8 @@ from .. import _validate as V
 from ..initial import InitialState, given_state, static_state
 from ..linalg import transpose_times
 from ..march.direct import sweep_direct
-from ..march.stepper import COMPILED_MAX_N, StructureStepper
+from ..march.policy import current_policy
+from ..march.stepper import StructureStepper
 from ..result import Solution
 
 
@@ -120,7 +121,7 @@ class BaseState:
         K_ub = model.K @ u_b
         F_vb = model.F @ v_b
         HFu = transpose_times(model.F, u_b) - model.H @ v_b
-        if tables and model.n <= COMPILED_MAX_N:
+        if tables and model.n <= current_policy().compiled_max_n:
             # small and medium models: the compiled loops take every step's load and offset as arrays
             load_inc = loads.table() + (F_vb - K_ub)
             g = (model.g(0.0) if model.g_is_constant
