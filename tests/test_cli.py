@@ -134,3 +134,19 @@ def test_the_pounding_example_warns_about_its_energy_balance(tmp_path):
     assert "WARNING: unilateral (with pounding) case: the energy balance is off by" in result.output
     summary = json.loads((out / "summary.json").read_text())
     assert any("--rule trapezoidal" in w for w in summary["warnings"])
+
+
+def test_the_progress_bar_gives_no_eta_from_the_set_up_time(capsys):
+    """A run whose set-up takes 2 s before the first step reports: no ETA at 0 %, then the rate of
+    the steps (1 000 steps per second here, on a clock the test drives)."""
+    from unilateral.cli import _ProgressBar
+
+    now = [0.0]
+    bar = _ProgressBar(clock=lambda: now[0])
+    now[0] = 2.0
+    bar(0, 10_000)                      # the first report after the set-up: nothing timed yet
+    assert "ETA     ?" in capsys.readouterr().err
+    now[0] = 4.0
+    bar(2_000, 10_000)                  # 2 000 steps in 2 s: 8 000 left, 8 s
+    err = capsys.readouterr().err
+    assert " 20.0%" in err and "ETA   8.0 s" in err, err

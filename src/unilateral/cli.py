@@ -330,28 +330,42 @@ class _UsageFailure(click.ClickException):
 class _ProgressBar:
     """A one-line progress bar on stderr with the ETA of the whole run (cases and writing).
 
-    It appears only for runs longer than a second, and redraws at most ten times a second.
+    It appears only for runs longer than a second, and redraws at most ten times a second. The ETA
+    comes from the rate since the first report (the set-up before it, imports and factorisations,
+    says nothing about the steps) and is shown once 1 % of the steps have been timed ("ETA ?"
+    before). ``clock``: a function giving seconds (tests pass their own).
     """
 
-    def __init__(self, width=30):
-        self.start = time.perf_counter()
+    def __init__(self, width=30, clock=time.perf_counter):
+        self.clock = clock
+        self.start = clock()
         self.width = width
         self.last = 0.0
+        self.first = None                   # (time, done) of the first report
         self.shown = False
 
     def __call__(self, done, total):
-        now = time.perf_counter()
+        now = self.clock()
         elapsed = now - self.start
+        if self.first is None:
+            self.first = (now, done)
         if elapsed < 1.0 or (now - self.last < 0.1 and done < total) or total <= 0:
             return
         self.last = now
         frac = min(done / total, 1.0)
-        eta = elapsed * (1 - frac) / frac if frac > 0 else float("nan")
         filled = int(self.width * frac)
         sys.stderr.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] {100 * frac:5.1f}%  "
-                         f"elapsed {elapsed:5.1f} s  ETA {eta:5.1f} s ")
+                         f"elapsed {elapsed:5.1f} s  ETA {self.eta(now, done, total)} ")
         sys.stderr.flush()
         self.shown = True
+
+    def eta(self, now, done, total) -> str:
+        """The time left at the rate since the first report, or "?" before 1 % of the steps."""
+        t0, done0 = self.first
+        timed = done - done0
+        if timed < 0.01 * total or now <= t0:
+            return "    ?"
+        return f"{(now - t0) / timed * (total - done):5.1f} s"
 
     def close(self):
         if self.shown:
