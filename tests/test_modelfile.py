@@ -150,6 +150,8 @@ ERRORS = {
                       "node, k, c, direction, gap, capacity, mu, kt, ct)"),
     "EI for I": (modify(elements__0__I=None, elements__0__EI=3e5),
                  'model.toml: elements[0].EI: unknown key (did you mean "I"?'),
+    "E for e": (modify(elements__0__E=None, elements__0__e=3e5),
+                'model.toml: elements[0].e: unknown key (did you mean "E"?'),
     "negative stiffness": (modify(unilateral__0__k=-200.0), "model.toml: unilateral[0].k = -200.0: must be > 0"),
     "missing units": (modify(units=None),
                       'model.toml: units: missing section (declare e.g. [units] length = "m", force = "kN", '

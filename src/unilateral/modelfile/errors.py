@@ -100,6 +100,9 @@ def suggestion(word, options, aliases: dict | None = None) -> str | None:
     if word in aliases:
         return aliases[word]
     candidates = {str(o): o for o in options} | aliases
+    same_letters = [c for c in candidates if c.lower() == word.lower()]     # "my" for "My"
+    if same_letters:
+        return candidates[same_letters[0]]
     match = difflib.get_close_matches(word, list(candidates), n=1)
     return candidates[match[0]] if match else None
 
