@@ -330,5 +330,29 @@ def test_solve_dispatches_a_time_kernel_model():
     model = ul.TimeKernelModel(kernel, lambda t: np.array([np.sin(3 * t)]))
     sol = ul.solve(model, dt=1e-3, t_end=1.0, initial="rest")
     assert sol.success and sol.stats["method"] == "time-kernel" and sol.v.max() > 0
-    with pytest.raises(ValueError, match="TimeKernelModel is solved by product integration"):
+    with pytest.raises(ValueError, match=r"\(TimeKernelModel\) is solved by product integration"):
         ul.solve(model, dt=1e-3, t_end=1.0, method="cq")
+
+
+def test_a_time_kernel_is_a_kind_of_kernel_model():
+    """TimeKernelModel gives a KernelModel of domain "time": method="time-kernel" by name solves it
+    (as auto does, the same numbers), cq refuses it with the method to use, and cq's Laplace-domain
+    kernel model is refused by time-kernel."""
+    k, m = 100.0, 1.0
+    w = np.sqrt(k / m)
+    kernel = ul.TimeKernel(np.array([[k]]), lambda t: np.array([[-k * w * np.sin(w * t)]]),
+                           Lambda0=np.array([[0.0]]))
+    model = ul.TimeKernelModel(kernel, lambda t: np.array([np.sin(3 * t)]))
+    assert isinstance(model, ul.KernelModel) and model.domain == "time"
+    auto = ul.solve(model, dt=1e-3, t_end=0.5, initial="rest")
+    named = ul.solve(ul.KernelModel(kernel, lambda t: np.array([np.sin(3 * t)])), dt=1e-3, t_end=0.5,
+                     initial="rest", method="time-kernel")
+    np.testing.assert_array_equal(auto.v, named.v)
+    from unilateral.methods import CQ, TimeKernelMethod
+
+    assert "use method='time-kernel'" in CQ().applies(model, ul.get_rule("bdf2"))
+    laplace = ul.KernelModel(lambda s: np.array([[k * s * s / (s * s + w * w)]]), np.zeros((4, 1)))
+    assert laplace.domain == "laplace"
+    assert "use method='cq'" in TimeKernelMethod().applies(laplace, ul.get_rule("bdf2"))
+    with pytest.raises(ValueError, match="psiL has 2 columns but the kernel Lambda is 1 x 1"):
+        ul.KernelModel(kernel, np.zeros((4, 2)))

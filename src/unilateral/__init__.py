@@ -6,7 +6,7 @@ contact problems" (1990): the problem is reduced to the unilateral unknowns only
 step by step with one small LCP per time step.
 
 Entry points: :class:`Model` (matrices or the natural form), :class:`KernelModel` (a kernel
-``Lambda(s)`` and ``psiL``), :class:`TimeKernelModel` (a time-domain kernel ``Lambda(t)``, e.g.
+``Lambda(s)`` and ``psiL``, or a time-domain kernel ``Lambda(t)``, :class:`TimeKernel`, e.g.
 by numerical Laplace inversion, :func:`invert_laplace`), and :func:`solve` (loads as callables,
 arrays or a :class:`LoadHistory`). Structures are built with :class:`unilateral.structure.Frame2D`
 or read from model files (:func:`unilateral.modelfile.load_model_file`); :class:`Simulation` advances

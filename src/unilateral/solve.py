@@ -20,7 +20,7 @@ import numpy as np
 
 from . import _validate as V
 from .discretization import Discretization
-from .kernels import KernelModel, TimeKernelModel
+from .kernels import KernelModel
 from .march.policy import SizePolicy, current_policy, size_policy
 from .methods import METHODS, choose_method, fallback, get_method
 from .methods.stiff import StiffCoordinates
@@ -33,7 +33,7 @@ from .soil.foundation_model import FoundationModel
 __all__ = ["METHODS", "MODEL_CLASSES", "Simulation", "solve"]
 
 #: The problems a simulation takes.
-MODEL_CLASSES = (Model, KernelModel, TimeKernelModel, FoundationModel)
+MODEL_CLASSES = (Model, KernelModel, FoundationModel)
 #: A run may use at most this fraction of the machine's memory.
 MEMORY_FRACTION = 0.5
 
@@ -45,7 +45,7 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
 
     Parameters
     ----------
-    model : Model, KernelModel or TimeKernelModel
+    model : Model or KernelModel (a kernel in the Laplace or the time domain), or FoundationModel
     load : callable ``q(t) -> (n,)``, array (N+1, n) or LoadHistory, optional
         Total applied load (gravity included) at ``t_k = k dt``; ``N = round(t_end / dt)``.
         Not used by kernel models (their ``psiL`` carries the loading).
@@ -60,7 +60,7 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         :class:`Model` (compiled stepping: dense for small models, in the full sparse space for
         large ones; ``"modal"`` for a small model with a rule object of the user's own),
         ``"modal"`` or ``"cq"`` for a foundation on a soil, ``"cq"`` for a :class:`KernelModel`,
-        ``"time-kernel"`` for a :class:`TimeKernelModel`.
+        ``"time-kernel"`` for a :class:`KernelModel` of a time-domain kernel.
         ``"cq"``: the convolutional LCP of Liolios (1990), eq. (27), with convolution-quadrature
         weights of ``Lambda(s)``, one LCP per step. ``"modal"``: the same CLCP with the history
         evaluated recursively from the poles and residues of ``Lambda(s)``, O(r m) per step.
@@ -149,14 +149,16 @@ class Simulation:
         (dt, t_end, rule), (method, options) = grid, method
         disc = Discretization.from_user(dt, t_end, rule)
         if not isinstance(model, MODEL_CLASSES):          # the boundary: what a simulation takes
-            raise TypeError("model must be a unilateral.Model, KernelModel, TimeKernelModel or "
-                            f"FoundationModel, got {V.describe(model)}")
+            raise TypeError("model must be a unilateral.Model, KernelModel or FoundationModel, got "
+                            f"{V.describe(model)}")
         options = _method_options(options)
-        if isinstance(model, TimeKernelModel) and (method != "auto" or load is not None or options
-                                                   or disc.rule.name != "bdf2"):
+        time_kernel = getattr(model, "domain", "") == "time"
+        if time_kernel and (method not in ("auto", "time-kernel") or load is not None or options
+                            or disc.rule.name != "bdf2"):
             raise ValueError(
-                "a TimeKernelModel is solved by product integration of its time-domain kernel: "
-                "pass only dt, t_end, initial, lcp, lcp_options, bilateral (method='auto', load=None)")
+                "a KernelModel of a TimeKernel (TimeKernelModel) is solved by product integration of its "
+                "time-domain kernel: pass only dt, t_end, initial, lcp, lcp_options, bilateral "
+                "(method='auto', load=None)")
         run = RunContext.from_user(*run_args)
         if run.solver.symmetric_only and not model.law.symmetric:
             raise ValueError(f"lcp={run.solver.name!r} needs a symmetric step LCP, but the friction constraints "

@@ -16,7 +16,8 @@ module                   content
                          and its product-integration weights
 ``laplace_inversion``    :func:`invert_laplace` (de Hoog, Durbin), used to build time-domain kernels
 ``cq_weights``           :func:`cq_weights`: convolution-quadrature weights of any kernel by FFT
-``kernel_model``         :class:`KernelModel` and :class:`TimeKernelModel`: problems given by their
+``kernel_model``         :class:`KernelModel` (its kernel in the Laplace or the time domain;
+                         :func:`TimeKernelModel` makes the latter): problems given by their
                          kernel and bilateral response ``psiL`` only
 =======================  ==========================================================================
 

@@ -11,20 +11,24 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _validate as V
-from ..constraints import contact_law, default_families, step_law
-from ..model import _names
+from ..constraints import default_families, step_law
 from .base import CallableKernel, Kernel
 from .time_domain import TimeKernel
 
 
 class KernelModel:
-    """Unilateral problem defined by ``Lambda(s)`` and ``psiL``.
+    """Unilateral problem defined by its kernel ``Lambda`` and ``psiL``.
+
+    The kernel is given in the Laplace domain (a :class:`~unilateral.kernels.Kernel` or a
+    callable ``Lambda(s)``: ``domain = "laplace"``, solved by ``method="cq"``) or in the time
+    domain (a :class:`~unilateral.kernels.TimeKernel`, ``Lambda(t)``: ``domain = "time"``, solved
+    by ``method="time-kernel"``, product integration).
 
     Parameters
     ----------
-    Lambda : callable or Kernel
+    Lambda : callable, Kernel or TimeKernel
         ``Lambda(s) -> (m, m)`` for complex ``s`` with ``Re s > 0``; real for real ``s``
-        and ``Lambda(conj s) = conj Lambda(s)``.
+        and ``Lambda(conj s) = conj Lambda(s)``; or a time-domain kernel.
     psiL : callable ``psiL(t) -> (m,)`` or array (N+1, m)
         Constraint reactions of the structure with every constraint bilateral (eq. 22),
         including the offset ``-g``; an array is sampled at ``t_k = k dt``.
@@ -34,7 +38,12 @@ class KernelModel:
         ``Lambda`` accepts an array of s of shape (L,) and returns (L, m, m).
     constraint_names : sequence of m str, optional
     families : sequence of ConstraintFamily, optional
-        The laws of the unknowns (:mod:`unilateral.constraints`; default: every one a contact).
+        The laws of the unknowns (:mod:`unilateral.constraints`; default: every one a contact;
+        a time-domain kernel takes contacts only).
+
+    Attributes
+    ----------
+    kernel : Kernel or TimeKernel;  domain : ``"laplace"`` or ``"time"``;  m : int
     """
 
     def __init__(self, Lambda, psiL, *, m=None, vectorized=False, constraint_names=None, families=None):
@@ -43,8 +52,14 @@ class KernelModel:
             m = psiL.shape[1]
         elif not callable(psiL):
             raise TypeError(f"psiL must be a callable psiL(t) or an array (N+1, m), got {V.describe(psiL)}")
-        if isinstance(Lambda, Kernel):
+        if isinstance(Lambda, TimeKernel) and families is not None:
+            raise ValueError("families: a time-domain kernel (TimeKernel) takes contacts only; "
+                             "give Lambda(s) for other laws")
+        if isinstance(Lambda, (Kernel, TimeKernel)):
             kernel = Lambda
+            if m is not None and m != kernel.m:
+                raise ValueError(f"psiL has {m} columns but the kernel Lambda is {kernel.m} x {kernel.m}: "
+                                 "give one column per constraint")
         else:
             if m is None:
                 if not callable(Lambda):
@@ -52,6 +67,7 @@ class KernelModel:
                 m = np.atleast_2d(np.asarray(Lambda(np.array([1.0]) if vectorized else 1.0))).shape[-1]
             kernel = CallableKernel(Lambda, m, vectorized=vectorized)
         self.kernel = kernel
+        self.domain = "time" if isinstance(kernel, TimeKernel) else "laplace"
         self.m = kernel.m
         self.psiL = psiL
         self.constraint_names = (
@@ -64,7 +80,9 @@ class KernelModel:
         self.law = step_law(self.families, self.m)
 
     def Lambda_real(self, s: float) -> np.ndarray:
-        """``Lambda(s)`` at a real ``s >= 0`` as a real symmetric (m, m) matrix."""
+        """``Lambda(s)`` at a real ``s >= 0`` as a real symmetric (m, m) matrix (Laplace domain)."""
+        if self.domain != "laplace":
+            raise ValueError("Lambda_real needs a kernel in the Laplace domain; this one is a TimeKernel")
         value = np.asarray(self.kernel(np.array([s], dtype=float))[0])
         if np.iscomplexobj(value):
             scale = max(np.max(np.abs(value)), 1.0)
@@ -88,34 +106,20 @@ class KernelModel:
         return self.psiL[: N + 1]
 
     def __repr__(self) -> str:
-        return f"KernelModel(m={self.m})"
+        return f"KernelModel(m={self.m})" if self.domain == "laplace" else f"KernelModel(m={self.m}, {self.kernel!r})"
 
 
-class TimeKernelModel:
-    """Unilateral problem defined by a time-domain kernel and ``psiL``.
+def TimeKernelModel(kernel, psiL, constraint_names=None) -> KernelModel:  # noqa: N802 (the former class)
+    """The :class:`KernelModel` of a time-domain kernel (``domain = "time"``).
 
     Parameters
     ----------
     kernel : TimeKernel
     psiL : callable ``psiL(t) -> (m,)`` or array (N+1, m)
-        Constraint reactions of the structure with every constraint bilateral, as for
-        :class:`~unilateral.kernels.KernelModel` (samples at ``t_k = k dt``).
+        Constraint reactions of the structure with every constraint bilateral (samples at
+        ``t_k = k dt``).
     constraint_names : sequence of m str, optional
     """
-
-    def __init__(self, kernel, psiL, constraint_names=None):
-        if not isinstance(kernel, TimeKernel):
-            raise TypeError(f"kernel must be a TimeKernel, got {V.describe(kernel)}")
-        self.kernel = kernel
-        self.m = kernel.m
-        if not callable(psiL):
-            psiL = V.as_matrix("psiL", psiL, (None, self.m))
-        self.psiL = psiL
-        self.constraint_names = _names("constraint_names", constraint_names, self.m, "c")
-        self.law = contact_law(self.m)
-
-    # the sampling of psiL (callable or array) is the kernel model's
-    psiL_samples = KernelModel.psiL_samples
-
-    def __repr__(self) -> str:
-        return f"TimeKernelModel(m={self.m}, {self.kernel!r})"
+    if not isinstance(kernel, TimeKernel):
+        raise TypeError(f"kernel must be a TimeKernel, got {V.describe(kernel)}")
+    return KernelModel(kernel, psiL, constraint_names=constraint_names)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import functools
 
-from ..kernels import KernelModel, TimeKernelModel
+from ..kernels import KernelModel
 from ..lcp import BlockPrincipalPivoting
 from ..march.policy import current_policy
 from ..model import Model
@@ -23,7 +23,7 @@ def choose_method(model, rule, solver, options):
 
     Parameters
     ----------
-    model : Model, KernelModel, TimeKernelModel or FoundationModel
+    model : Model, KernelModel or FoundationModel
     rule : Rule
     solver : LCPSolver
     options : dict of method name -> options given (``cq_options`` and the like)
@@ -36,12 +36,9 @@ def choose_method(model, rule, solver, options):
 
 
 @choose_method.register
-def _(model: TimeKernelModel, rule, solver, options):
-    return TimeKernelMethod(), "a TimeKernelModel is solved by product integration of its Lambda(t)"
-
-
-@choose_method.register
 def _(model: KernelModel, rule, solver, options):
+    if model.domain == "time":
+        return TimeKernelMethod(), "a KernelModel of a TimeKernel is solved by product integration of its Lambda(t)"
     return CQ(**options.get("cq", {})), "a KernelModel is solved by convolution quadrature of its Lambda(s)"
 
 

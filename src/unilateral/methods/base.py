@@ -31,6 +31,8 @@ class Method(ABC):
     options: ClassVar[tuple[str, ...]] = ()
     #: Only rules with a convolution-quadrature form (BDF1, BDF2, trapezoidal).
     cq_rules_only: ClassVar[bool] = True
+    #: The domain of a KernelModel's kernel that the method takes (``"laplace"`` or ``"time"``).
+    kernel_domain: ClassVar[str] = "laplace"
 
     def __init__(self, **options):
         unknown = sorted(set(options) - set(self.options))
@@ -47,10 +49,16 @@ class Method(ABC):
     def applies(self, model, rule) -> str | None:
         """None if this method solves ``model`` with ``rule``; otherwise the reason it does not."""
         if not isinstance(model, self.models):
-            kinds = " or ".join(cls.__name__ for cls in self.models)
+            kinds = " or ".join(cls.__name__ for cls in self.models) + (
+                " of a TimeKernel" if self.kernel_domain == "time" else "")
             hint = ("; it needs matrices: a KernelModel is solved with method='cq'"
                     if type(model).__name__ == "KernelModel" else "")
             return f"method={self.name!r} solves a {kinds}, not a {type(model).__name__}{hint}"
+        domain = getattr(model, "domain", self.kernel_domain)
+        if domain != self.kernel_domain:
+            other = "'time-kernel'" if domain == "time" else "'cq'"
+            return (f"method={self.name!r} takes a kernel in the {self.kernel_domain} domain, this KernelModel's "
+                    f"is in the {domain} domain: use method={other}")
         if self.cq_rules_only and not rule.supports_cq:
             return (f"rule={rule.name!r} has no convolution-quadrature form; valid for method={self.name!r}: "
                     "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")

@@ -7,7 +7,7 @@ import numpy as np
 from .. import _validate as V
 from ..discretization import Discretization
 from ..initial import InitialState, static_lcp
-from ..kernels import TimeKernelModel, time_kernel_weights
+from ..kernels import KernelModel, time_kernel_weights
 from ..kernels.time_domain import QUADRATURES, RATE_RULES
 from ..run_context import RunContext
 from .base import Method
@@ -29,13 +29,14 @@ class TimeKernelMethod(Method):
     """
 
     name = "time-kernel"
-    models = (TimeKernelModel,)
+    models = (KernelModel,)
+    kernel_domain = "time"
     options = ("quadrature", "rate", "history")
     cq_rules_only = False
 
     def solve(self, model, load, initial, disc, run):
         if load is not None:
-            raise ValueError("load is not used by a TimeKernelModel: its psiL carries the loading; pass load=None")
+            raise ValueError("load is not used by a kernel model: its psiL carries the loading; pass load=None")
         initial = V.choice("initial", initial, ("static", "rest"))
         quadrature = V.choice("quadrature", self.config.get("quadrature", "trapezoidal"), QUADRATURES)
         rate = V.choice("rate", self.config.get("rate", "bdf2"), RATE_RULES)
@@ -100,8 +101,8 @@ def solve_time_kernel(model, *, dt, t_end, initial="static", lcp="bpp", lcp_opti
         ``u`` and ``udot`` are None; ``stats`` has ``method = "time-kernel"``, the LCP statistics
         and ``time`` per phase (``setup``, ``weights``, ``initial``, ``steps``).
     """
-    if not isinstance(model, TimeKernelModel):
-        raise TypeError(f"model must be a TimeKernelModel, got {V.describe(model)}")
+    if not (isinstance(model, KernelModel) and model.domain == "time"):
+        raise TypeError(f"model must be a KernelModel of a TimeKernel (TimeKernelModel), got {V.describe(model)}")
     disc = Discretization.from_user(dt, t_end)
     run = RunContext.from_user(lcp, lcp_options, bilateral, callback)
     method = TimeKernelMethod(quadrature=quadrature, rate=rate, history=history)
