@@ -185,6 +185,9 @@ class Model:
                 setattr(self, name, lambda t, _f=f, _d=delta: _f(t) + _d)
 
     # ------------------------------------------------------------------ sizes and flags
+    #: The kind of problem, as the methods know it (:attr:`unilateral.methods.Method.solves`).
+    kind = "matrices"
+
     @property
     def n(self) -> int:
         """Number of structural degrees of freedom."""

@@ -44,6 +44,8 @@ class KernelModel:
     Attributes
     ----------
     kernel : Kernel or TimeKernel;  domain : ``"laplace"`` or ``"time"``;  m : int
+    kind : ``"laplace kernel"`` or ``"time kernel"``, as the methods know it
+        (:attr:`unilateral.methods.Method.solves`)
     """
 
     def __init__(self, Lambda, psiL, *, m=None, vectorized=False, constraint_names=None, families=None):
@@ -68,6 +70,7 @@ class KernelModel:
             kernel = CallableKernel(Lambda, m, vectorized=vectorized)
         self.kernel = kernel
         self.domain = "time" if isinstance(kernel, TimeKernel) else "laplace"
+        self.kind = f"{self.domain} kernel"
         self.m = kernel.m
         self.psiL = psiL
         self.constraint_names = (

@@ -21,7 +21,6 @@ model files and the command line then accept its name (see ``docs/architecture.m
 """
 
 from .. import _validate as V
-from ..model import Model
 from .auto import choose_method, fallback
 from .base import Method
 from .cq import CQ
@@ -35,7 +34,7 @@ METHODS = {"cq": CQ, "modal": Modal, "direct": Direct, "time-kernel": TimeKernel
 #: Every name ``method=`` accepts.
 METHOD_NAMES = ("auto", *METHODS)
 #: The names that solve a matrix :class:`~unilateral.model.Model` (model files, the command line).
-MATRIX_METHOD_NAMES = ("auto", *(name for name, cls in METHODS.items() if Model in cls.models))
+MATRIX_METHOD_NAMES = ("auto", *(name for name, cls in METHODS.items() if "matrices" in cls.solves))
 
 
 def get_method(method, options=None):

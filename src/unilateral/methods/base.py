@@ -5,8 +5,14 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from typing import ClassVar
 
-from ..model import Model
 from .stepping import SolvedRun
+
+
+#: The kinds of problem in words (messages).
+KIND_NAMES = {"matrices": "a Model", "foundation": "a FoundationModel",
+              "laplace kernel": "a KernelModel of Lambda(s)", "time kernel": "a KernelModel of a TimeKernel"}
+#: The method that solves each kind of problem without matrices.
+USE_FOR = {"cq": "laplace kernel", "time-kernel": "time kernel"}
 
 
 class Method(ABC):
@@ -25,15 +31,15 @@ class Method(ABC):
 
     #: Registry name (``solve(..., method=name)``).
     name: ClassVar[str] = ""
-    #: Model classes the method solves.
-    models: ClassVar[tuple[type, ...]] = (Model,)
+    #: The kinds of problem the method solves (a problem's ``kind``: ``"matrices"`` for a
+    #: :class:`~unilateral.model.Model`, ``"foundation"`` for a
+    #: :class:`~unilateral.soil.FoundationModel`, ``"laplace kernel"`` and ``"time kernel"`` for a
+    #: :class:`~unilateral.kernels.KernelModel`).
+    solves: ClassVar[frozenset[str]] = frozenset({"matrices"})
     #: Option names accepted by the constructor.
     options: ClassVar[tuple[str, ...]] = ()
     #: Only rules with a convolution-quadrature form (BDF1, BDF2, trapezoidal).
     cq_rules_only: ClassVar[bool] = True
-    #: The domain of a KernelModel's kernel that the method takes (``"laplace"`` or ``"time"``).
-    kernel_domain: ClassVar[str] = "laplace"
-
     def __init__(self, **options):
         unknown = sorted(set(options) - set(self.options))
         if unknown:
@@ -48,17 +54,13 @@ class Method(ABC):
 
     def applies(self, model, rule) -> str | None:
         """None if this method solves ``model`` with ``rule``; otherwise the reason it does not."""
-        if not isinstance(model, self.models):
-            kinds = " or ".join(cls.__name__ for cls in self.models) + (
-                " of a TimeKernel" if self.kernel_domain == "time" else "")
-            hint = ("; it needs matrices: a KernelModel is solved with method='cq'"
-                    if type(model).__name__ == "KernelModel" else "")
-            return f"method={self.name!r} solves a {kinds}, not a {type(model).__name__}{hint}"
-        domain = getattr(model, "domain", self.kernel_domain)
-        if domain != self.kernel_domain:
-            other = "'time-kernel'" if domain == "time" else "'cq'"
-            return (f"method={self.name!r} takes a kernel in the {self.kernel_domain} domain, this KernelModel's "
-                    f"is in the {domain} domain: use method={other}")
+        kind = getattr(model, "kind", None)
+        if kind not in self.solves:
+            takes = " or ".join(KIND_NAMES[k] for k in sorted(self.solves))
+            given = KIND_NAMES.get(kind, f"a {type(model).__name__}")
+            use = [name for name, k in USE_FOR.items() if k == kind]
+            hint = f": use method={use[0]!r}" if use and use[0] != self.name else ""
+            return f"method={self.name!r} solves {takes}, not {given}{hint}"
         if self.cq_rules_only and not rule.supports_cq:
             return (f"rule={rule.name!r} has no convolution-quadrature form; valid for method={self.name!r}: "
                     "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")

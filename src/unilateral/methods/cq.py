@@ -37,7 +37,7 @@ class CQ(Method):
     """
 
     name = "cq"
-    models = (Model, KernelModel, FoundationModel)
+    solves = frozenset({"matrices", "foundation", "laplace kernel"})
     options = ("L", "rho", "history", "engine")
 
     def memory_estimate(self, model, disc) -> dict:

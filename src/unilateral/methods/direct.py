@@ -10,7 +10,6 @@ from ..lcp import BlockPrincipalPivoting
 from ..march.active_set import ActiveSetMarch, full_space_applies
 from ..march.direct import ChunkedMarch, CompiledDirectMarch, DirectMarch, march_direct
 from ..march.policy import current_policy
-from ..model import Model
 from .base import Method
 from .clcp_march import ENGINES
 from .common import BaseState, failed_at_start
@@ -44,7 +43,6 @@ class Direct(Method):
     """
 
     name = "direct"
-    models = (Model,)
     options = ("engine",)
     cq_rules_only = False
 

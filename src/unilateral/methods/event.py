@@ -6,7 +6,6 @@ import numpy as np
 
 from ..march.event import EventMarch
 from ..march.event_load import load_generator
-from ..model import Model
 from ..result import Solution, State
 from .base import Method
 from .common import failed_at_start, initial_state, step_loads
@@ -51,7 +50,6 @@ class Event(Method):
     """
 
     name = "event"
-    models = (Model,)
     options = ("tol", "max_events")
     cq_rules_only = False
 

@@ -48,7 +48,7 @@ class Modal(Method):
     """
 
     name = "modal"
-    models = (Model, FoundationModel)
+    solves = frozenset({"matrices", "foundation"})
     options = ("modes", "engine")
 
     @functools.singledispatchmethod

@@ -29,8 +29,7 @@ class TimeKernelMethod(Method):
     """
 
     name = "time-kernel"
-    models = (KernelModel,)
-    kernel_domain = "time"
+    solves = frozenset({"time kernel"})
     options = ("quadrature", "rate", "history")
     cq_rules_only = False
 

@@ -831,6 +831,7 @@ class FoundationModel:
     ``gap >= 0``); ``{"u0": ..., "udot0": ...}`` - given values, soil unloaded (``T^T u0 + gap >= 0``).
     """
 
+    kind = "foundation"     #: the kind of problem, as the methods know it (``Method.solves``)
     def __init__(self, M, K, T, soil, *, C=None, gap=None, dof_names=None, contact_names=None, Tx=None, mu=None,
                  Ty=None, facets=None):
         self.K = V.as_matrix("K", K, (None, None))
