@@ -22,7 +22,7 @@ from . import _validate as V
 from .discretization import Discretization
 from .kernels import KernelModel
 from .march.policy import SizePolicy, current_policy, size_policy
-from .methods import METHODS, choose_method, fallback, get_method
+from .methods import METHODS, choose_method, get_method
 from .methods.stiff import StiffCoordinates
 from .model import Model
 from .result import Solution, State
@@ -181,7 +181,7 @@ class Simulation:
         """Check ``chosen`` and start its run at step 0."""
         model, load, initial = self._problem
         disc = self.disc
-        why_not = chosen.applies(model, disc.rule)
+        why_not = chosen.applies(model, disc.rule) or chosen.refusal(model)
         if why_not is not None:
             raise ValueError(f"{why_not}; the methods that apply to this problem: "
                              + (", ".join(map(repr, _applicable(model, disc.rule))) or "none"))
@@ -197,7 +197,7 @@ class Simulation:
         if note:
             run.stats["rule_note"] = note
         run.timer.lap("setup")
-        self.method, self._context, self._rule_given = chosen, run, rule
+        self.method, self._context = chosen, run
         self._scope = functools.partial(_scope, model, self.policy)
         with self._scope():
             self._run = chosen.start(model, load, initial, disc, run)
@@ -277,26 +277,13 @@ class Simulation:
             done = self._run.done
         else:
             with self._scope():
-                done = self._extend(k)
+                done = self._run.extend(k)
         self.n = min(done, k)
         if done >= k:
             self.status = "finished" if self.n == self.N else "running"
             return None
         self.status, self.message = "failed", self._run.failure
         return self.message
-
-    def _extend(self, k: int) -> int:
-        """Extend the run to step ``k``; with ``method="auto"``, a method refused on its first steps
-        hands over to the fallback (:func:`unilateral.methods.fallback`)."""
-        try:
-            return self._run.extend(k)
-        except ValueError as exc:
-            other = fallback(exc) if self._auto and self._run.done == 0 else None
-            if other is None:
-                raise
-            run = self._context
-            self._begin(other[0], run, f"{run.stats.get('method_reason')}; {other[1]}", self._rule_given)
-            return self._run.extend(k)
 
     def run_to_end(self) -> Solution:
         """Perform every step left (or up to the one that fails); the solution."""

@@ -21,7 +21,7 @@ model files and the command line then accept its name (see ``docs/architecture.m
 """
 
 from .. import _validate as V
-from .auto import choose_method, fallback
+from .auto import choose_method
 from .base import Method
 from .cq import CQ
 from .direct import Direct
@@ -62,4 +62,4 @@ def get_method(method, options=None):
 
 
 __all__ = ["CQ", "Direct", "Event", "MATRIX_METHOD_NAMES", "METHODS", "METHOD_NAMES", "Method", "Modal", "TimeKernelMethod", "choose_method",
-           "fallback", "get_method", "solve_time_kernel"]
+           "get_method", "solve_time_kernel"]

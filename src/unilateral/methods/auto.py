@@ -11,7 +11,7 @@ from ..model import Model
 from ..soil.foundation_model import FoundationModel
 from .cq import CQ
 from .direct import Direct
-from .modal import FoundationPolesRefused, Modal, PolesRefused
+from .modal import Modal
 from .time_kernel import TimeKernelMethod
 
 
@@ -47,7 +47,7 @@ def _(model: Model, rule, solver, options):
     if "cq" in options:
         return CQ(**options["cq"]), "cq_options were given"
     if "modal" in options:
-        return Modal(**options["modal"]), "modal_options were given"
+        return _modal_or(Modal(**options["modal"]), "modal_options were given", model, Direct(), "direct")
     if "direct" in options:
         return Direct(**options["direct"]), "direct_options were given"
     policy = current_policy()
@@ -57,8 +57,8 @@ def _(model: Model, rule, solver, options):
         return Direct(), ("small model: compiled direct stepping (a dense LU of D_eff, the condensed LCP) "
                           "is the fastest end to end, half the time of modal's march and two linear sweeps")
     if small and rule.supports_cq and bpp and model.m:
-        return Modal(), ("small model with a rule of its own: the compiled CLCP march with the exact "
-                         "recursive history and compiled linear sweeps")
+        return _modal_or(Modal(), "small model with a rule of its own: the compiled CLCP march with the exact "
+                         "recursive history and compiled linear sweeps", model, Direct(), "direct")
     full = model.sparse and model.law.trivial and (model.m > policy.full_space_min_m
                                                         or model.n > policy.compiled_max_n)
     space = "the LCP in the full sparse space" if full else "the condensed LCP"
@@ -71,17 +71,17 @@ def _(model: FoundationModel, rule, solver, options):
     if "cq" in options:
         return CQ(**options["cq"]), "cq_options were given"
     if "modal" in options:
-        return Modal(**options["modal"]), "modal_options were given"
+        return _modal_or(Modal(**options["modal"]), "modal_options were given", model, CQ(), "cq")
     if model.soil.is_rational and rule.supports_cq:
-        return Modal(), ("a foundation on a rational soil: the recursive history of the poles of the "
-                         "structure and the soil costs O(r m) per step")
+        return _modal_or(Modal(), "a foundation on a rational soil: the recursive history of the poles of the "
+                         "structure and the soil costs O(r m) per step", model, CQ(), "cq")
     return CQ(), "a foundation on a soil given by Phi(s): convolution quadrature of the dual kernel"
 
 
-def fallback(exc):
-    """The method and reason to use when the auto choice was refused by ``exc``, or None."""
-    if isinstance(exc, FoundationPolesRefused):
-        return CQ(), f"modal refused ({exc}), cq used instead"
-    if isinstance(exc, PolesRefused):
-        return Direct(), f"modal refused ({exc}), direct used instead"
-    return None
+def _modal_or(modal, reason, model, other, name):
+    """``modal`` and ``reason`` if the poles of ``model``'s kernel exist (:meth:`Modal.refusal`),
+    else ``other`` with the reason modal was refused."""
+    why_not = modal.refusal(model)
+    if why_not is None:
+        return modal, reason
+    return other, f"modal refused ({why_not}), {name} used instead"

@@ -66,6 +66,11 @@ class Method(ABC):
                     "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")
         return None
 
+    def refusal(self, model) -> str | None:
+        """None, or why this method cannot solve ``model`` after all: a check that costs more than
+        :meth:`applies` (e.g. the poles of ``modal``), made for the method chosen only."""
+        return None
+
     def check(self, model, rule) -> None:
         """Raise ``ValueError`` if this method cannot solve ``model`` with ``rule`` (:meth:`applies`)."""
         reason = self.applies(model, rule)

@@ -17,14 +17,6 @@ from .clcp_march import ENGINES, compiled_applies, use_compiled
 from .common import clcp_on_matrix_model
 
 
-class PolesRefused(ValueError):
-    """The pole-residue form of a model's kernel was refused (``method="auto"`` then steps directly)."""
-
-
-class FoundationPolesRefused(PolesRefused):
-    """The pole-residue form of a foundation model was refused (``method="auto"`` then uses cq)."""
-
-
 class Modal(Method):
     """The CLCP of :class:`~unilateral.methods.cq.CQ` with the exact recursive history.
 
@@ -51,6 +43,26 @@ class Modal(Method):
     solves = frozenset({"matrices", "foundation"})
     options = ("modes", "engine")
 
+    def refusal(self, model) -> str | None:
+        """None if the pole-residue form of ``model``'s kernel exists, else why not (it is computed
+        here, and kept on the model for the solve: :func:`~unilateral.model.remembered`)."""
+        try:
+            if model.kind == "foundation":
+                remembered(model, ("modal form",), model.modal_form)
+            else:
+                self._kernel(model)
+        except ValueError as exc:
+            if "modes must be" in str(exc):     # a bad option, not a property of the model
+                raise
+            if model.kind == "foundation" and model.soil.kelvin is not None:
+                return None                     # the equivalent Kelvin model (the paper's primal form)
+            return str(exc)
+        return None
+
+    def _kernel(self, model):
+        modes = self.config.get("modes")
+        return remembered(model, ("poles", repr(modes)), lambda: PoleResidueKernel.from_model(model, modes=modes))
+
     @functools.singledispatchmethod
     def solve(self, model, load, initial, disc, run):
         raise TypeError(f"method='modal' solves a Model or FoundationModel, not a {type(model).__name__}")
@@ -66,13 +78,10 @@ class Modal(Method):
     def _(self, model: Model, load, initial, disc, run):
         engine = self._engine()
         run.stats["n"] = model.n
-        try:
-            modes = self.config.get("modes")
-            kernel = remembered(model, ("poles", repr(modes)), lambda: PoleResidueKernel.from_model(model, modes=modes))
-        except ValueError as exc:
-            if "modes must be" in str(exc):
-                raise
-            raise PolesRefused(str(exc)) from None
+        why_not = self.refusal(model)
+        if why_not is not None:
+            raise ValueError(f"method='modal': {why_not}")
+        kernel = self._kernel(model)
         run.stats["modal"] = {key: value for key, value in kernel.info.items()
                               if isinstance(value, (int, float, str))}
         W0 = kernel.W0(disc.dt, disc.rule)
@@ -100,7 +109,7 @@ class Modal(Method):
         if self.config.get("modes") is not None:
             raise ValueError("modal_options['modes'] does not apply to a FoundationModel (every pole is used)")
         try:
-            kernel = model.modal_form()
+            kernel = remembered(model, ("modal form",), model.modal_form)
         except ValueError as exc:
             if model.soil.kelvin is not None:
                 run.stats["foundation_route"] = f"the equivalent Kelvin model (the paper's primal form): {exc}"
@@ -115,7 +124,7 @@ class Modal(Method):
                     sol.psiL = primal_columns(model, np.zeros_like(sol.psiL), sol.psiL)[1]
                     sol.constraint_names = list(model.constraint_names)
                 return sol
-            raise FoundationPolesRefused(str(exc)) from None
+            raise ValueError(f"method='modal': {exc}") from None
         run.stats["modal"] = {key: value for key, value in kernel.info.items()
                               if isinstance(value, (int, float, str))}
         run.timer.lap("poles")
