@@ -168,7 +168,10 @@ def check_model_file(path: Path) -> None:
               help="Output directory (default: the folder of RESULTS; with --model the current directory).")
 @click.option("--figures", "formats", default=None, callback=_figure_formats, metavar="FORMATS",
               help="Figure formats: png (default), pdf, svg, comma-separated, or none.")
-def plot(results, model_file, out, formats):
+@click.option("--animate", is_flag=True, default=False,
+              help="Also the motion of a 2-D frame: deformed_shape.png (at the peak drift) and motion.gif.")
+@click.option("--case", default="unilateral", show_default=True, help="The case the motion shows (with --animate).")
+def plot(results, model_file, out, formats, animate, case):
     """Draw the figures of a results.nc written by `run` or `example` (the same files they drew).
 
     The figures are drawn into a hidden folder in OUT and moved in only when all are drawn, so a
@@ -198,12 +201,33 @@ def plot(results, model_file, out, formats):
         raise click.ClickException(f"cannot draw the figures of {results}: {exc}") from None
     except (WriteError, OSError) as exc:
         raise click.ClickException(f"cannot write the figures to {target}: {exc}; {target} is unchanged") from None
+    if animate:
+        paths = paths + _plot_motion(results, target, case)
     for path in paths:
         click.echo(path)
     for line in ([note] if note else []) + [f"skipped {text}" for text in skipped]:
         click.echo(line, err=True)
     if skipped:
         sys.exit(1)
+
+
+def _plot_motion(results: Path, target: Path, case: str) -> list[Path]:
+    """``unilateral plot --animate``: deformed_shape.png and motion.gif of ``case`` into ``target``."""
+    import xarray as xr
+
+    from .figures import FigureDataError
+    from .figures.motion import animate, deformed_shape_figure
+    from .io.atomic import atomic_write
+
+    try:
+        with xr.open_dataset(results) as ds:
+            ds.load()
+        shape = target / "deformed_shape.png"
+        fig = deformed_shape_figure(ds, case)
+        atomic_write(shape, lambda tmp: fig.savefig(tmp))
+        return [shape, animate(ds, target / "motion.gif", case=case)]
+    except FigureDataError as exc:
+        raise click.ClickException(f"cannot draw the motion of {results}: {exc}") from None
 
 
 def _plot_model(model_file: Path, target: Path, formats) -> None:
