@@ -33,8 +33,8 @@ class FaceSetPivoting:
     tol : float, default 1e-10
         Largest acceptable LCP error (:func:`~unilateral.lcp.base.lcp_error`).
     max_iter : int, optional
-        Linear solves of block principal pivoting at most; default ``10 m + 10`` (as the compiled
-        marches). Lemke's method takes at most ``100 + 20 m`` pivots.
+        Linear solves of block principal pivoting at most, and pivots of Lemke's method; default
+        ``10 m + 10`` (as the compiled marches).
 
     Attributes
     ----------

@@ -25,8 +25,6 @@ _BLOCK_TRIES = 3
 #: reach their limit at once) that round-off splits into near-ties and tiny pivots.
 PIVOT_TOL = 1e-9
 TIE_TOL = 1e-9
-#: Lemke's pivots at most: this many plus 20 per unknown (the default of :class:`unilateral.lcp.Lemke`).
-LEMKE_MIN_PIVOTS = 100
 
 
 @njit(cache=True)
@@ -406,8 +404,8 @@ def solve_step(W, q, active, v, w, max_iter, tol, work, symmetric, faces):
 
     ``work = (idx, S, rhs, x)`` as :func:`bpp`'s workspace. ``active``, ``v`` and ``w`` are updated
     in place (the final set, the solution, ``W v + q``). Returns ``(solves, error, fallback)``:
-    the linear solves of :func:`bpp` plus the pivots of :func:`lemke` (at most
-    :data:`LEMKE_MIN_PIVOTS` ``+ 20 m``; negative: failed), the LCP
+    the linear solves of :func:`bpp` plus the pivots of :func:`lemke` (each at most ``max_iter``;
+    negative: failed), the LCP
     error (:func:`lcp_error`) and 1 if the step needed Lemke's method, else 0.
     """
     idx, S, rhs, x = work
@@ -432,7 +430,7 @@ def solve_step(W, q, active, v, w, max_iter, tol, work, symmetric, faces):
     if not faced:
         return it, err, 0
     spent = abs(it)
-    pivots = lemke(W, q, active, LEMKE_MIN_PIVOTS + 20 * q.shape[0])
+    pivots = lemke(W, q, active, max_iter)
     spent += abs(pivots)
     if pivots < 0 or not _complementary(W, q, active, v, w, work, False):
         return -spent, np.inf, 1
