@@ -86,6 +86,11 @@ class StepLaw:
         return self.Q is None and not self.free.any()
 
     @property
+    def faced(self) -> bool:
+        """Some unknowns are faces of a pair or facets of a polygon (``W0`` is not a P-matrix)."""
+        return bool((self.partner >= 0).any() or (self.group >= 0).any())
+
+    @property
     def code(self) -> int:
         """:data:`LAW_CONTACT`, :data:`LAW_RATE` or :data:`LAW_GENERAL` (compiled marches)."""
         return LAW_CONTACT if self.trivial else (LAW_RATE if self.P is None else LAW_GENERAL)
@@ -102,13 +107,19 @@ class StepLaw:
         return out if self.Q is None else out + self.Q
 
     def step_solver(self, solver, M):
-        """What solves the step LCPs of matrix ``M`` (``matrix(W0)``): ``solver`` itself, or a
-        :class:`FreeCondensation` of it when the law has free unknowns. Either has
-        ``solve(M, q, active=...)`` returning an :class:`~unilateral.lcp.base.LCPResult` over all
-        ``m`` unknowns."""
-        if not self.free.any():
-            return solver
-        return FreeCondensation(solver, M, self.free, self.partner, group=self.group)
+        """What solves the step LCPs of matrix ``M`` (``matrix(W0)``): a :class:`FreeCondensation`
+        of ``solver`` when the law has free unknowns; for block principal pivoting on a law with
+        faces (:attr:`faced`), :class:`~unilateral.lcp.faces.FaceSetPivoting` with its ``tol`` and
+        ``max_iter`` (the step solver of the compiled marches: the face rules, Lemke's method where
+        they fail); else ``solver`` itself. Each has ``solve(M, q, active=...)`` returning an
+        :class:`~unilateral.lcp.base.LCPResult` over all ``m`` unknowns."""
+        if self.free.any():
+            return FreeCondensation(solver, M, self.free, self.partner, group=self.group)
+        if getattr(solver, "name", "") == "bpp" and self.faced:
+            from ..lcp.faces import FaceSetPivoting
+
+            return FaceSetPivoting.of(solver, self.partner, self.group, symmetric=self.symmetric)
+        return solver
 
     def offset(self, v_prev) -> np.ndarray:
         """``o`` (m,): the previous value of the rate unknowns, zero for holonomic ones."""
@@ -226,8 +237,9 @@ class FreeCondensation:
     partner : (m,) int, the opposite face of each pair member (-1: none)
     group : (m,) int, optional
         The polygon of more than four facets (a friction cone in plan) of each unknown, -1 for none:
-        at most two of a polygon active at once (:func:`unilateral.march.compiled.bpp`); a step
-        that block principal pivoting fails is solved by Lemke's method.
+        at most two of a polygon active at once (:func:`unilateral.march.pivoting.bpp`); a step
+        that block principal pivoting fails is solved by Lemke's method
+        (:func:`unilateral.march.pivoting.solve_step`).
     """
 
     def __init__(self, solver, M, free, partner, *, group=None):
@@ -249,8 +261,9 @@ class FreeCondensation:
         self.back = -inverse @ M[np.ix_(self.F, self.R)]            # z_F = back z_R + gain q_F
         self.gain = -inverse
         self.M_RF = M[np.ix_(self.R, self.F)]
-        self.reduced = M[np.ix_(self.R, self.R)] + self.M_RF @ self.back
+        self.reduced = np.ascontiguousarray(M[np.ix_(self.R, self.R)] + self.M_RF @ self.back)
         self.m = M.shape[0]
+        self._faces = None
 
     def solve(self, M, q, active=None) -> LCPResult:
         """The step LCP ``(M, q)`` over all ``m`` unknowns (``M`` the matrix given at construction)."""
@@ -274,7 +287,7 @@ class FreeCondensation:
         v[R], w[R], act[R] = res.v, res.w, res.active
         v[F] = self.back @ res.v + self.gain @ q_F
         return LCPResult(v=v, w=w, active=act, iterations=res.iterations, error=res.error, success=res.success,
-                         message=res.message)
+                         message=res.message, fallback=res.fallback)
 
     def _net_pairs(self, res, q_R):
         """``res``, or where a pair is active on both faces, the solution from the basis that carries
@@ -290,25 +303,11 @@ class FreeCondensation:
         return again if again.success or not res.success else res
 
     def _bpp(self, q_R, active) -> LCPResult:
-        """The compiled block principal pivoting of the marches, with the pair rule."""
-        from ..march import compiled
+        """The step solver of the compiled marches on the reduced LCP: block principal pivoting with
+        the pair and polygon rules, Lemke's method where it fails
+        (:class:`~unilateral.lcp.faces.FaceSetPivoting`)."""
+        from ..lcp.faces import FaceSetPivoting
 
-        m = q_R.size
-        active = np.zeros(m, dtype=bool) if active is None else active.copy()
-        v, w, rhs, x = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
-        max_iter = self.solver.max_iter or 10 * m + 10
-        it = compiled.bpp(self.reduced, q_R, active, v, w, max_iter, np.empty(m, dtype=np.int64), np.empty((m, m)),
-                          rhs, x, False, (self.partner, self.group))
-        error = float(compiled.lcp_error(v, w, q_R))
-        success = it >= 0 and error <= self.solver.tol
-        if not success and (self.group >= 0).any():      # a cone in plan: complementary pivoting (Lemke)
-            from ..lcp.base import get_lcp_solver
-
-            res = get_lcp_solver("lemke", tol=self.solver.tol).solve(self.reduced, q_R)
-            if res.success:
-                return self._net_pairs(res, q_R) if self.pairs is not None else res
-        message = (f"BPP (compiled, slip pairs one face at a time): solved in {abs(it)} linear solves" if success
-                   else f"BPP (compiled, slip pairs one face at a time) failed after {abs(it)} linear solves, "
-                        f"LCP error {error:.3g} (tol {self.solver.tol:g}): the step LCP with friction is not a "
-                        "P-matrix here")
-        return LCPResult(v=v, w=w, active=active, iterations=abs(it), error=error, success=success, message=message)
+        if self._faces is None:
+            self._faces = FaceSetPivoting.of(self.solver, self.partner, self.group, symmetric=False)
+        return self._faces.solve(self.reduced, q_R, active=active)

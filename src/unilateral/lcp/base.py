@@ -53,6 +53,9 @@ class LCPResult:
         True iff the method terminated normally and ``error <= tol``.
     message : str
         What happened; on failure, what went wrong and what to try.
+    fallback : bool
+        The step solver of a law with faces (:class:`~unilateral.lcp.faces.FaceSetPivoting`)
+        solved it by its fallback, Lemke's method, block principal pivoting having failed.
     """
 
     v: np.ndarray
@@ -62,6 +65,7 @@ class LCPResult:
     error: float
     success: bool
     message: str
+    fallback: bool = False
 
 
 class SolverOutcome(NamedTuple):

@@ -8,8 +8,10 @@ Compiled code is cached on disk (``cache=True``), so a second process does not c
 
 The results equal the Python march with ``lcp="bpp"`` (the same pivoting rule, exact linear
 solves), which the tests check. :func:`direct_steps` is the direct march of ``method="direct"``
-(every rule, the condensed LCP on ``W0`` with :func:`bpp`), :func:`sweep` the linear sweep of the
-CLCP methods.
+(every rule, the condensed LCP on ``W0`` by :func:`~unilateral.march.pivoting.solve_step`),
+:func:`sweep` the linear sweep of the CLCP methods. The step LCP solvers are in
+:mod:`unilateral.march.pivoting` (block principal pivoting with the face rules, Lemke's method
+where a polygon's dependent facets defeat it), shared with the Python marches.
 """
 
 from __future__ import annotations
@@ -17,231 +19,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-#: Number of non-improving block pivots before Murty's single pivot (Judice & Pires 1994).
-_BLOCK_TRIES = 3
+from .pivoting import _BLOCK_TRIES, bpp, lcp_error, solve_step  # noqa: F401  (re-exported)
+
 #: Floating-point liberties of the loops of matrix-vector products and triangular solves: sums
 #: may be reassociated (vectorised, several accumulators) and multiply-adds fused. Results change
 #: at round-off only; NaN and infinity keep their meaning (no "fast" flags beyond these).
 REASSOCIATE = {"reassoc", "contract"}
-
-
-@njit(cache=True)
-def _cholesky_solve(W, idx, k, rhs, S, x):
-    """Solve ``W[idx[:k], idx[:k]] x = rhs[:k]`` by Cholesky; False if not positive definite."""
-    for a in range(k):
-        for b in range(k):
-            S[a, b] = W[idx[a], idx[b]]
-    for j in range(k):
-        d = S[j, j]
-        for p in range(j):
-            d -= S[j, p] * S[j, p]
-        if d <= 0.0:
-            return False
-        d = np.sqrt(d)
-        S[j, j] = d
-        for i in range(j + 1, k):
-            t = S[i, j]
-            for p in range(j):
-                t -= S[i, p] * S[j, p]
-            S[i, j] = t / d
-    for i in range(k):                      # forward: L y = rhs
-        t = rhs[i]
-        for p in range(i):
-            t -= S[i, p] * x[p]
-        x[i] = t / S[i, i]
-    for i in range(k - 1, -1, -1):          # backward: L^T x = y
-        t = x[i]
-        for p in range(i + 1, k):
-            t -= S[p, i] * x[p]
-        x[i] = t / S[i, i]
-    return True
-
-
-@njit(cache=True)
-def _lu_solve_principal(W, idx, k, rhs, S, x):
-    """Solve ``W[idx[:k], idx[:k]] x = rhs[:k]`` by LU with partial pivoting; False if singular."""
-    for a in range(k):
-        for b in range(k):
-            S[a, b] = W[idx[a], idx[b]]
-        x[a] = rhs[a]
-    scale = 0.0
-    for a in range(k):
-        for b in range(k):
-            scale = max(scale, abs(S[a, b]))
-    for j in range(k):
-        p = j
-        for i in range(j + 1, k):
-            if abs(S[i, j]) > abs(S[p, j]):
-                p = i
-        if abs(S[p, j]) <= 1e-14 * scale:
-            return False
-        if p != j:
-            for b in range(k):
-                t = S[j, b]
-                S[j, b] = S[p, b]
-                S[p, b] = t
-            t = x[j]
-            x[j] = x[p]
-            x[p] = t
-        for i in range(j + 1, k):
-            f = S[i, j] / S[j, j]
-            if f != 0.0:
-                for b in range(j + 1, k):
-                    S[i, b] -= f * S[j, b]
-                x[i] -= f * x[j]
-    for i in range(k - 1, -1, -1):
-        t = x[i]
-        for b in range(i + 1, k):
-            t -= S[i, b] * x[b]
-        x[i] = t / S[i, i]
-    return True
-
-
-@njit(cache=True)
-def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmetric, faces):
-    """Block principal pivoting for ``w = W v + q >= 0, v >= 0, v.w = 0``.
-
-    ``W`` symmetric positive definite on the principal submatrices it visits (Cholesky), or with
-    ``symmetric=False`` a nonsymmetric matrix whose visited principal submatrices are
-    nonsingular (LU with partial pivoting: the step LCP of friction).
-    ``faces = (partner, group)`` (int, m each; -1: none). ``partner`` pairs unknowns with opposite
-    columns (two-sided yield and slip): an unknown does not enter while its partner stays active,
-    and of two partners that would enter together only the one with the smaller ``w`` does (the
-    one of lower index on a tie: both active would make ``W_AA`` singular; in a solution at most
-    one is). ``group`` gathers the facets of one polygon of more than four facets (a friction cone,
-    a 3-D hinge's interaction polygon: any three of its columns are dependent, they span two
-    strains): at most two of a group are active after any exchange (:func:`_two_per_group`), those
-    that enter of the smallest ``w`` first, then those that stay of the largest ``v`` (in a
-    solution at most two adjacent facets are active, a vertex).
-    ``active`` (bool, m) is the warm start and is updated in place to the final active set
-    (``v > 0``). ``v`` and ``w`` are outputs. Returns the number of linear solves, or minus
-    that number if the method failed (``W_AA`` not positive definite or singular, or no
-    convergence).
-    """
-    m = q.shape[0]
-    partner, group = faces
-    grouped = False
-    for i in range(m):
-        grouped = grouped or group[i] >= 0
-    scale = 1.0
-    w_max = 1e-300
-    for i in range(m):
-        scale = max(scale, abs(q[i]))
-        for j in range(m):
-            w_max = max(w_max, abs(W[i, j]))
-    eps = 1e-13 * scale             # in the units of w
-    eps_v = eps / w_max             # the same in the units of v
-    best = m + 1
-    tries = _BLOCK_TRIES
-    for it in range(1, max_iter + 1):
-        k = 0
-        for i in range(m):
-            if active[i]:
-                work_idx[k] = i
-                work_rhs[k] = -q[i]
-                k += 1
-        if symmetric:
-            solved = _cholesky_solve(W, work_idx, k, work_rhs, work_S, work_x)
-        else:
-            solved = _lu_solve_principal(W, work_idx, k, work_rhs, work_S, work_x)
-        if not solved:
-            return -it
-        for i in range(m):
-            v[i] = 0.0
-        for a in range(k):
-            v[work_idx[a]] = work_x[a]
-        for i in range(m):
-            t = q[i]
-            for j in range(m):
-                t += W[i, j] * v[j]
-            w[i] = t
-        count = 0
-        last = -1
-        for i in range(m):
-            if (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps):
-                count += 1
-                last = i
-        if count == 0:
-            for i in range(m):
-                if active[i]:
-                    w[i] = 0.0
-                    if v[i] < 0.0:
-                        v[i] = 0.0
-            return it
-        murty = False
-        if count < best:
-            best = count
-            tries = _BLOCK_TRIES
-        elif tries > 0:
-            tries -= 1
-        else:                               # Murty: flip only the largest infeasible index
-            murty = True
-        for i in range(m):                  # the flips, in the solve's workspace (free until the next solve)
-            if murty:
-                flip = i == last
-            else:
-                flip = (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps)
-                if flip and not active[i] and partner[i] >= 0:
-                    p = partner[i]
-                    stays = active[p] and not v[p] < -eps_v
-                    enters = not active[p] and (w[p] < w[i] or (w[p] == w[i] and p < i))
-                    flip = not (stays or enters)
-            work_x[i] = 1.0 if flip else 0.0
-        if murty and not active[last] and partner[last] >= 0 and active[partner[last]]:
-            work_x[partner[last]] = 1.0     # the partner leaves as the face enters
-        if grouped:
-            _two_per_group(active, v, w, group, work_x)
-        for i in range(m):
-            if work_x[i] != 0.0:
-                active[i] = not active[i]
-    return -max_iter
-
-
-@njit(cache=True)
-def _two_per_group(active, v, w, group, flip):
-    """At most two members of each group active after the exchange ``active ^ flip`` (``flip``
-    (m,) nonzero where a member changes, updated in place): the members that enter of the smallest
-    ``w`` first, then those that stay of the largest ``v`` (a facet that enters a polygon with two
-    active facets replaces the one that carries less slip; see :func:`bpp`)."""
-    m = active.shape[0]
-    for i in range(m):
-        g = group[i]
-        if g < 0:
-            continue
-        first = True
-        for j in range(i):
-            if group[j] == g:
-                first = False
-                break
-        if not first:
-            continue                        # each group once, at its first member
-        count = 0
-        for j in range(i, m):
-            if group[j] == g and active[j] != (flip[j] != 0.0):
-                count += 1
-        if count <= 2:
-            continue
-        kept0, kept1 = -1, -1
-        for entering in (True, False):
-            for _ in range(2):
-                if kept1 >= 0:
-                    break
-                pick = -1
-                for j in range(i, m):
-                    if group[j] != g or j == kept0 or active[j] == entering or (flip[j] != 0.0) != entering:
-                        continue
-                    if pick < 0 or (w[j] < w[pick] if entering else v[j] > v[pick]):
-                        pick = j
-                if pick < 0:
-                    break
-                if kept0 < 0:
-                    kept0 = pick
-                else:
-                    kept1 = pick
-        for j in range(i, m):
-            if group[j] == g:
-                keep = j == kept0 or j == kept1
-                flip[j] = 1.0 if keep != active[j] else 0.0
 
 
 @njit(cache=True)
@@ -279,18 +62,6 @@ def law_matrix(code, P, W0):
 
 
 @njit(cache=True)
-def lcp_error(v, w, q):
-    """``||min(v, w)|| / (1 + ||q||)``, the scaled natural-map residual."""
-    num = 0.0
-    den = 0.0
-    for i in range(v.shape[0]):
-        r = min(v[i], w[i])
-        num += r * r
-        den += q[i] * q[i]
-    return np.sqrt(num) / (1.0 + np.sqrt(den))
-
-
-@njit(cache=True)
 def _outputs(W0, psi_affine, v_b):
     """Histories of a march initialised at step 0, its statistics, the contact set, ``W0 v_b``."""
     N1, m = psi_affine.shape
@@ -298,7 +69,7 @@ def _outputs(W0, psi_affine, v_b):
     v[0] = v_b
     psi[0] = psi_affine[0]
     active = v_b > 0.0
-    return v, psi, dv, np.zeros(4), active, active.copy(), W0 @ v_b
+    return v, psi, dv, np.zeros(5), active, active.copy(), W0 @ v_b
 
 
 @njit(cache=True)
@@ -311,25 +82,27 @@ def _workspace(m):
 @njit(cache=True)
 def _law_step(law, W0, WL, q, v_prev, vn, wn, active, max_iter, work, o, t):
     """The step LCP of the law on the associated vector ``q``: ``vn`` the new unknowns, ``wn``
-    the LCP's ``w = -P psi``, ``q`` left as the LCP vector. Returns the solves (negative: failed)
-    and the LCP error."""
+    the LCP's ``w = -P psi``, ``q`` left as the LCP vector. ``max_iter = (solves, tol)``. Returns
+    ``(solves, error, fallback)`` of :func:`~unilateral.march.pivoting.solve_step`."""
     code, rate, P, partner, group = law
-    idx, S, rhs, x = work
     law_vector(code, rate, P, W0, q, v_prev, o, t)
-    it = bpp(WL, q, active, vn, wn, max_iter, idx, S, rhs, x, code != 2, (partner, group))
-    err = lcp_error(vn, wn, q)
+    it, err, fallback = solve_step(WL, q, active, vn, wn, max_iter[0], max_iter[1], work, code != 2,
+                                   (partner, group))
     if code != 0:
         for a in range(vn.shape[0]):
             vn[a] += o[a]
-    return it, err
+    return it, err, fallback
 
 
 @njit(cache=True)
-def _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
-    """Store the LCP result of step n and update the statistics; False if the step failed."""
+def _record(n, step, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
+    """Store the LCP result ``step = (solves, error, fallback)`` of step n and update the
+    statistics; False if the step failed."""
+    it, err, fallback = step
     if it < 0 or err > tol:
         return False
     stats[0] += it
+    stats[4] += fallback
     stats[1] = max(stats[1], it)
     stats[3] = max(stats[3], err)
     for a in range(vn.shape[0]):
@@ -358,7 +131,8 @@ def march_naive(W, psi_affine, v_b, max_iter, tol, law):
     Returns
     -------
     v, psi : (N+1, m)
-    stats : (4,) float: total solves, largest solves in a step, contact changes, max LCP error
+    stats : (5,) float: total solves, largest solves in a step, contact changes, max LCP error,
+        steps solved by the fallback (Lemke's method, :func:`~unilateral.march.pivoting.solve_step`)
     failed_step : int, 0 if every step succeeded, else the step whose LCP failed
     """
     carry = naive_start(W[0], psi_affine, v_b)
@@ -398,8 +172,8 @@ def naive_steps(W, psi_affine, v_b, max_iter, tol, law, carry, n0, n1):
                     for b in range(m):
                         t += Wj[a, b] * d[b]
                     q[a] += t
-        it, err = _law_step(law, W0, WL, q, v[n - 1], vn, wn, active, max_iter, (idx, S, rhs, x), o, t1)
-        if not _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
+        step = _law_step(law, W0, WL, q, v[n - 1], vn, wn, active, (max_iter, tol), (idx, S, rhs, x), o, t1)
+        if not _record(n, step, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
             return n
         if first[0] < 0:
             for a in range(m):
@@ -472,8 +246,8 @@ def recursive_steps(W0, filters, psi_affine, v_b, max_iter, tol, law, carry, ste
             for k in range(c):
                 t += (free[k] * out[k, a]).real
             q[a] = t - psi_affine[n, a] - base[a]
-        it, err = _law_step(law, W0, WL, q, v[n - 1], vn, wn, active, max_iter, (idx, S, rhs, x), o, t1)
-        if not _record(n, it, err, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
+        step = _law_step(law, W0, WL, q, v[n - 1], vn, wn, active, (max_iter, tol), (idx, S, rhs, x), o, t1)
+        if not _record(n, step, tol, active, previous, vn, wn, v_b, v, psi, dv, stats):
             return n
         for i in range(rows - 1, 1, -1):
             for k in range(c):
@@ -689,7 +463,7 @@ def direct_start(N1, n, m, v_b, psi0, ustart):
     ustate = ustart.copy()
     dud[0] = ustate[2]
     active = v_b > 0.0
-    return (du, dud, v, psi, np.zeros(4), active, active.copy(), ustate, np.zeros((5, m)),
+    return (du, dud, v, psi, np.zeros(5), active, active.copy(), ustate, np.zeros((5, m)),
             np.zeros(m))
 
 
@@ -699,7 +473,8 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
 
     The operations of :func:`unilateral.march.direct.march_direct` with
     :class:`~unilateral.march.stepper.StructureStepper` (``predict``, the condensed LCP on
-    ``W0`` by :func:`bpp` warm-started from the previous contact set, ``correct``), for every
+    ``W0`` by :func:`~unilateral.march.pivoting.solve_step` warm-started from the previous contact
+    set, ``correct``), for every
     rule: ``kind`` :data:`RULE_BDF1`, :data:`RULE_BDF2` or :data:`RULE_NEWMARK` (trapezoidal,
     Newmark, HHT-alpha).
 
@@ -793,8 +568,9 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
                     active[b] = False
                 it, err = 0, 0.0
             else:
-                it = bpp(WL, q, active, vn, wn, max_iter, idx, S, work_rhs, work_x, code != 2, (partner, group))
-                err = lcp_error(vn, wn, q)
+                it, err, fallback = solve_step(WL, q, active, vn, wn, max_iter, tol, (idx, S, work_rhs, work_x),
+                                               code != 2, (partner, group))
+                stats[4] += fallback
             if it < 0 or err > tol:
                 return k
             if code != 0:

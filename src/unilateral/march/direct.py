@@ -80,11 +80,12 @@ class DirectMarch:
 
     def __init__(self, stepper, N, v_b, psi0, solver, *, dt, callback=None):
         law = stepper.model.law
-        self.stepper, self.N, self.solver, self.dt, self.callback = stepper, N, solver, dt, callback
+        self.stepper, self.N, self.dt, self.callback = stepper, N, dt, callback
         self.du, self.dud, self.v, self.psi, self.log = direct_outputs(stepper, N, v_b, psi0)
         self.psi[0] = law.rows(psi0)
         self.v_b = v_b
         self.WL = law.matrix(stepper.W0)
+        self.solver = law.step_solver(solver, self.WL)  # with faces: the compiled marches' step solver
         self.base = stepper.W0 @ v_b
         self.done, self.failure = 0, ""
 
