@@ -237,9 +237,9 @@ class FreeCondensation:
     partner : (m,) int, the opposite face of each pair member (-1: none)
     group : (m,) int, optional
         The polygon of more than four facets (a friction cone in plan) of each unknown, -1 for none:
-        at most two of a polygon active at once (:func:`unilateral.march.pivoting.bpp`); a step
+        at most two of a polygon active at once (:func:`unilateral.lcp.pivoting.bpp`); a step
         that block principal pivoting fails is solved by Lemke's method
-        (:func:`unilateral.march.pivoting.solve_step`).
+        (:func:`unilateral.lcp.pivoting.solve_step`).
     """
 
     def __init__(self, solver, M, free, partner, *, group=None):

@@ -88,7 +88,7 @@ class FaceSetPivoting:
             Malformed ``W``, ``q`` or ``active`` (:func:`~unilateral.lcp.base.check_lcp`), or an
             ``m`` other than that of ``partner``.
         """
-        from ..march import pivoting                    # lazily: numba
+        from . import pivoting                          # lazily: numba
 
         W, q, active = check_lcp(W, q, active)
         m = q.size

@@ -42,7 +42,7 @@ def full_space_applies(model) -> bool:
 
 #: Factorisations kept (least recently used first out).
 CACHE_SIZE = 16
-#: Non-improving block pivots before Murty's single pivot (as :data:`unilateral.march.compiled._BLOCK_TRIES`).
+#: Non-improving block pivots before Murty's single pivot (as :data:`unilateral.lcp.pivoting.BLOCK_TRIES`).
 _BLOCK_TRIES = 3
 
 

@@ -8,9 +8,9 @@ Compiled code is cached on disk (``cache=True``), so a second process does not c
 
 The results equal the Python march with ``lcp="bpp"`` (the same pivoting rule, exact linear
 solves), which the tests check. :func:`direct_steps` is the direct march of ``method="direct"``
-(every rule, the condensed LCP on ``W0`` by :func:`~unilateral.march.pivoting.solve_step`),
+(every rule, the condensed LCP on ``W0`` by :func:`~unilateral.lcp.pivoting.solve_step`),
 :func:`sweep` the linear sweep of the CLCP methods. The step LCP solvers are in
-:mod:`unilateral.march.pivoting` (block principal pivoting with the face rules, Lemke's method
+:mod:`unilateral.lcp.pivoting` (block principal pivoting with the face rules, Lemke's method
 where a polygon's dependent facets defeat it), shared with the Python marches.
 """
 
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .pivoting import _BLOCK_TRIES, bpp, lcp_error, solve_step  # noqa: F401  (re-exported)
+from ..lcp.pivoting import BLOCK_TRIES, bpp, lcp_error, solve_step  # noqa: F401  (re-exported)
 
 #: Floating-point liberties of the loops of matrix-vector products and triangular solves: sums
 #: may be reassociated (vectorised, several accumulators) and multiply-adds fused. Results change
@@ -83,7 +83,7 @@ def _workspace(m):
 def _law_step(law, W0, WL, q, v_prev, vn, wn, active, max_iter, work, o, t):
     """The step LCP of the law on the associated vector ``q``: ``vn`` the new unknowns, ``wn``
     the LCP's ``w = -P psi``, ``q`` left as the LCP vector. ``max_iter = (solves, tol)``. Returns
-    ``(solves, error, fallback)`` of :func:`~unilateral.march.pivoting.solve_step`."""
+    ``(solves, error, fallback)`` of :func:`~unilateral.lcp.pivoting.solve_step`."""
     code, rate, P, partner, group = law
     law_vector(code, rate, P, W0, q, v_prev, o, t)
     it, err, fallback = solve_step(WL, q, active, vn, wn, max_iter[0], max_iter[1], work, code != 2,
@@ -132,7 +132,7 @@ def march_naive(W, psi_affine, v_b, max_iter, tol, law):
     -------
     v, psi : (N+1, m)
     stats : (5,) float: total solves, largest solves in a step, contact changes, max LCP error,
-        steps solved by the fallback (Lemke's method, :func:`~unilateral.march.pivoting.solve_step`)
+        steps solved by the fallback (Lemke's method, :func:`~unilateral.lcp.pivoting.solve_step`)
     failed_step : int, 0 if every step succeeded, else the step whose LCP failed
     """
     carry = naive_start(W[0], psi_affine, v_b)
@@ -473,7 +473,7 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
 
     The operations of :func:`unilateral.march.direct.march_direct` with
     :class:`~unilateral.march.stepper.StructureStepper` (``predict``, the condensed LCP on
-    ``W0`` by :func:`~unilateral.march.pivoting.solve_step` warm-started from the previous contact
+    ``W0`` by :func:`~unilateral.lcp.pivoting.solve_step` warm-started from the previous contact
     set, ``correct``), for every
     rule: ``kind`` :data:`RULE_BDF1`, :data:`RULE_BDF2` or :data:`RULE_NEWMARK` (trapezoidal,
     Newmark, HHT-alpha).

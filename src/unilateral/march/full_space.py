@@ -22,7 +22,8 @@ import scipy.sparse as sp
 from numba import njit
 
 from . import envelope
-from .compiled import _BLOCK_TRIES, REASSOCIATE, _advance, _matvec_add, _rule_history
+from ..lcp.pivoting import BLOCK_TRIES
+from .compiled import REASSOCIATE, _advance, _matvec_add, _rule_history
 from .direct import ChunkedMarch, direct_outputs
 from .step_log import StepLog
 
@@ -94,7 +95,7 @@ def full_space_lcp(env, cons, a, rc, state, max_iter):
     for b in range(m):
         scale = max(scale, abs(cp[b]))
     scale *= 1e-13
-    best, tries = m + 1, _BLOCK_TRIES
+    best, tries = m + 1, BLOCK_TRIES
     for it in range(1, max_iter + 1):
         if _refactor(env, cons, a, active, factored, count) >= 0:
             return -it
@@ -122,7 +123,7 @@ def full_space_lcp(env, cons, a, rc, state, max_iter):
                 v[b] = max(v[b], 0.0)
             return it
         if nbad < best:
-            best, tries = nbad, _BLOCK_TRIES
+            best, tries = nbad, BLOCK_TRIES
         elif tries > 0:
             tries -= 1
         else:                               # Murty: flip only the last infeasible index

@@ -35,7 +35,7 @@ class StepLog:
     def of_compiled(cls, v_b, stats, failed: int, *, dt: float, max_iter: int, tol: float) -> StepLog:
         """The log of a compiled march: its ``stats`` (iterations, largest count, contact changes,
         largest LCP error and, if given, the steps solved by the fallback of
-        :func:`~unilateral.march.pivoting.solve_step`) and the step that ``failed`` (0: none)."""
+        :func:`~unilateral.lcp.pivoting.solve_step`) and the step that ``failed`` (0: none)."""
         log = cls(v_b.shape[0], v_b > 0)
         log.iterations, log.max_iterations = int(stats[0]), int(stats[1])
         log.contact_changes, log.max_error = int(stats[2]), float(stats[3])

@@ -8,7 +8,7 @@ polygon is not a P-matrix: block principal pivoting may meet a singular principa
 cycle. :func:`solve_step` then solves the step by :func:`lemke`, the complementary pivoting of
 :class:`unilateral.lcp.Lemke` (covering vector of ones, lexicographic ratio test), which keeps
 a nonsingular basis and so never takes three dependent facets. The compiled marches and the step
-solver of the Python marches (:class:`unilateral.constraints.law.FaceSetPivoting`) both call
+solver of the Python marches (:class:`unilateral.lcp.faces.FaceSetPivoting`) both call
 :func:`solve_step`: whatever solves a step in one engine solves it in the other.
 """
 
@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 #: Number of non-improving block pivots before Murty's single pivot (Judice & Pires 1994).
-_BLOCK_TRIES = 3
+BLOCK_TRIES = 3
 #: Entries of Lemke's entering column below this fraction of its largest entry are no pivots, and
 #: ratios within this fraction of the largest candidate tie (:mod:`unilateral.lcp.lemke` uses 1e-12):
 #: a polygon's dependent facets make exact ties and exact zeros (all facets of a contact that opens
@@ -127,7 +127,7 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmet
         grouped = grouped or group[i] >= 0
     eps, eps_v = _thresholds(W, q)
     best = m + 1
-    tries = _BLOCK_TRIES
+    tries = BLOCK_TRIES
     for it in range(1, max_iter + 1):
         if not _complementary(W, q, active, v, w, (work_idx, work_S, work_rhs, work_x), symmetric):
             return -it
@@ -147,7 +147,7 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmet
         murty = False
         if count < best:
             best = count
-            tries = _BLOCK_TRIES
+            tries = BLOCK_TRIES
         elif tries > 0:
             tries -= 1
         else:                               # Murty: flip only the largest infeasible index
