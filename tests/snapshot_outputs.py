@@ -122,7 +122,7 @@ def main(argv=None):
     if argv != ["--write"]:
         raise SystemExit("usage: python tests/snapshot_outputs.py --write")
     print("unilateral from", unilateral.__file__)
-    store = {"package": str(Path(unilateral.__file__).parent), "cases": {}}
+    store = {"cases": {}}
     with tempfile.TemporaryDirectory() as tmp:
         for name in CASES:
             seconds = run_case(name, Path(tmp) / name)
