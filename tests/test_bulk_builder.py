@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from unilateral.model import DEFINITENESS_BANDED_MAX, _check_definite
+from unilateral.model import DEFINITENESS_BANDED_MAX, check_definite
 from unilateral.structure import Frame2D
 
 
@@ -214,12 +214,12 @@ def test_the_banded_definiteness_check_decides_as_the_inertia(b):
     path taken (the banded Cholesky within the limit, the LU's inertia beyond it)."""
     rng = np.random.default_rng(b)
     A = banded_spd(60, b, rng)
-    _check_definite("K", A, strict=True)
-    _check_definite("K", sp.coo_matrix(A), strict=True)                   # any sparse format
+    check_definite("K", A, strict=True)
+    check_definite("K", sp.coo_matrix(A), strict=True)                   # any sparse format
     eig = np.linalg.eigvalsh(A.toarray())
     shifted = (A - sp.identity(60) * (eig[0] + 0.5 * (eig[1] - eig[0]))).tocsr()   # one eigenvalue < 0
     assert np.sum(np.linalg.eigvalsh(shifted.toarray()) < 0) == 1
     expected = ("Cholesky factorisation fails" if b <= DEFINITENESS_BANDED_MAX
                 else "LDL\\^T factorisation has 1 nonpositive")
     with pytest.raises(ValueError, match=f"^K must be symmetric positive definite; its {expected}"):
-        _check_definite("K", shifted, strict=True)
+        check_definite("K", shifted, strict=True)

@@ -153,14 +153,14 @@ class Model:
             V.check_psd("H_v", self.H_v)
         _check_diagonal_nonnegative("M", self.M)
         _check_diagonal_nonnegative("K", self.K, strict=True)
-        _check_definite("K", self.K, strict=not on_soil)
-        _check_definite("M", self.M, strict=False)
+        check_definite("K", self.K, strict=not on_soil)
+        check_definite("M", self.M, strict=False)
         self.g, self.g_is_constant = V.time_function("g", g, m)
         self.q_imposed, self.q_imposed_is_constant = V.time_function("q_imposed", q_imposed, n)
         if gap is not None:
             self._add_gap(V.as_vector("gap", gap, m))
-        self.dof_names = _names("dof_names", dof_names, n, "u", strings="dof_names" in _owned)
-        self.constraint_names = _names("constraint_names", constraint_names, m, "c")
+        self.dof_names = checked_names("dof_names", dof_names, n, "u", strings="dof_names" in _owned)
+        self.constraint_names = checked_names("constraint_names", constraint_names, m, "c")
         self.natural = natural
         self.families = list(families) if families is not None else default_families(m)
         self.law = step_law(self.families, m)
@@ -366,7 +366,7 @@ def _sum(a, f):
     return lambda t: a + f(t)
 
 
-def _names(arg, names, size, prefix, strings=False):
+def checked_names(arg, names, size, prefix, strings=False):
     """``names`` as a list of ``size`` unique str (``strings``: a new list of str already), or
     ``prefix0``, ``prefix1``, ... for None."""
     if names is None:
@@ -389,7 +389,7 @@ def _names(arg, names, size, prefix, strings=False):
 DEFINITENESS_DENSE_MAX_N = 2000
 
 
-def _check_definite(name, A, *, strict):
+def check_definite(name, A, *, strict):
     """Raise if the symmetric ``A`` is indefinite (``strict``: also if singular).
 
     Dense matrices up to :data:`DEFINITENESS_DENSE_MAX_N`: the smallest eigenvalue. Sparse ones: the

@@ -149,8 +149,8 @@ class StructureStepper:
             f = np.array([self.load(k) for k in range(N + 1)], dtype=float).reshape(N + 1, n)
             offset = np.array([self.offset(k) for k in range(N + 1)], dtype=float).reshape(N + 1, m)
         dense_or = lambda A, zero: zero if A is None else np.ascontiguousarray(dense(A), dtype=float)
-        return (kinds[self.rule.name], self.dt, c1, c0, *lu_piv, _matvec_operand(self.M),
-                _matvec_operand(self.C), dense_or(self.Fp, None), dense_or(self.F_v, zeros_nm),
+        return (kinds[self.rule.name], self.dt, c1, c0, *lu_piv, matvec_operand(self.M),
+                matvec_operand(self.C), dense_or(self.Fp, None), dense_or(self.F_v, zeros_nm),
                 np.ascontiguousarray(self.Hs, dtype=float), dense_or(self.model.H_v, zeros_mm),
                 self.vstate is not None, f, offset, start)
 
@@ -217,7 +217,7 @@ class StructureStepper:
                 as_dense(self.F_v, (n, m)).T.copy(), as_dense(self.model.H_v, (m, m)),
                 as_dense(self.X, (n, m)), as_dense(self.W0, (m, m)))
         return {"kind": kind, "rp": rp, "mats": mats,
-                "sparse": tuple(_matvec_operand(A) for A in (self.M, self.C, self.K)),
+                "sparse": tuple(matvec_operand(A) for A in (self.M, self.C, self.K)),
                 "f": f, "offset": offset, "ustart": ustart,
                 "c0": c0, "alpha": float(self.alpha), "viscous": self.vstate is not None}
 
@@ -264,7 +264,7 @@ class StructureStepper:
 DENSE_FRACTION = 0.25
 
 
-def _matvec_operand(A):
+def matvec_operand(A):
     """``(indptr, indices, data, full)`` of :func:`unilateral.march.compiled._matvec_add`: CSR
     arrays, and ``A`` itself (dense) if more than :data:`DENSE_FRACTION` of it is nonzero."""
     S = A if sp.issparse(A) and A.format == "csr" else sp.csr_matrix(A)     # (no new matrix of a CSR one)

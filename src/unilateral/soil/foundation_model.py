@@ -26,7 +26,7 @@ from scipy.linalg import block_diag
 from .. import _validate as V
 from ..kernels.base import Kernel
 from ..linalg import Factorization, dense
-from ..model import Model, _names
+from ..model import Model, checked_names
 
 __all__ = ["FoundationKernel", "FoundationModel", "SoilFlexibility", "SoilPoles", "facet_normals"]
 
@@ -870,8 +870,8 @@ class FoundationModel:
             raise ValueError(f"mu must be finite and >= 0 (friction coefficients), got {self.mu.tolist()}")
         self.soil = soil
         self.gap = V.as_vector("gap", 0.0 if gap is None else gap, m)
-        self.dof_names = _names("dof_names", dof_names, n, "u")
-        names = _names("contact_names", contact_names, m, "c")
+        self.dof_names = checked_names("dof_names", dof_names, n, "u")
+        names = checked_names("contact_names", contact_names, m, "c")
         if self.horizontal == 1:
             names = names + [f"{x}.shear" for x in names] + [f"{x}.slip{sign}" for x in names for sign in "+-"]
         elif self.horizontal == 2:

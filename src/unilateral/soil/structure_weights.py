@@ -164,13 +164,13 @@ def structure_weights(M, K, C, T, rule, dt, N, *, basis=None, engine="auto") -> 
     D = c0 * Md + 1.0 * (c1 * Cd + Kd)              # the stepper's c0 M + (1 - alpha)(c1 C + K)
     lu = Factorization(D, what="the effective stiffness c0 M + c1 C + K of the structure")
     if plan == "small":
-        from ..march.stepper import _matvec_operand
+        from ..march.stepper import matvec_operand
 
         Fp = np.ascontiguousarray(dense(T), dtype=float)
         lu_piv = lu.dense_factors
         factors = (np.ascontiguousarray(lu_piv[0]), lu_piv[1])
         loads = (Fp, np.ascontiguousarray(Fp.T), np.ascontiguousarray(basis))
-        return march_small(kind, (dt, c1, c0), factors, (_matvec_operand(Md), _matvec_operand(Cd)),
+        return march_small(kind, (dt, c1, c0), factors, (matvec_operand(Md), matvec_operand(Cd)),
                            loads, N + 1)
     P = np.ascontiguousarray(lu.solve(Md))
     Q = np.ascontiguousarray(lu.solve(Cd)) if damped else np.zeros((n, n))

@@ -935,11 +935,11 @@ class Structure:
 
             return to_foundation_model(self, model)
         if self.geometric is not None:
-            from ..model import _check_definite
+            from ..model import check_definite
 
             K = (model.K + self.geometric).tocsr()
             try:
-                _check_definite("K", K, strict=True)
+                check_definite("K", K, strict=True)
             except ValueError as exc:
                 raise ValueError(f"p_delta: K - K_G is not positive definite: the gravity load reaches the "
                                  f"buckling load of the structure held bilateral ({exc})") from None
