@@ -179,3 +179,42 @@ def test_no_module_or_function_grows_past_the_limits(kind):
     assert not new, f"{kind} over {limit} lines (or longer than listed): {new}"
     done = sorted(set(listed) - set(found))
     assert not done, f"{kind} now within {limit} lines: take them off the list: {done}"
+
+
+#: Imports of another package's underscore names still to be made public (importer, module, name).
+#: The root package's ``_MATRIX_METHOD_NAMES``, ``_RULE_NAMES`` and ``_LCP_NAMES`` are shared on
+#: purpose: the command line and the model-file schema check a name with them before numpy loads.
+PRIVATE_IMPORTS = {
+    ("unilateral.analysis.footings_example", "unilateral.figures.plots", "_figure"),
+    ("unilateral.analysis.halfspace_example", "unilateral.figures.plots", "_figure"),
+    ("unilateral.bench.report", "unilateral.figures.plots", "_figure"),
+    ("unilateral.bench.report", "unilateral.figures.plots", "_styled"),
+}
+SHARED_ROOT_NAMES = {"_MATRIX_METHOD_NAMES", "_RULE_NAMES", "_LCP_NAMES"}
+
+
+def private_imports() -> set[tuple[str, str, str]]:
+    """``(importer, module, name)`` of every import of an underscore name of another package (an
+    underscore module itself, ``_validate``, is the root package's and counts as its own)."""
+    found = set()
+    for name, path in MODULES.items():
+        base = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            parts = base.split(".")
+            root = (".".join(parts[: len(parts) - node.level + 1] + ([node.module] if node.module else []))
+                    if node.level else node.module or "")
+            for alias in node.names:
+                private = alias.name.startswith("_") and not alias.name.startswith("__")
+                if not private or f"{root}.{alias.name}" in MODULES or alias.name in SHARED_ROOT_NAMES:
+                    continue
+                if root.startswith("unilateral") and package_of(root) != package_of(name):
+                    found.add((name, root, alias.name))
+    return found
+
+
+def test_no_new_import_of_another_packages_underscore_names():
+    found = private_imports()
+    assert found <= PRIVATE_IMPORTS, f"imports of another package's private names: {sorted(found - PRIVATE_IMPORTS)}"
+    assert PRIVATE_IMPORTS <= found, f"no longer imported, take off PRIVATE_IMPORTS: {PRIVATE_IMPORTS - found}"
