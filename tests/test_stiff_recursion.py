@@ -77,3 +77,38 @@ def test_round_off_of_the_congruence_is_clipped():
     assert np.all(np.diag(clipped) >= 0.0)
     kept = _clip_round_off(np.array([[40.0, 1.0], [1.0, 1e-3]]))
     assert kept[1, 1] == 1e-3 and kept[0, 1] == 1.0
+
+
+def frame3d(base_springs, link_k):
+    """Four columns under a rigid floor diaphragm (plan 2.24 x 3.11 m, height 2.69 m), rigid-plastic
+    3-D hinges at their feet and a yield link on the floor; fixed bases or vertical base springs."""
+    from unilateral.structure import Frame3D
+
+    fr = Frame3D()
+    X, Y, H = 2.24, 3.11, 2.69
+    for i, (x, y) in {1: (0, 0), 2: (X, 0), 3: (X, Y), 4: (0, Y)}.items():
+        fr.node(i, x, y, 0.0)
+        fr.node(10 + i, x, y, H)
+        fr.support(i, ux=True, uy=True, uz=not base_springs, rx=True, ry=True, rz=True)
+        if base_springs:
+            fr.spring(f"k{i}", i, 1e6, direction="uz")
+        fr.beam(f"c{i}", i, 10 + i, E=3e7, A=0.09, Iy=6.75e-4, Iz=6.75e-4, G=1.25e7, J=1.1e-3)
+        fr.hinge(f"h{i}", f"c{i}", "i", My=50.0, Mz=50.0)
+        fr.mass(10 + i, 5.0)
+    fr.node(20, X / 2, Y / 2, H)
+    fr.rigid_diaphragm(20, [11, 12, 13, 14])
+    fr.support(20, ux=False, uy=False, uz=True, rx=True, ry=True, rz=False)
+    fr.yield_link("y", 20, k=link_k, Fy=20.0, direction="ux")
+    return fr.build()
+
+
+@pytest.mark.parametrize("base_springs", [False, True])
+def test_frame3d_with_a_negligible_yield_link_solves(base_springs):
+    runs = {}
+    for k in (1e-4, 1e-308):
+        s = frame3d(base_springs, k)
+        q = s.gravity()
+        push = s.nodal_load(20, ux=10.0)
+        runs[k] = ul.solve(s.to_model(), lambda t: q + push, dt=1e-3, t_end=0.02).u
+    assert np.all(np.isfinite(runs[1e-308]))
+    np.testing.assert_allclose(runs[1e-308], runs[1e-4], rtol=1e-6, atol=1e-12)
