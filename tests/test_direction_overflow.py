@@ -86,3 +86,30 @@ def test_zero_or_non_finite_direction_refused_by_name(bad):
         column3d(soil=bad)
     with pytest.raises(ValueError, match="vecxz"):
         column3d(vecxz=bad)
+
+
+def test_model_file_directions(tmp_path):
+    """building3d.toml with its gravity, ground motion and vecxz scaled by 1e200: the same model and load."""
+    from pathlib import Path
+
+    from unilateral.modelfile import load_model_file
+
+    root = Path(__file__).resolve().parents[1] / "examples"
+    base = root.joinpath("building3d.toml").read_text().replace(
+        "[loads.gravity]\ng = 9.81", "[loads.gravity]\ng = 9.81\ndirection = [0.0, 0.0, -1.0]").replace(
+        'direction = "ux"\n', "direction = [1.0, 1.0, 0.0]\n")
+    big = base.replace("direction = [0.0, 0.0, -1.0]", "direction = [0.0, 0.0, -1e200]").replace(
+        "direction = [1.0, 1.0, 0.0]", "direction = [1e200, 1e200, 0.0]").replace(
+        "vecxz = [0.0, 0.0, 1.0]", "vecxz = [0.0, 0.0, 1e200]")
+    (tmp_path / "records").symlink_to(root / "records")
+    specs = []
+    for name, text in (("unit.toml", base), ("big.toml", big)):
+        (tmp_path / name).write_text(text)
+        specs.append(load_model_file(tmp_path / name))
+    (unit_spec, big_spec) = specs
+    dense = lambda A: np.asarray(A.todense() if hasattr(A, "todense") else A)
+    np.testing.assert_allclose(dense(big_spec.model.K), dense(unit_spec.model.K), rtol=1e-12, atol=1e-6)
+    t = np.array([0.0, 1.0, 2.0])
+    for when in t:
+        np.testing.assert_allclose(big_spec.load(when), unit_spec.load(when), rtol=1e-12, atol=1e-9)
+    assert np.abs(big_spec.load(0.0)).max() > 0 and np.abs(big_spec.load(2.0) - big_spec.load(0.0)).max() > 0
