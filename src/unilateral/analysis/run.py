@@ -15,6 +15,9 @@ from pathlib import Path
 EXAMPLES = ("liolios1990", "halfspace", "footings")
 UNITS_KN = {"length": "m", "force": "kN", "time": "s"}
 SETTINGS = ("dt", "t_end", "method", "rule", "lcp", "initial")
+#: The shortest period of a response spectrum [s]: far below any record's time step, where the
+#: oscillator is rigid; much shorter periods make its exact step overflow (Sa NaN below ~1e-20 s).
+MIN_SPECTRUM_PERIOD = 1e-6
 
 
 def settings_of(defaults: dict, **given) -> dict:
@@ -103,6 +106,12 @@ def spectra_settings(spec):
     periods = output.spectra_periods
     shortest = periods.min if periods.min is not None else DEFAULT_PERIODS[0] / seconds
     longest = periods.max if periods.max is not None else DEFAULT_PERIODS[1] / seconds
+    if periods.min is not None and not periods.min * seconds >= MIN_SPECTRUM_PERIOD:
+        unit = spec.document.units.time
+        problems.append(f"output.spectra_periods: min = {periods.min!r} is below {MIN_SPECTRUM_PERIOD / seconds:g} "
+                        f"{unit} ({MIN_SPECTRUM_PERIOD:g} s): the oscillator's exact step "
+                        "exp(F dt) cannot be represented (Sa would be NaN), and a shorter period is rigid (Sa = the "
+                        f"peak ground acceleration); give min >= {MIN_SPECTRUM_PERIOD / seconds:g}")
     if not shortest < longest:
         problems.append(f"output.spectra_periods: min must be < max, got min={shortest:g} and max={longest:g} "
                         f"(the default {'max' if periods.max is None else 'min'} is "

@@ -11,6 +11,7 @@ the cause: ``could not write results.nc to out: No space left on device``.
 from __future__ import annotations
 
 import json
+import math
 import os
 import secrets
 from collections.abc import Callable, Iterator
@@ -113,15 +114,49 @@ def write_text_atomic(path: str | os.PathLike, text: str, *, encoding: str = "ut
     return atomic_write(path, lambda tmp: tmp.write_text(text, encoding=encoding, newline=""))
 
 
+#: The key of a JSON object written by :func:`write_json_atomic` that lists its non-finite values.
+NON_FINITE_KEY = "non_finite"
+
+
 def write_json_atomic(path: str | os.PathLike, obj, *, indent: int | None = 2) -> Path:
-    """Write ``obj`` as JSON to ``path`` atomically; numpy scalars and arrays are converted.
+    """Write ``obj`` as strict JSON to ``path`` atomically; numpy scalars and arrays are converted.
+
+    JSON has no ``NaN`` or ``Infinity`` (strict parsers reject Python's ``NaN`` literal): a
+    non-finite number is written as ``null`` and, when ``obj`` is a dictionary, its key path
+    (``"results.uplift.peak_base_shear"``, ``"periods[0]"``) is listed under ``"non_finite"``.
 
     Returns
     -------
     pathlib.Path
         The target path.
     """
-    return write_text_atomic(path, json.dumps(to_jsonable(obj), indent=indent) + "\n")
+    data, paths = strict_jsonable(obj)
+    if paths and isinstance(data, dict):
+        data[NON_FINITE_KEY] = list(data.get(NON_FINITE_KEY) or []) + paths
+    return write_text_atomic(path, json.dumps(data, indent=indent, allow_nan=False) + "\n")
+
+
+def strict_jsonable(obj) -> tuple[object, list[str]]:
+    """:func:`to_jsonable` with every non-finite float replaced by None, and the key paths replaced.
+
+    Returns
+    -------
+    data : JSON types only, every float finite
+    paths : list of str, the key paths (``a.b[2]``) of the values that were NaN or infinite
+    """
+    paths: list[str] = []
+
+    def clean(value, where):
+        if isinstance(value, float) and not math.isfinite(value):
+            paths.append(where or "<value>")
+            return None
+        if isinstance(value, dict):
+            return {key: clean(item, f"{where}.{key}" if where else key) for key, item in value.items()}
+        if isinstance(value, list):
+            return [clean(item, f"{where}[{i}]") for i, item in enumerate(value)]
+        return value
+
+    return clean(to_jsonable(obj), ""), paths
 
 
 def to_jsonable(obj):

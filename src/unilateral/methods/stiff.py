@@ -20,6 +20,10 @@ from ..linalg import dense, stiff_split
 from ..model import Model, NaturalForm
 
 
+#: Attribute set on a model in separated coordinates (:func:`_conditioned_model`).
+CONDITIONED_MARK = "_stiff_conditioned"
+
+
 class StiffCoordinates:
     """A model in stiff-separated coordinates and the maps of loads, initial values and results.
 
@@ -37,13 +41,24 @@ class StiffCoordinates:
     @classmethod
     def of(cls, model) -> StiffCoordinates | None:
         """The split of a model with a natural form (a :class:`Model` built from elements), or None
-        if it has none or needs none."""
+        if it has none or needs none.
+
+        A model this class conditioned is already in separated coordinates: it needs no split
+        (conditioning is idempotent), so its static state and its solution do not condition it again.
+        """
         nat = getattr(model, "natural", None)
-        if nat is None:
+        if nat is None or getattr(model, CONDITIONED_MARK, False):
             return None
         massless = dense_diagonal(model.M) == 0
         split = stiff_split(nat.G, nat.E, nat.B, nat.E_v, massless=massless)
-        return None if split is None else cls(model, split)
+        if split is None:
+            return None
+        coordinates = cls(model, split)
+        # a split whose stiff strains move DOFs with mass (every element "stiff" beside one negligible
+        # one, e.g. a yield link of k = 1e-8) spreads the mass over more coordinates than it has rank:
+        # the assembled model is then the better conditioned one (its K is not stiff beside anything
+        # that matters)
+        return coordinates if _mass_well_posed(coordinates.conditioned.M) else None
 
     # ------------------------------------------------------------------ into x
     def load(self, load, N):
@@ -97,7 +112,7 @@ class StiffCoordinates:
 def _conditioned_model(model, split) -> Model:
     """The congruent model in ``x = T^-1 u`` (same ``Lambda(s)``, ``H``, ``g``)."""
     nat, T, Gt = model.natural, split.T, split.Gt
-    congruent = lambda A: None if A is None else _sym(T.T @ (dense(A) @ T))
+    congruent = lambda A: None if A is None else _clip_round_off(T.T @ (dense(A) @ T))
     EB = dense(nat.E @ nat.B)
     F = Gt.T @ EB                     # the stiff rows of E B are zero: no stiff term enters
     F_v = None if model.F_v is None else Gt.T @ dense(nat.E_v @ nat.B)
@@ -105,11 +120,13 @@ def _conditioned_model(model, split) -> Model:
     g = model.g(0.0) if model.g_is_constant else model.g
     conditioned_nat = NaturalForm(G=Gt.T, E=nat.E, B=nat.B, A=nat.A, r=nat.r, theta=nat.theta,
                                   E_v=nat.E_v, theta_rate=nat.theta_rate)
-    return Model(M=congruent(model.M), K=split.K, F=F, H=model.H, C=congruent(model.C), g=g,
-                 F_v=F_v, H_v=model.H_v, q_imposed=q_imposed,
-                 dof_names=_names(model, split),
-                 constraint_names=list(model.constraint_names), natural=conditioned_nat,
-                 families=model.families)
+    conditioned = Model(M=congruent(model.M), K=split.K, F=F, H=model.H, C=congruent(model.C), g=g,
+                        F_v=F_v, H_v=model.H_v, q_imposed=q_imposed,
+                        dof_names=_names(model, split),
+                        constraint_names=list(model.constraint_names), natural=conditioned_nat,
+                        families=model.families)
+    setattr(conditioned, CONDITIONED_MARK, True)
+    return conditioned
 
 
 def _names(model, split):
@@ -128,10 +145,53 @@ def _imposed(model, nat, Gt):
     return at(0.0) if model.q_imposed_is_constant else at
 
 
+def _mass_well_posed(M) -> bool:
+    """Whether ``M`` is positive definite on its coordinates with mass (a positive diagonal).
+
+    The time-stepping schemes factorise that block for the initial acceleration.
+    """
+    M = dense(M)
+    massive = np.flatnonzero(np.diag(M) > 0)
+    if massive.size == 0:
+        return True
+    block = M[np.ix_(massive, massive)]
+    eig = np.linalg.eigvalsh(0.5 * (block + block.T))
+    return bool(eig[0] > 1e-12 * eig[-1])
+
+
 def dense_diagonal(A) -> np.ndarray:
     """The diagonal (n,) of a dense or sparse matrix."""
     return np.asarray(A.diagonal() if hasattr(A, "tocsr") else np.diag(A), dtype=float)
 
 
-def _sym(A):
-    return 0.5 * (A + A.T)
+#: A congruent mass or damping matrix's diagonal within this fraction of its largest is round-off.
+ROUND_OFF = 1e-12
+
+
+def _clip_round_off(A) -> np.ndarray:
+    """The congruence ``T^T A T`` symmetrised, its round-off on massless coordinates made zero.
+
+    A coordinate whose diagonal is within :data:`ROUND_OFF` of the largest (``|A_ii| <= 1e-12 max|A_jj|``,
+    e.g. ``-9.7e-17`` where a stiff strain moves only massless DOFs) and whose row is within
+    ``sqrt(ROUND_OFF)`` of it (as a positive semidefinite matrix's row is) is zero in exact arithmetic:
+    its row and column are set to zero, so that a mass matrix keeps a non-negative diagonal.
+
+    Parameters
+    ----------
+    A : (n, n) ndarray
+
+    Returns
+    -------
+    (n, n) ndarray, symmetric
+    """
+    A = 0.5 * (A + A.T)
+    diag = np.diag(A)
+    scale = float(np.max(np.abs(diag), initial=0.0))
+    if scale == 0.0 or not np.isfinite(scale):
+        return A
+    tiny = (np.abs(diag) <= ROUND_OFF * scale) & (np.max(np.abs(A), axis=1) <= np.sqrt(ROUND_OFF) * scale)
+    if np.any(tiny):
+        A = A.copy()
+        A[tiny, :] = 0.0
+        A[:, tiny] = 0.0
+    return A

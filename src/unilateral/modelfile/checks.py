@@ -695,7 +695,35 @@ def _output_problems(document: ModelFile) -> list[str]:
                             + did_you_mean(node, ids))
         elif node in spectra[:k]:
             problems.append(value_problem(("output", "floor_spectra", k), node, "node given twice"))
-    return problems
+    return problems + _overturning_problems(document)
+
+
+#: How far ``[output] overturning_about`` may lie from the nodes, in sizes of the structure.
+OVERTURNING_REACH = 1e6
+
+
+def _overturning_problems(document: ModelFile) -> list[str]:
+    """``[output] overturning_about`` within 1e6 sizes of the structure of its nodes.
+
+    Farther, the overturning moment is the base shear times the distance (no information), and
+    near ``1e308`` it overflows to ``inf``.
+    """
+    about = document.output.overturning_about
+    if about is None or not document.nodes:
+        return []
+    axes = ("x", "y", "z")[: len(about)]
+    lo = [min(float(getattr(node, axis, 0.0)) for node in document.nodes) for axis in axes]
+    hi = [max(float(getattr(node, axis, 0.0)) for node in document.nodes) for axis in axes]
+    size = max([b - a for a, b in zip(lo, hi)] + [1.0])
+    reach = OVERTURNING_REACH * size
+    far = [axis for axis, x, a, b in zip(axes, about, lo, hi) if not a - reach <= x <= b + reach]
+    if not far:
+        return []
+    valid = ", ".join(f"{axis} in [{a - reach:g}, {b + reach:g}]" for axis, a, b in zip(axes, lo, hi))
+    return [value_problem(("output", "overturning_about"), list(about),
+                          f"{' and '.join(far)} more than {OVERTURNING_REACH:g} times the structure's size ({size:g}) "
+                          "from its nodes: the overturning moment would be the base shear times that arm (inf "
+                          f"near 1e308); give a point with {valid}")]
 
 
 def _beam_load_problems(document: ModelFile) -> list[str]:

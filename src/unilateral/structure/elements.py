@@ -288,6 +288,27 @@ def directional(name, kind, i, j, terms, k, *, c=0.0, theta=0.0, unknowns=(), A=
     return _element(name, kind, dofs, a, np.array([[k]]), np.array([theta]), E_v=E_v, unknowns=tuple(unknowns), A=A)
 
 
+#: The smallest stick stiffness ``kt`` of a friction contact relative to its normal stiffness ``k``:
+#: below it the friction rows of the step LCP (scale ``kt``) are lost to round-off beside the normal
+#: row (scale ``k``) and the contact sticks or slips at random (``kt = 1e-8 k`` gave a wrong response).
+STICK_STIFFNESS_MIN_RATIO = 1e-10
+
+
+def check_stick_stiffness(name, kind, k, kt) -> None:
+    """Refuse a stick stiffness ``kt`` too small beside the normal stiffness ``k`` to be carried.
+
+    Raises
+    ------
+    ValueError
+        Naming the contact, ``kt``, ``k`` and the smallest ``kt`` that is valid.
+    """
+    if kt < STICK_STIFFNESS_MIN_RATIO * k:
+        raise ValueError(
+            f"{kind} {name!r}: kt = {kt!r} is below {STICK_STIFFNESS_MIN_RATIO:g} times the normal stiffness "
+            f"k = {k!r}; double precision cannot carry the friction beside the contact. Give kt >= "
+            f"{STICK_STIFFNESS_MIN_RATIO * k:.6g}, or leave mu out for a frictionless contact")
+
+
 def frictional(name, kind, i, j, terms, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, capacity=0.0) -> Element:
     """A contact along ``d`` (``terms``) with Coulomb friction along ``t``, ``d`` turned clockwise.
 
@@ -296,6 +317,7 @@ def frictional(name, kind, i, j, terms, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, 
     ``b = +1``, capacity ``r``) and the slips ``name.slip+``, ``name.slip-`` (row 1, friction
     coefficient ``mu`` on the compression of ``name``).
     """
+    check_stick_stiffness(name, kind, k, kt)
     dofs, a = _relative(i, j, (terms, tangent_terms(f"{kind} {name!r}", terms)))
     E_v = np.diag([c, ct]) if c > 0 or ct > 0 else None
     unknowns = (Unknown(name, 0, 1.0, capacity), *pair(name, 1, "friction", normal=name, mu=mu, k=kt))
@@ -402,8 +424,56 @@ def direction_terms(where: str, direction, dof_names=DOF_NAMES, axes=("dx", "dy"
         d = vector(where, "direction", direction, axes)
     except TypeError:
         raise TypeError(f"{where}: direction must be {choices}, got {direction!r}") from None
-    d = d / (np.hypot(d[0], d[1]) if d.shape == (2,) else np.linalg.norm(d))
+    d = unit(d)
     return tuple((dof, float(x)) for dof, x in zip(translations, d) if x != 0.0)
+
+
+def length(d) -> float:
+    """The Euclidean length of a finite vector without overflow or underflow (like :func:`math.hypot`).
+
+    The components are scaled by the largest ``|d_i|`` before they are squared: ``[1e200, 1e200, 0]``
+    has the length ``1.414e200`` (not ``inf``), ``[1e-200, 0]`` the length ``1e-200`` (not 0).
+
+    Parameters
+    ----------
+    d : (k,) array_like of finite floats
+
+    Returns
+    -------
+    float
+    """
+    d = np.asarray(d, dtype=float)
+    big = float(np.max(np.abs(d), initial=0.0))
+    if big == 0.0 or not np.isfinite(big):
+        return big
+    return big * float(np.sqrt(np.sum((d / big) ** 2)))
+
+
+def unit(d) -> np.ndarray:
+    """``d / |d|`` for a finite nonzero vector, scaled by its largest component first (no overflow).
+
+    Every direction of the structure code (element directions, ``vecxz``, tangents, gravity,
+    ground motions) is normalised here.
+
+    Parameters
+    ----------
+    d : (k,) array_like, finite and nonzero (as :func:`vector` checks)
+
+    Returns
+    -------
+    (k,) ndarray of unit length
+
+    Raises
+    ------
+    ValueError
+        If ``d`` is zero or not finite.
+    """
+    d = np.asarray(d, dtype=float)
+    big = float(np.max(np.abs(d), initial=0.0))
+    if big == 0.0 or not np.isfinite(big):
+        raise ValueError(f"direction {tuple(map(float, d))} must be a finite nonzero vector")
+    d = d / big
+    return d / float(np.sqrt(np.sum(d * d)))
 
 
 def vector(where: str, arg: str, value, axes=("dx", "dy")) -> np.ndarray:

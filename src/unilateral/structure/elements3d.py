@@ -35,7 +35,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .elements import Element, Unknown, _relative
+from .elements import Element, Unknown, _relative, check_stick_stiffness, length, unit
 from .elements import vector as _vector
 
 DOF_NAMES = ("ux", "uy", "uz", "rx", "ry", "rz")
@@ -63,7 +63,7 @@ def chord(where: str, i, xi, j, xj):
     Raises ``ValueError`` for a zero-length chord.
     """
     d = np.asarray(xj, dtype=float) - np.asarray(xi, dtype=float)
-    L = float(np.linalg.norm(d))
+    L = length(d)
     if L == 0.0:
         x, y, z = xi
         raise ValueError(f"{where}: nodes i={i!r} and j={j!r} are both at ({x:g}, {y:g}, {z:g}): "
@@ -87,10 +87,11 @@ def local_axes(where: str, i, xi, j, xj, vecxz=None):
     L, x = chord(where, i, xi, j, xj)
     if vecxz is None:
         vecxz = (1.0, 0.0, 0.0) if np.linalg.norm(np.cross((0.0, 0.0, 1.0), x)) < PARALLEL else (0.0, 0.0, 1.0)
-    v = vector(where, "vecxz", vecxz)
+    given = vector(where, "vecxz", vecxz)
+    v = unit(given)
     y = np.cross(v, x)
-    if np.linalg.norm(y) < PARALLEL * np.linalg.norm(v):
-        raise ValueError(f"{where}: vecxz={tuple(map(float, v))} is parallel to the member axis {i!r} -> {j!r} "
+    if np.linalg.norm(y) < PARALLEL:
+        raise ValueError(f"{where}: vecxz={tuple(map(float, given))} is parallel to the member axis {i!r} -> {j!r} "
                          f"{tuple(np.round(x, 12))}; give a vector of the local x-z plane that is not along "
                          "the member")
     y /= np.linalg.norm(y)
@@ -159,10 +160,11 @@ def tangents(where: str, terms, tangent=None) -> tuple[np.ndarray, np.ndarray]:
     d = np.array([dict(terms).get(dof, 0.0) for dof in TRANSLATIONS])
     if tangent is None:
         tangent = (0.0, 1.0, 0.0) if np.linalg.norm(np.cross((1.0, 0.0, 0.0), d)) < PARALLEL else (1.0, 0.0, 0.0)
-    t = vector(where, "tangent", tangent)
+    given = vector(where, "tangent", tangent)
+    t = unit(given)
     t1 = t - (t @ d) * d
-    if np.linalg.norm(t1) < PARALLEL * np.linalg.norm(t):
-        raise ValueError(f"{where}: tangent={tuple(map(float, t))} is along the contact's direction; give a vector "
+    if np.linalg.norm(t1) < PARALLEL:
+        raise ValueError(f"{where}: tangent={tuple(map(float, given))} is along the contact's direction; give a vector "
                          "of its tangent plane")
     t1 /= np.linalg.norm(t1)
     return t1, np.cross(d, t1)
@@ -231,6 +233,7 @@ def frictional(name, kind, i, j, terms, axes, *, k, kt, mu, c=0.0, ct=0.0, theta
     four-sided pyramid: ``name.slip+``, ``name.slip-`` along ``t1`` (row 1) and ``name.slip2+``,
     ``name.slip2-`` along ``t2`` (row 2), ``|T1| <= mu N``, ``|T2| <= mu N``.
     """
+    check_stick_stiffness(name, kind, k, kt)
     rows = (terms, *(tuple((dof, float(x)) for dof, x in zip(TRANSLATIONS, t) if x != 0.0) for t in axes))
     dofs, a = _relative(i, j, rows, DOF_NAMES)
     unknowns = (Unknown(name, 0, 1.0, capacity), *facet_unknowns(name, facets, mu=mu, k=kt))

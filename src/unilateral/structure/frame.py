@@ -34,6 +34,7 @@ from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
 from . import bulk, elements as el
 from .dofs import DofMap, csr_of_entries, node_list
+from .modes import check_frequency_range
 
 _isfinite = math.isfinite
 _INF = math.inf
@@ -216,6 +217,7 @@ class _Frame(ABC):
         M = _lumped_mass(dofs, nodal_mass)
         K = (G @ E @ G.T).tocsr()
         _check_stiffness(K, dofs, exempt=exempt)
+        check_frequency_range(K, M, dofs.names)
         C = self._damping(dofs, M, K)
         natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=ConstantStrain(theta), E_v=E_v)
         return dict(
@@ -651,7 +653,7 @@ class Frame2D(_Frame):
         hardening : ``h >= 0``
         """
         where = self._hinge_site(name, beam, end)
-        My = _real(where, "My", My, ">0")
+        My = _strength(where, "My", My)
         k = None if k is None else _real(where, "k", k, ">0")
         reference = k if k is not None else self._beams[beam].E[1, 1]          # k or 4EI/L
         modulus = _hardening(where, hardening) * reference
@@ -1460,13 +1462,28 @@ def _yield_forces(where, Fy, Fy_t, Fy_c) -> tuple[float, float]:
     if Fy is not None:
         if Fy_t is not None or Fy_c is not None:
             raise ValueError(f"{where}: give either Fy (both ways) or Fy_t and Fy_c, not both")
-        Fy = _real(where, "Fy", Fy, ">0")
+        Fy = _strength(where, "Fy", Fy)
         return Fy, Fy
     if Fy_t is None or Fy_c is None:
         missing = "Fy" if Fy_t is None and Fy_c is None else ("Fy_t" if Fy_t is None else "Fy_c")
         raise ValueError(f"{where}: {missing} is missing; give the yield force Fy (both ways) or both Fy_t "
                          "(tension) and Fy_c (compression), > 0")
-    return _real(where, "Fy_t", Fy_t, ">0"), _real(where, "Fy_c", Fy_c, ">0")
+    return _strength(where, "Fy_t", Fy_t), _strength(where, "Fy_c", Fy_c)
+
+
+#: The smallest yield force or moment: below it the summary's force ratios (force / Fy) and
+#: ductilities (deformation / (Fy / k)) overflow or lose every digit.
+MIN_STRENGTH = 1e-150
+
+
+def _strength(where, arg, value) -> float:
+    """A strength (``Fy``, ``My``, ...): finite, > 0 and >= :data:`MIN_STRENGTH`."""
+    value = _real(where, arg, value, ">0")
+    if value < MIN_STRENGTH:
+        raise ValueError(f"{where}: {arg}={value!r} is below {MIN_STRENGTH:g}: the force ratios and ductilities "
+                         f"(force / {arg}) cannot be represented in double precision; give {arg} >= "
+                         f"{MIN_STRENGTH:g} (in the model's units), or leave the element out for no strength")
+    return value
 
 
 def _hardening(where, value) -> float:

@@ -34,7 +34,7 @@ from . import elements as el
 from . import elements3d as el3
 from .dofs import DofMap  # noqa: F401  (likewise)
 from .dofs3d import IN_PLANE, DofMap3D
-from .frame import Structure, _Frame, _friction, _hardening, _real
+from .frame import Structure, _Frame, _friction, _hardening, _real, _strength
 
 
 class Frame3D(_Frame):
@@ -489,7 +489,7 @@ class Frame3D(_Frame):
         to ``lcp="lemke"``, ``tests/test_hinge3d.py``).
         """
         where = self._hinge_site(name, beam, end)
-        My, Mz = _real(where, "My", My, ">0"), _real(where, "Mz", Mz, ">0")
+        My, Mz = _strength(where, "My", My), _strength(where, "Mz", Mz)
         shape, facets = _hinge_shape(where, shape, facets)
         k = None if k is None else _real(where, "k", k, ">0")
         h = _hardening(where, hardening)

@@ -18,6 +18,38 @@ import scipy.sparse as sp
 #: Dense eigenproblems up to this many DOFs with mass; above it the lowest modes by ARPACK.
 DENSE_MAX = 1500
 
+#: The largest ``K_ii / M_ii`` (a squared frequency, rad^2 per time unit^2) of a DOF with mass that
+#: is solved: beyond it ``omega^2``, ``(omega dt)^2`` and the periods are not representable in
+#: double precision (``1e-300`` of mass on a ``1e11`` stiffness overflows).
+MAX_OMEGA_SQUARED = 1e200
+
+
+def check_frequency_range(K, M, names) -> None:
+    """Refuse a mass too small for its stiffness to be represented (``K_ii / M_ii > 1e200``).
+
+    Parameters
+    ----------
+    K, M : (n, n) stiffness and (diagonal) mass matrices, dense or sparse
+    names : sequence of n DOF names (``"1.ux"``)
+
+    Raises
+    ------
+    ValueError
+        Naming the DOF, its mass, its stiffness and the smallest mass that would be valid.
+    """
+    k = np.abs(np.asarray(K.diagonal(), dtype=float))
+    m = np.asarray(M.diagonal(), dtype=float)
+    with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
+        ratio = np.where(m > 0, k / np.where(m > 0, m, 1.0), 0.0)
+    bad = np.flatnonzero(~(ratio <= MAX_OMEGA_SQUARED))
+    if bad.size:
+        i = int(bad[np.argmax(ratio[bad])])
+        raise ValueError(
+            f"the mass {float(m[i])!r} of DOF {names[i]} is too small for its stiffness {k[i]:.6g}: the squared "
+            f"frequency K_ii/M_ii = {ratio[i]:.3g} exceeds {MAX_OMEGA_SQUARED:g}, beyond what double precision "
+            f"carries (periods, time steps); give a mass (or J) >= {k[i] / MAX_OMEGA_SQUARED:.3g} at that DOF, or 0 "
+            "for a massless DOF")
+
 
 def modes(model, *, count=10, influence=None) -> dict:
     """The lowest ``count`` modes of the bilateral structure.
@@ -36,7 +68,33 @@ def modes(model, *, count=10, influence=None) -> dict:
     dict with ``omega`` (rad per time unit), ``frequency`` (cycles per time unit), ``period``
     (count,), ``shape`` (count, n), ``effective_mass`` (name -> (count,)), ``total_mass``
     (name -> float, ``r^T M r``). Empty arrays if nothing has mass.
+
+    A model with penalty-stiff elements is solved in its stiff-separated coordinates
+    (:mod:`unilateral.methods.stiff`, the same eigenvalues): its assembled ``K`` keeps the soft
+    stiffness only to ``eps`` times the stiffness ratio, which made the soft modes' periods infinite.
     """
+    from ..methods.stiff import StiffCoordinates     # lazily: only models with a natural form
+
+    stiff = StiffCoordinates.of(model) if getattr(model, "natural", None) is not None else None
+    if stiff is not None:
+        return _modes_separated(stiff, count, influence)
+    return _modes(model, count, influence)
+
+
+def _modes_separated(stiff, count, influence) -> dict:
+    """:func:`modes` of the conditioned model ``x = T^-1 u``, the shapes mapped back to ``u = T x``."""
+    T, T_inv = stiff.split.T, stiff.split.T_inv
+    mapped = {name: T_inv @ np.asarray(r, dtype=float) for name, r in (influence or {}).items()}
+    out = _modes(stiff.conditioned, count, mapped)
+    shape = out["shape"] @ T.T
+    for k in range(shape.shape[0]):
+        shape[k] /= shape[k, np.argmax(np.abs(shape[k]))]
+    out["shape"] = shape
+    return out
+
+
+def _modes(model, count, influence) -> dict:
+    """:func:`modes` of the assembled ``K``, ``M``."""
     K = _dense(model.K)
     M = _dense(model.M)
     n = K.shape[0]
