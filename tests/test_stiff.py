@@ -4,7 +4,7 @@ The paper's example (docs/theory.md, section 9) with the rigid links of the foun
 beams of EI = EA = 1e18, as OpenSees users model rigid parts. Assembled, K keeps the soil
 stiffness only to eps * 1e12 ~ 1e-4: the static state under the symmetric gravity load came out
 asymmetric by 1e-5 and the response 1e-4 off; method="modal" refused the model. Solved in
-coordinates that separate the stiff strains (unilateral.methods.stiff), the model equals the
+coordinates that separate the stiff strains (unilateral.model.stiff), the model equals the
 rigid-link model to round-off (the physical difference is k_soil L^3 / (3 EI) ~ 1e-11 relative).
 """
 
@@ -15,7 +15,7 @@ import unilateral as ul
 from unilateral.initial import static_state
 from unilateral.lcp import get_lcp_solver
 from unilateral.loads import LoadHistory, Rectangular
-from unilateral.methods.stiff import StiffCoordinates
+from unilateral.model.stiff import StiffCoordinates
 from unilateral.structure import Frame2D
 from unilateral.structure import examples as ex
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import unilateral as ul
-from unilateral.methods.stiff import StiffCoordinates, _clip_round_off
+from unilateral.model.stiff import StiffCoordinates, _clip_round_off
 from unilateral.modelfile import ModelFileError, load_model_file
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "liolios1990.toml"

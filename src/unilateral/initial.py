@@ -17,6 +17,7 @@ import numpy as np
 from . import _validate as V
 from .lcp import BlockPrincipalPivoting, get_lcp_solver
 from .linalg import Factorization, SingularMatrixError, dense, mechanism_dofs, transpose_times
+from .model.stiff import StiffCoordinates
 
 
 @dataclass
@@ -73,7 +74,7 @@ def static_state(model, q0, solver) -> InitialState:
     """Static unilateral equilibrium of a matrix model under the total load ``q0`` (n,).
 
     A model with penalty-stiff elements (known from its natural form) is solved in coordinates that
-    separate the stiff strains (:mod:`unilateral.methods.stiff`): the assembled ``K`` would keep the
+    separate the stiff strains (:mod:`unilateral.model.stiff`): the assembled ``K`` would keep the
     soft stiffness only to ``eps`` times the stiffness ratio. The state is kept on the model per
     ``q0`` and solver settings (:func:`unilateral.model.remembered`): a batch's analyses of one model variant
     solve it once; each call returns its own copy.
@@ -92,8 +93,6 @@ def static_state(model, q0, solver) -> InitialState:
 
 def _static_state(model, q0, solver) -> InitialState:
     """:func:`static_state`, computed."""
-    from .methods.stiff import StiffCoordinates     # lazily: methods imports this module
-
     stiff = StiffCoordinates.of(model)
     if stiff is not None:
         T = stiff.split.T

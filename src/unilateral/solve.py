@@ -23,7 +23,7 @@ from .discretization import Discretization
 from .kernels import KernelModel
 from .march.policy import SizePolicy, current_policy, size_policy
 from .methods import METHODS, choose_method, get_method
-from .methods.stiff import StiffCoordinates
+from .model.stiff import StiffCoordinates
 from .model import Model
 from .result import Solution, State
 from .rules import alias_note

@@ -70,10 +70,10 @@ def modes(model, *, count=10, influence=None) -> dict:
     (name -> float, ``r^T M r``). Empty arrays if nothing has mass.
 
     A model with penalty-stiff elements is solved in its stiff-separated coordinates
-    (:mod:`unilateral.methods.stiff`, the same eigenvalues): its assembled ``K`` keeps the soft
+    (:mod:`unilateral.model.stiff`, the same eigenvalues): its assembled ``K`` keeps the soft
     stiffness only to ``eps`` times the stiffness ratio, which made the soft modes' periods infinite.
     """
-    from ..methods.stiff import StiffCoordinates     # lazily: only models with a natural form
+    from ..model.stiff import StiffCoordinates     # lazily: only models with a natural form
 
     stiff = StiffCoordinates.of(model) if getattr(model, "natural", None) is not None else None
     if stiff is not None:

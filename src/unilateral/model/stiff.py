@@ -17,7 +17,7 @@ import numpy as np
 
 from .. import _validate as V
 from ..linalg import dense, stiff_split
-from ..model import Model, NaturalForm
+from . import Model, NaturalForm
 
 
 #: Attribute set on a model in separated coordinates (:func:`_conditioned_model`).

@@ -9,6 +9,9 @@ parts that Kelvin elements (``E(s) = E + s E_v``) add to ``F(s) = F + s F_v`` an
 ``H(s) = H + s H_v``; without Kelvin elements they are absent. In the Laplace domain
 ``D(s) = K + s C + s^2 M`` and the influence matrix is ``Lambda(s) = H(s) - F(s)^T D(s)^-1 F(s)``
 (the paper prints a plus sign in eq. 23; the minus follows from eqs. 18-19).
+
+:mod:`unilateral.model.stiff` puts a model with penalty-stiff elements in coordinates that separate
+the stiff strains (:class:`~unilateral.model.stiff.StiffCoordinates`).
 """
 
 from __future__ import annotations
@@ -18,8 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from . import _validate as V
-from .constraints import default_families, step_law
+from .. import _validate as V
+from ..constraints import default_families, step_law
 
 
 class ConstantStrain:
