@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from .analysis import Analysis
+from .stepping import Analysis
 from .domain import Domain
 from .queries import element_force, element_response, nodal, nodal_reactions
 from .refusals import NOT_NEEDED, refuse

@@ -25,7 +25,7 @@ import sys
 
 import numpy as np
 
-from ..initial import static_state
+from ..initial import given_state, static_state
 from ..lcp import get_lcp_solver
 from ..rules import Newmark
 from ..solve import Simulation
@@ -112,17 +112,24 @@ class Analysis:
         return self.built
 
     def _carry(self, old, state):
-        """The state of the model ``old`` on the model just built, by DOF and constraint name."""
+        """The state of the model ``old`` on the model just built, by DOF and constraint name; the
+        unknowns of new constraints (all of a first model: open gaps) consistent with ``u``."""
         new = self.built.model
-        n, m = new.n, new.m
+        n = new.n
         if old is None:
-            self.u, self.ud, self.udd, self.v = np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(m)
-            return
-        at = {name: k for k, name in enumerate(old.model.dof_names)}
-        self.u, self.ud, self.udd = (np.array([x[at[name]] if name in at else 0.0 for name in new.dof_names])
-                                     for x in state[:3])
-        vat = {name: k for k, name in enumerate(old.model.constraint_names)}
-        self.v = np.array([state[3][vat[name]] if name in vat else 0.0 for name in new.constraint_names])
+            self.u, self.ud, self.udd = np.zeros(n), np.zeros(n), np.zeros(n)
+            vat = {}
+        else:
+            at = {name: k for k, name in enumerate(old.model.dof_names)}
+            self.u, self.ud, self.udd = (np.array([x[at[name]] if name in at else 0.0 for name in new.dof_names])
+                                         for x in state[:3])
+            vat = {name: k for k, name in enumerate(old.model.constraint_names)}
+        fresh = None
+        if any(name not in vat for name in new.constraint_names):
+            fresh = given_state(new, {"u0": self.u, "udot0": self.ud}).v
+            fresh[new.law.rate] = 0.0                  # plastic multipliers start from the virgin state
+        self.v = np.array([state[3][vat[name]] if name in vat else fresh[k]
+                           for k, name in enumerate(new.constraint_names)])
 
     def load(self, times) -> np.ndarray:
         """The reduced loads (len(times), n) of the patterns at ``times``."""
