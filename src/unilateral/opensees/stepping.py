@@ -11,9 +11,10 @@ A script builds its model step by step and analyses it in pieces; the model here
   (``method="direct"``, the trapezoidal rule for 1/2, 1/4, else the library's Newmark rule) over a
   horizon of steps from the current state (``initial={"u0", "udot0", "v0"}``), with the loads
   sampled at the times OpenSees reaches (``t += dt``, step by step). ``analyze(n, dt)`` performs
-  ``n`` steps of it, so ``n`` calls of ``analyze(1, dt)`` are the same steps. It is restarted from
-  the current state when the horizon is used up (the next one is twice as long), when ``dt``,
-  the time, the model or the loads change. OpenSees starts Newmark from the acceleration of the
+  ``n`` steps of it, so ``n`` calls of ``analyze(1, dt)`` are the same steps, bit for bit. The
+  first horizon is :data:`FIRST_HORIZON` steps; when it is used up the simulation is restarted
+  from the state at its last step with a horizon twice as long (at the same steps however the
+  script cuts its calls), and also when ``dt``, the time, the model or the loads change. OpenSees starts Newmark from the acceleration of the
   domain (zero after a static analysis); a restart checks that it is the acceleration of
   equilibrium with the load (otherwise the two codes integrate different problems, and the
   analysis is refused).
@@ -30,6 +31,7 @@ from ..lcp import get_lcp_solver
 from ..rules import Newmark
 from ..solve import Simulation
 from .build import build
+from .queries import material_forces
 from .refusals import OpenSeesRefused, refuse
 
 __all__ = ["Analysis"]
@@ -199,25 +201,28 @@ class Analysis:
         d = self.domain
         _, gamma, beta = self.integrator
         key = (self.built_version, d.load_version, dt)
-        sim = self.sim
-        if sim is None or sim["key"] != key or sim["times"][sim["sim"].n] != d.time \
-                or sim["sim"].n + steps > sim["sim"].N:
-            horizon = max(steps, FIRST_HORIZON, 2 * sim["sim"].N if sim is not None and sim["key"] == key else 0)
-            horizon = min(horizon, max(steps, MAX_ENTRIES // max(b.model.n, 1)))
-            self.sim = sim = self._start(key, dt, horizon, gamma, beta)
-        s = sim["sim"]
         c1, c2 = 1.0 / (beta * dt * dt), 1.0 / (beta * dt)
-        for _ in range(steps):
-            message = s.step()
-            if message:
-                print(f"unilateral.opensees: transient step failed at time {d.time + dt:g}: {message}",
-                      file=sys.stderr)
-                return -3
-            state = s.state
-            self.udd = c1 * (state.u - self.u) - c2 * self.ud - (0.5 / beta - 1.0) * self.udd
-            self.u, self.ud, self.v = state.u, state.udot, state.v
-            d.time = sim["times"][s.n]
-            self._check_gaps()
+        done = 0
+        while done < steps:
+            sim = self.sim
+            if sim is None or sim["key"] != key or sim["times"][sim["sim"].n] != d.time:
+                self.sim = sim = self._start(key, dt, FIRST_HORIZON, gamma, beta)
+            elif sim["sim"].n == sim["sim"].N:          # the horizon is used up: on from the state
+                horizon = min(2 * sim["sim"].N, max(FIRST_HORIZON, MAX_ENTRIES // max(b.model.n, 1)))
+                self.sim = sim = self._start(key, dt, horizon, gamma, beta)
+            s = sim["sim"]
+            for _ in range(min(steps - done, s.N - s.n)):
+                message = s.step()
+                if message:
+                    print(f"unilateral.opensees: transient step failed at time {d.time + dt:g}: {message}",
+                          file=sys.stderr)
+                    return -3
+                state = s.state
+                self.udd = c1 * (state.u - self.u) - c2 * self.ud - (0.5 / beta - 1.0) * self.udd
+                self.u, self.ud, self.v = state.u, state.udot, state.v
+                d.time = sim["times"][s.n]
+                self._check_gaps()
+                done += 1
         return 0
 
     def _start(self, key, dt, horizon, gamma, beta):
@@ -258,8 +263,6 @@ class Analysis:
 
     def _check_gaps(self):
         """An ElasticPPGap whose force reaches its yield force is refused (its yielding is not modelled)."""
-        from .queries import material_forces
-
         for tag, table in self.built.springs.items():
             for (material, *_), (_, f) in zip(table, material_forces(self, tag)):
                 if material.kind == "ElasticPPGap" and abs(f) > abs(material.Fy) * (1 + 1e-12):
