@@ -140,6 +140,12 @@ def test_step_loop_equals_one_analyze():
 
 
 @needs_opensees
+def test_general_newmark_rule_rotational_mass_and_beam_responses():
+    theirs, _ = assert_equal_histories("cantilever_newmark.py")
+    assert np.abs(theirs["u3"].reshape(-1, 3)[:, 2]).max() > 0       # the tip rotates
+
+
+@needs_opensees
 def test_time_series_as_opensees_evaluates_them():
     assert_equal_histories("series_static.py")
 

@@ -55,6 +55,7 @@ REFUSED_CALLS = [
     (lambda: ops.element('quad', 9, 1, 2, 4, 3, 1.0, 'PlaneStress', 1), "quad"),
     (lambda: ops.element('elasticBeamColumn', 9, 1, 3, 0.1, 30e6, 1e-3, 1, '-cMass'), "-cMass", "lumped"),
     (lambda: ops.element('elasticBeamColumn', 9, 1, 3, 0.1, 30e6, 1e-3, 1, '-release', 1), "-release"),
+    (lambda: ops.element('elasticBeamColumn', 9, 1, 3, 0.1, 30e6, 1e-3, 1, '-mass', 0.9), "-mass", "nodal masses"),
     (lambda: ops.element('zeroLength', 9, 1, 3, '-mat', 1, '-dir', 1, '-orient', 0, 1, 0, -1, 0, 0), "-orient"),
     (lambda: ops.element('zeroLength', 9, 1, 3, '-mat', 2, '-dir', 2, '-doRayleigh', 1), "-doRayleigh", "ENT"),
     (lambda: ops.geomTransf('PDelta', 7), "PDelta", "axial force", "Frame2D.p_delta"),

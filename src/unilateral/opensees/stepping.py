@@ -72,9 +72,10 @@ class Analysis:
             if len(args) > 2:
                 refuse(what, f"the options {args[2:]!r} are not in the subset", "integrator('Newmark', gamma, beta)")
             gamma, beta = float(args[0]), float(args[1])
-            if not (gamma >= 0.5 and beta >= 0.25 * (0.5 + gamma) ** 2):
-                refuse(what, "only unconditionally stable Newmark rules are in the subset (the library's Newmark "
-                       "rule checks gamma >= 1/2, beta >= (gamma + 1/2)^2 / 4)", "integrator('Newmark', 0.5, 0.25)")
+            if not (gamma >= 0.5 and beta >= 0.25 * (0.5 + gamma) ** 2 * (1 - 1e-12)):
+                refuse(what, "only unconditionally stable Newmark rules (gamma >= 1/2, beta >= (gamma + 1/2)^2 / 4) "
+                       "are in the subset: an explicit or conditionally stable one is not the implicit stepping "
+                       "with one LCP per step", "integrator('Newmark', 0.5, 0.25)")
             self.integrator = ("Newmark", gamma, beta)
         elif kind == "LoadControl":
             if not args:
