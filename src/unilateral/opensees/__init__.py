@@ -95,6 +95,7 @@ def __getattr__(name):
                                                 "see docs/opensees.md for the supported commands"))
 
     def refused(*args, **kwargs):
+        """Refuse the command (:class:`OpenSeesRefused`)."""
         refuse(f"{name}()", why, instead)
 
     refused.__name__ = name

@@ -65,7 +65,22 @@ class Built:
 
 
 def build(domain) -> Built:
-    """Build ``domain``; :class:`OpenSeesRefused` for what the model cannot take."""
+    """Build the model of ``domain``.
+
+    Parameters
+    ----------
+    domain : Domain
+        The record of the script's commands.
+
+    Returns
+    -------
+    Built
+
+    Raises
+    ------
+    OpenSeesRefused
+        For a model that cannot be built (a free DOF without stiffness, every DOF fixed).
+    """
     if not domain.nodes:
         refuse("analyze", "the model has no nodes", "define nodes and elements first")
     fr = Frame2D()
@@ -121,6 +136,7 @@ def _ties(domain, st):
     parent = {}
 
     def find(x):
+        """The root of the group of tied DOFs of ``x``."""
         while parent.get(x, x) != x:
             x = parent[x]
         return x

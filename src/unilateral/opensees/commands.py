@@ -36,6 +36,7 @@ class Session:
     def accepted(self, command):
         """A command accepted without effect (see :data:`~.refusals.NOT_NEEDED`)."""
         def run(*args, **kwargs):
+            """Record the arguments; 0."""
             self.settings[command] = args
             return 0
         run.__name__ = command

@@ -55,7 +55,23 @@ class ZeroLength:
 
 
 def parse_element(kind, args, domain):
-    """The element of ``element(kind, tag, *args)`` (the tag removed), checked against ``domain``."""
+    """The element of ``element(kind, tag, *args)``.
+
+    Parameters
+    ----------
+    kind : str, ``"elasticBeamColumn"`` or ``"zeroLength"``
+    args : tuple, the arguments after the tag
+    domain : Domain, for the nodes, transformations and materials named
+
+    Returns
+    -------
+    BeamColumn or ZeroLength
+
+    Raises
+    ------
+    OpenSeesRefused
+        For another element or an option outside the subset.
+    """
     what = f"element({kind!r})"
     if kind in _REFUSED:
         refuse(what, _REFUSED[kind], _ELEMENT_ALTERNATIVE)
@@ -149,7 +165,17 @@ def _zero_length(what, args, domain):
 
 
 def beam_stiffness(xi, xj, A, E, I) -> np.ndarray:
-    """The global stiffness (6, 6) of a 2-D Euler-Bernoulli beam from ``xi`` to ``xj``."""
+    """The global stiffness of a 2-D Euler-Bernoulli beam.
+
+    Parameters
+    ----------
+    xi, xj : (2,) coordinates of its ends
+    A, E, I : float, area, modulus, moment of inertia
+
+    Returns
+    -------
+    (6, 6) ndarray on ``(ux, uy, rz)`` of ``i`` then ``j``
+    """
     d = np.asarray(xj, dtype=float) - np.asarray(xi, dtype=float)
     L = float(np.hypot(*d))
     c, s = d / L

@@ -50,8 +50,20 @@ class Material:
 
     # ------------------------------------------------------------------ into the frame
     def add(self, fr, name, i, j, direction) -> int:
-        """Add the element(s) of this material from node ``i`` to ``j`` along ``direction`` (1, 2, 3)
-        to the Frame2D ``fr``; the sign ``s`` with which the element's stress is OpenSees's force."""
+        """Add the element(s) of this material to a frame.
+
+        Parameters
+        ----------
+        fr : Frame2D
+        name : str, the element's name
+        i, j : node tags (the zeroLength's nodes)
+        direction : int, 1, 2 or 3 (``ux``, ``uy``, ``rz``)
+
+        Returns
+        -------
+        int
+            The sign (+1 or -1) that makes the element's stress OpenSees's force.
+        """
         dof = DIRECTIONS[direction]
         if self.kind == "Elastic":
             fr.spring(name, i, self.E, j=j, direction=dof)
@@ -80,8 +92,18 @@ class Material:
         return 1
 
     def force(self, e, edot, sigma, sign) -> float:
-        """OpenSees's force of the material at the deformation ``e``, its rate ``edot`` and the
-        stress ``sigma`` of the element built (times ``sign`` of :meth:`add`)."""
+        """OpenSees's force of the material.
+
+        Parameters
+        ----------
+        e, edot : float, the deformation ``u_j - u_i`` and its rate
+        sigma : float, the stress of the element built
+        sign : int, as returned by :meth:`add`
+
+        Returns
+        -------
+        float, tension positive
+        """
         if self.kind == "Elastic":
             return self.E * e + self.eta * edot
         return sign * sigma
@@ -98,7 +120,22 @@ def _number(what, name, value, bound=None):
 
 
 def parse_material(kind, args) -> Material:
-    """The :class:`Material` of ``uniaxialMaterial(kind, tag, *args)`` (the tag removed)."""
+    """The material of ``uniaxialMaterial(kind, tag, *args)``.
+
+    Parameters
+    ----------
+    kind : str, ``"Elastic"``, ``"ENT"``, ``"ElasticPP"`` or ``"ElasticPPGap"``
+    args : tuple, the arguments after the tag
+
+    Returns
+    -------
+    Material
+
+    Raises
+    ------
+    OpenSeesRefused
+        For another material (Steel02, Concrete02, ...) or options outside the subset.
+    """
     what = f"uniaxialMaterial({kind!r})"
     if kind in REFUSED_MATERIALS:
         refuse(what, REFUSED_MATERIALS[kind], "ElasticPP (elastic-perfectly plastic), ENT (compression-only "

@@ -42,7 +42,19 @@ def _ready(analysis, what):
 
 
 def nodal(analysis, which, tag, dof=-1):
-    """``nodeDisp``/``nodeVel``/``nodeAccel`` (``which``: ``"u"``, ``"ud"``, ``"udd"``) of node ``tag``."""
+    """``nodeDisp``, ``nodeVel`` or ``nodeAccel``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    which : str, ``"u"``, ``"ud"`` or ``"udd"``
+    tag : int, the node
+    dof : int, 1, 2 or 3; -1: all three
+
+    Returns
+    -------
+    float or list of 3 floats
+    """
     what = f"node{ {'u': 'Disp', 'ud': 'Vel', 'udd': 'Accel'}[which] }({tag})".replace(" ", "")
     tag = int(tag)
     if tag not in analysis.domain.nodes:
@@ -81,7 +93,18 @@ def _structure_u(b, u):
 
 
 def element_force(analysis, tag, dof=-1):
-    """``eleForce(tag, dof)``."""
+    """``eleForce(tag, dof)``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    tag : int, the element
+    dof : int, 1..6; -1: all six
+
+    Returns
+    -------
+    float or list of 6 floats (``i`` then ``j``, global axes)
+    """
     what = f"eleForce({tag})"
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
@@ -100,7 +123,18 @@ def _global_force(analysis, b, tag, e):
 
 
 def element_response(analysis, tag, *args):
-    """``eleResponse(tag, *args)``."""
+    """``eleResponse(tag, *args)``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    tag : int, the element
+    args : the response, e.g. ``'force'``, ``'deformation'``, ``'basicForce'``, ``'localForce'``
+
+    Returns
+    -------
+    list of floats
+    """
     what = f"eleResponse({tag}, {', '.join(map(repr, args))})"
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
@@ -129,7 +163,18 @@ def element_response(analysis, tag, *args):
 
 
 def nodal_reactions(analysis, *args):
-    """``reactions()``: the reactions of every node, ``{tag: [Rx, Ry, Mz]}``."""
+    """``reactions()``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    args : none (``'-dynamic'`` and ``'-rayleigh'`` are refused)
+
+    Returns
+    -------
+    dict
+        ``{node tag: (3,) [Rx, Ry, Mz]}``.
+    """
     if args:
         refuse(f"reactions{args}", "reactions with inertia or damping ('-dynamic', '-rayleigh') are not in the "
                "subset", "reactions() (the static reactions: element forces minus nodal loads)")

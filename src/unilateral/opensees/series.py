@@ -41,7 +41,16 @@ class Series:
     use_last: bool = False
 
     def __call__(self, t) -> np.ndarray:
-        """The factor at the times ``t`` (array)."""
+        """The factor of the series at times ``t``.
+
+        Parameters
+        ----------
+        t : array_like, times (s)
+
+        Returns
+        -------
+        ndarray, the shape of ``t``
+        """
         t = np.asarray(t, dtype=float)
         if self.kind == "Constant":
             return np.full(t.shape, self.factor)
@@ -127,7 +136,22 @@ def _is_number(text):
 
 
 def parse_series(kind, args) -> Series:
-    """The :class:`Series` of ``timeSeries(kind, tag, *args)`` (the tag removed)."""
+    """The series of ``timeSeries(kind, tag, *args)``.
+
+    Parameters
+    ----------
+    kind : str, ``"Constant"``, ``"Linear"`` or ``"Path"``
+    args : tuple, the arguments after the tag
+
+    Returns
+    -------
+    Series
+
+    Raises
+    ------
+    OpenSeesRefused
+        For another kind, an unknown option or inconsistent values.
+    """
     what = f"timeSeries({kind!r})"
     if kind in ("Constant", "Linear"):
         opts = _options(what, args, ("-factor",))
@@ -163,7 +187,23 @@ def parse_series(kind, args) -> Series:
 
 
 def parse_pattern(kind, args, series_tags) -> Pattern:
-    """The :class:`Pattern` of ``pattern(kind, tag, *args)`` (the tag removed)."""
+    """The pattern of ``pattern(kind, tag, *args)``.
+
+    Parameters
+    ----------
+    kind : str, ``"Plain"`` or ``"UniformExcitation"``
+    args : tuple, the arguments after the tag
+    series_tags : the tags of the time series defined
+
+    Returns
+    -------
+    Pattern
+
+    Raises
+    ------
+    OpenSeesRefused
+        For another kind, a ground displacement or velocity, a rotation, an undefined series.
+    """
     what = f"pattern({kind!r})"
     if kind == "Plain":
         if not args:

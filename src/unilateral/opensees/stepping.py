@@ -154,7 +154,18 @@ class Analysis:
 
     # ------------------------------------------------------------------ analyze
     def analyze(self, steps=1, dt=None):
-        """``analyze(numIncr, dt)``: 0 on success, negative if a step failed."""
+        """``analyze(numIncr, dt)``.
+
+        Parameters
+        ----------
+        steps : int, the number of steps
+        dt : float, the time step (transient analyses)
+
+        Returns
+        -------
+        int
+            0 on success, -3 if a step failed (the reason is printed on stderr).
+        """
         if self.kind is None:
             refuse("analyze", "no analysis is defined", "analysis('Static') or analysis('Transient') first")
         steps = int(steps)
@@ -265,6 +276,8 @@ class Analysis:
     def _check_gaps(self):
         """An ElasticPPGap whose force reaches its yield force is refused (its yielding is not modelled)."""
         for tag, table in self.built.springs.items():
+            if not any(material.kind == "ElasticPPGap" for material, *_ in table):
+                continue
             for (material, *_), (_, f) in zip(table, material_forces(self, tag)):
                 if material.kind == "ElasticPPGap" and abs(f) > abs(material.Fy) * (1 + 1e-12):
                     refuse(f"ElasticPPGap of element {tag}", f"its force {f:.6g} passed its yield force "
