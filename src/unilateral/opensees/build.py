@@ -1,0 +1,222 @@
+"""The recorded :class:`~.domain.Domain` -> a :class:`~unilateral.structure.Frame2D`, its
+:class:`~unilateral.structure.Structure` and the :class:`~unilateral.Model` solved.
+
+The nodes are those of the script (``ux, uy, rz``; a rotation nothing stiffens is not a DOF, as
+in ``Frame2D``); ``fix`` removes DOFs; ``equalDOF`` ties are eliminated exactly: the DOFs of
+the built structure are ``T u`` of the reduced ones (one per group of tied DOFs), so that
+``G -> T^T G`` and ``M -> T^T M T``. The masses (nodal and the lumped ``-mass`` of beams) and the
+damping are assembled here as OpenSees assembles them: Rayleigh ``alphaM`` on the masses of the
+nodes and elements that existed when ``rayleigh`` was called, ``betaK + betaKinit + betaKcomm`` on
+the stiffness of those elastic beams and ``-doRayleigh`` Elastic springs (the tangent, initial and
+committed stiffness of an elastic element are one), never on contacts or yield springs (OpenSees's
+``zeroLength`` default); a material's ``eta`` is a dashpot.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..model import Model
+from ..structure import Frame2D
+from .elements import BeamColumn, beam_stiffness
+from .materials import DIRECTIONS
+from .refusals import OpenSeesRefused, refuse
+
+__all__ = ["Built", "build"]
+
+_DOFS = ("ux", "uy", "rz")
+
+
+@dataclass
+class Built:
+    """A built domain.
+
+    Attributes
+    ----------
+    structure : Structure, of the Frame2D (DOFs before the ties)
+    model : Model, on the reduced DOFs
+    P : (3 nodes, n) csr, the nodal DOFs ``U = P u`` of the reduced ``u`` (rows ``3 p + d``)
+    row : dict node tag -> ``3 p``, its first row of ``P``
+    mass : (3 nodes,) the lumped masses of the nodal DOFs
+    beams : dict tag -> (rows (6,), K_e (6, 6), stiffness damping factor)
+    springs : dict tag -> list of (material, direction, element name, sign, strain index, damping factor)
+    ties : (n_structure, n) csr, the structure's DOFs ``T u`` of the reduced ``u`` (the equalDOF ties)
+    """
+
+    structure: object
+    model: Model
+    P: sp.csr_matrix
+    row: dict
+    mass: np.ndarray
+    beams: dict
+    springs: dict
+    ties: sp.csr_matrix = None
+
+    def nodal(self, u) -> np.ndarray:
+        """The nodal DOFs (3 nodes,) of the reduced ``u``."""
+        return np.asarray(self.P @ u).ravel()
+
+    def reduced(self, f_full) -> np.ndarray:
+        """The reduced load ``P^T f`` of nodal forces ``f`` (3 nodes,)."""
+        return np.asarray(self.P.T @ f_full).ravel()
+
+
+def build(domain) -> Built:
+    """Build the model of ``domain``.
+
+    Parameters
+    ----------
+    domain : Domain
+        The record of the script's commands.
+
+    Returns
+    -------
+    Built
+
+    Raises
+    ------
+    OpenSeesRefused
+        For a model that cannot be built (a free DOF without stiffness, every DOF fixed).
+    """
+    if not domain.nodes:
+        refuse("analyze", "the model has no nodes", "define nodes and elements first")
+    fr = Frame2D()
+    for tag, (x, y) in domain.nodes.items():
+        fr.node(tag, x, y)
+    for tag, flags in domain.fixes.items():
+        if any(flags):
+            fr.support(tag, ux=bool(flags[0]), uy=bool(flags[1]), rz=bool(flags[2]))
+    for tag, (_, _, J) in domain.masses.items():
+        if J > 0:
+            fr.mass(tag, 0.0, J=J)                       # (a rotational mass makes rz a DOF)
+    names = _add_elements(fr, domain)
+    try:
+        st = fr.build()
+    except ValueError as exc:
+        raise OpenSeesRefused("analyze", f"the model cannot be built: {exc}",
+                              "give every free DOF a stiffness (an element, a fix or an equalDOF)") from None
+    T, reduced_names = _ties(domain, st)
+    P = (st.dofs.T @ T).tocsr()
+    row = {tag: 3 * p for p, tag in enumerate(st.dofs.nodes)}
+    mass, alpha_mass = _masses(domain, row)
+    factors = domain.damping[0] if domain.damping else (0.0, 0.0, 0.0, 0.0)
+    beta = factors[1] + factors[2] + factors[3]
+    beams, springs, K_damped = _element_tables(domain, st, row, names, beta)
+    M = (P.T @ sp.diags(mass) @ P).tocsr()
+    C = factors[0] * (P.T @ sp.diags(alpha_mass) @ P) + P.T @ K_damped @ P
+    if st.C is not None:
+        C = C + T.T @ st.C @ T
+    nat = st.natural
+    A = nat.A if np.any(nat.A) else None
+    model = Model.from_natural((T.T @ nat.G).tocsr(), nat.E, nat.B, M=M, A=A, r=nat.r, theta=nat.theta(0.0),
+                               C=sp.csr_matrix(C) if C.nnz else None, E_v=nat.E_v, dof_names=reduced_names,
+                               constraint_names=list(st.constraint_names), families=st.families())
+    return Built(st, model, P, row, mass, beams, springs, T)
+
+
+def _add_elements(fr, domain) -> dict:
+    """Add every element to ``fr``; ``{(tag, k): (name, sign)}`` of the zeroLength materials."""
+    names = {}
+    for tag, e in domain.elements.items():
+        if isinstance(e, BeamColumn):
+            fr.beam(f"e{tag}", e.i, e.j, E=e.E, A=e.A, I=e.I)
+            continue
+        for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
+            name = f"e{tag}.{k}"
+            names[(tag, k)] = (name, domain.materials[mat].add(fr, name, e.i, e.j, direction))
+    return names
+
+
+def _ties(domain, st):
+    """``T`` (n_structure, n_reduced) of the equalDOF ties and the names of the reduced DOFs."""
+    free = list(st.dofs.free)
+    parent = {}
+
+    def find(x):
+        """The root of the group of tied DOFs of ``x``."""
+        while parent.get(x, x) != x:
+            x = parent[x]
+        return x
+
+    for master, slave, dofs in domain.ties:
+        for d in dofs:
+            a, b = find((master, _DOFS[d - 1])), find((slave, _DOFS[d - 1]))
+            if a != b:
+                parent[b] = a
+    fixed = {find((tag, _DOFS[d])) for tag, flags in domain.fixes.items() for d in range(3) if flags[d]}
+    groups, rows, cols = {}, [], []
+    for k, dof in enumerate(free):
+        root = find(dof)
+        if root in fixed:                                 # fixed, or tied to a fixed DOF
+            continue
+        col = groups.setdefault(root, len(groups))
+        rows.append(k)
+        cols.append(col)
+    names = [None] * len(groups)
+    for k, col in zip(rows, cols):
+        if names[col] is None:
+            names[col] = f"{free[k][0]}.{free[k][1]}"
+    if not groups:
+        refuse("analyze", "every DOF is fixed or tied to a fixed DOF", "free some DOFs")
+    T = sp.csr_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(free), len(groups)))
+    return T, names
+
+
+def _masses(domain, row):
+    """The lumped masses of the nodal DOFs and those of them Rayleigh's ``alphaM`` acts on."""
+    n = 3 * len(row)
+    mass, damped = np.zeros(n), np.zeros(n)
+    nodes, elements = (domain.damping[1], domain.damping[2]) if domain.damping else ((), ())
+    for tag, values in domain.masses.items():
+        mass[row[tag]:row[tag] + 3] += values
+        if tag in nodes:
+            damped[row[tag]:row[tag] + 3] += values
+    for tag, e in domain.elements.items():
+        if isinstance(e, BeamColumn) and e.mass:
+            L = float(np.hypot(*np.subtract(domain.nodes[e.j], domain.nodes[e.i])))
+            for node in (e.i, e.j):
+                half = np.array([e.mass * L / 2, e.mass * L / 2, 0.0])
+                mass[row[node]:row[node] + 3] += half
+                if tag in elements:
+                    damped[row[node]:row[node] + 3] += half
+    return mass, damped
+
+
+def _element_tables(domain, st, row, names, beta):
+    """The beams' and springs' tables for the queries and the damped stiffness (3 nodes, 3 nodes)."""
+    starts, at = {}, 0
+    for e in st.elements:
+        starts[e.name] = at
+        at += e.E.shape[0]
+    in_set = domain.damping[2] if domain.damping else frozenset()
+    n = 3 * len(row)
+    K = sp.lil_matrix((n, n))
+    beams, springs = {}, {}
+    for tag, e in domain.elements.items():
+        factor = beta if tag in in_set else 0.0
+        if isinstance(e, BeamColumn):
+            rows = np.r_[row[e.i]:row[e.i] + 3, row[e.j]:row[e.j] + 3]
+            Ke = beam_stiffness(domain.nodes[e.i], domain.nodes[e.j], e.A, e.E, e.I)
+            beams[tag] = (rows, Ke, factor)
+            if factor:
+                K[np.ix_(rows, rows)] += factor * Ke
+            continue
+        table = []
+        for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
+            name, sign = names[(tag, k)]
+            material = domain.materials[mat]
+            damp = factor if e.rayleigh else 0.0
+            table.append((material, direction, name, sign, starts[name], damp))
+            if damp:
+                ri, rj = row[e.i] + direction - 1, row[e.j] + direction - 1
+                K[np.ix_([ri, rj], [ri, rj])] += damp * material.E * np.array([[1.0, -1.0], [-1.0, 1.0]])
+        springs[tag] = table
+    return beams, springs, K.tocsr()
+
+
+def dof_name(direction) -> str:
+    """The DOF name of an OpenSees direction (1, 2, 3)."""
+    return DIRECTIONS[direction]

@@ -1,0 +1,108 @@
+"""The session behind :mod:`unilateral.opensees`: one :class:`~.domain.Domain` and one
+:class:`~.analysis.Analysis`, and the commands of OpenSeesPy as its methods."""
+
+from __future__ import annotations
+
+from .stepping import Analysis
+from .domain import Domain
+from .queries import element_force, element_response, nodal, nodal_reactions
+from .refusals import NOT_NEEDED, refuse
+
+__all__ = ["Session"]
+
+
+class Session:
+    """The state of one OpenSees interpreter: the model and its analysis."""
+
+    def __init__(self):
+        self.domain = Domain()
+        self.analysis = Analysis(self.domain)
+        self.reactions_ = {}
+        self.settings = {}
+
+    # ------------------------------------------------------------------ whole session
+    def wipe(self):
+        """``wipe()``: remove the model, the loads, the state and the analysis."""
+        self.domain.__init__()
+        self.analysis.wipe()
+        self.reactions_ = {}
+        self.settings = {}
+
+    def wipeAnalysis(self):
+        """``wipeAnalysis()``: remove the analysis settings; the model and its state stay."""
+        self.analysis.wipe_analysis()
+
+    # ------------------------------------------------------------------ accepted, not needed
+    def accepted(self, command):
+        """A command accepted without effect (see :data:`~.refusals.NOT_NEEDED`)."""
+        def run(*args, **kwargs):
+            """Record the arguments; 0."""
+            self.settings[command] = args
+            return 0
+        run.__name__ = command
+        run.__doc__ = f"``{command}(...)``: accepted, no effect: {NOT_NEEDED[command]}."
+        return run
+
+    # ------------------------------------------------------------------ analysis
+    def integrator(self, kind, *args):
+        """``integrator('Newmark', gamma, beta)`` or ``integrator('LoadControl', dLambda)``."""
+        self.analysis.set_integrator(kind, *args)
+
+    def analysis_(self, kind, *args):
+        """``analysis('Static' | 'Transient')``."""
+        self.analysis.set_analysis(kind, *args)
+
+    def analyze(self, numIncr=1, dt=None, *args):
+        """``analyze(numIncr, dt)``: 0 on success, negative on failure."""
+        if args:
+            refuse(f"analyze{(numIncr, dt) + args}", "variable time steps are not in the subset",
+                   "analyze(numIncr, dt)")
+        return self.analysis.analyze(numIncr, dt)
+
+    # ------------------------------------------------------------------ queries
+    def nodeDisp(self, tag, dof=-1):
+        """``nodeDisp(tag, dof)``: a displacement, or the node's three."""
+        return nodal(self.analysis, "u", tag, dof)
+
+    def nodeVel(self, tag, dof=-1):
+        """``nodeVel(tag, dof)``."""
+        return nodal(self.analysis, "ud", tag, dof)
+
+    def nodeAccel(self, tag, dof=-1):
+        """``nodeAccel(tag, dof)`` (relative to the ground under a UniformExcitation)."""
+        return nodal(self.analysis, "udd", tag, dof)
+
+    def nodeCoord(self, tag, dim=-1):
+        """``nodeCoord(tag, dim)``."""
+        x = list(self.domain.nodes[int(tag)])
+        return x if dim in (None, -1) else x[int(dim) - 1]
+
+    def getNodeTags(self):
+        """``getNodeTags()``."""
+        return list(self.domain.nodes)
+
+    def getEleTags(self):
+        """``getEleTags()``."""
+        return list(self.domain.elements)
+
+    def eleForce(self, tag, dof=-1):
+        """``eleForce(tag, dof)``: global end forces (see :mod:`.queries`)."""
+        return element_force(self.analysis, tag, dof)
+
+    def eleResponse(self, tag, *args):
+        """``eleResponse(tag, 'force' | 'deformation' | ...)``."""
+        return element_response(self.analysis, tag, *args)
+
+    def reactions(self, *args):
+        """``reactions()``: compute the nodal reactions for ``nodeReaction``."""
+        self.reactions_ = nodal_reactions(self.analysis, *args)
+        return 0
+
+    def nodeReaction(self, tag, dof=-1):
+        """``nodeReaction(tag, dof)``: the reaction computed by the last ``reactions()``."""
+        tag = int(tag)
+        if tag not in self.reactions_:
+            refuse(f"nodeReaction({tag})", "reactions() has not been called since the node was defined",
+                   "call reactions() first")
+        values = self.reactions_[tag]
+        return [float(x) for x in values] if dof in (None, -1) else float(values[int(dof) - 1])

@@ -1,0 +1,214 @@
+"""The model being built by an OpenSees script: nodes, fixities, masses, ties, transformations,
+materials, elements, time series, patterns, Rayleigh factors and the domain time.
+
+The commands only record and check; :mod:`.build` turns the record into a
+:class:`~unilateral.Model` when an analysis needs it. :attr:`Domain.version` counts the changes of
+the structure, :attr:`Domain.load_version` those of the loads, so that an analysis knows when to
+rebuild.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .elements import parse_element
+from .materials import parse_material
+from .refusals import refuse
+from .series import parse_pattern, parse_series
+
+__all__ = ["Domain"]
+
+
+def _tag(what, value):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer, float)) or int(value) != value:
+        refuse(what, f"the tag {value!r} is not an integer", "an integer tag")
+    return int(value)
+
+
+class Domain:
+    """The record of the model-building commands of one OpenSees session."""
+
+    def __init__(self):
+        self.ndm = self.ndf = None
+        self.nodes, self.fixes, self.masses, self.ties = {}, {}, {}, []
+        self.transforms, self.materials, self.elements = {}, {}, {}
+        self.series, self.patterns, self.current = {}, {}, None
+        self.damping = None
+        self.time = 0.0
+        self.version = self.load_version = 0
+
+    def _changed(self, loads=False):
+        if loads:
+            self.load_version += 1
+        else:
+            self.version += 1
+
+    def _need_model(self, what):
+        if self.ndm is None:
+            refuse(what, "no model is defined", "model('basic', '-ndm', 2, '-ndf', 3) first")
+
+    # ------------------------------------------------------------------ the structure
+    def model(self, kind, *args):
+        """``model('basic', '-ndm', 2, '-ndf', 3)``."""
+        what = f"model({kind!r}, {', '.join(map(repr, args))})"
+        if kind not in ("basic", "Basic", "BasicBuilder", "basicBuilder"):
+            refuse(what, "only the basic model builder is in this slice", "model('basic', '-ndm', 2, '-ndf', 3)")
+        opts = dict(zip(args[0::2], args[1::2]))
+        ndm = int(opts.get("-ndm", 0))
+        ndf = int(opts.get("-ndf", 3 if ndm == 2 else 6))
+        if ndm == 3:
+            refuse(what, "3-D models are not in this slice of unilateral.opensees",
+                   "a 2-D model ('-ndm', 2, '-ndf', 3), or unilateral.structure.Frame3D directly")
+        if ndm != 2 or ndf != 3:
+            refuse(what, "only plane frames with three DOFs per node (ux, uy, rz) are in this slice",
+                   "model('basic', '-ndm', 2, '-ndf', 3)")
+        self.ndm, self.ndf = ndm, ndf
+        self._changed()
+
+    def node(self, tag, *args):
+        """``node(tag, x, y, '-mass', mx, my, mz)``."""
+        what = f"node({tag!r})"
+        self._need_model(what)
+        tag = _tag(what, tag)
+        if tag in self.nodes:
+            refuse(what, f"node {tag} is already defined", "a new tag")
+        coords = [a for a in args[:2]]
+        if len(coords) != 2 or any(isinstance(c, str) for c in coords):
+            refuse(what, "a 2-D node needs x and y", "node(tag, x, y)")
+        rest = list(args[2:])
+        self.nodes[tag] = (float(coords[0]), float(coords[1]))
+        if rest:
+            if rest[0] != "-mass" or len(rest) != 4:
+                refuse(f"{what} {rest[0]!r}", "the option is not in the subset", "node(tag, x, y, '-mass', mx, my, mz)")
+            self.mass(tag, *rest[1:])
+        self._changed()
+
+    def fix(self, tag, *flags):
+        """``fix(tag, fx, fy, frz)`` (1: fixed)."""
+        what = f"fix({tag!r})"
+        tag = _tag(what, tag)
+        if tag not in self.nodes:
+            refuse(what, f"node {tag} is not defined", "define the node first")
+        if len(flags) != 3 or any(f not in (0, 1) for f in flags):
+            refuse(what, f"the flags {flags!r} must be three 0 or 1", "fix(tag, 1, 1, 1)")
+        old = self.fixes.get(tag, (0, 0, 0))
+        self.fixes[tag] = tuple(int(a or b) for a, b in zip(old, flags))
+        self._changed()
+
+    def mass(self, tag, *values):
+        """``mass(tag, mx, my, mz)``: lumped nodal masses (replace the node's masses, as OpenSees)."""
+        what = f"mass({tag!r})"
+        tag = _tag(what, tag)
+        if tag not in self.nodes:
+            refuse(what, f"node {tag} is not defined", "define the node first")
+        if len(values) != 3:
+            refuse(what, f"{len(values)} values; a 2-D node has 3 DOFs", "mass(tag, mx, my, mz)")
+        values = tuple(float(v) for v in values)
+        if min(values) < 0:
+            refuse(what, f"negative mass {values}", "masses >= 0")
+        self.masses[tag] = values
+        self._changed()
+
+    def equalDOF(self, master, slave, *dofs):
+        """``equalDOF(rNode, cNode, *dofs)``: the DOFs ``dofs`` of ``slave`` equal those of ``master``."""
+        what = f"equalDOF({master!r}, {slave!r})"
+        master, slave = _tag(what, master), _tag(what, slave)
+        for node in (master, slave):
+            if node not in self.nodes:
+                refuse(what, f"node {node} is not defined", "define the nodes first")
+        if master == slave or not dofs or any(d not in (1, 2, 3) for d in dofs):
+            refuse(what, f"the DOFs {dofs!r} must be among 1, 2, 3 of two different nodes", "equalDOF(r, c, 1, 2)")
+        self.ties.append((master, slave, tuple(int(d) for d in dofs)))
+        self._changed()
+
+    def geomTransf(self, kind, tag, *args):
+        """``geomTransf('Linear', tag)``; ``PDelta`` and ``Corotational`` are refused."""
+        what = f"geomTransf({kind!r}, {tag!r})"
+        if kind == "PDelta":
+            refuse(what, "OpenSees's P-Delta geometric stiffness follows the current axial force of each "
+                   "element (it changes with the response, e.g. under overturning), while the model here is "
+                   "linear: its P-Delta (Frame2D.p_delta) is the consistent geometric stiffness of the constant "
+                   "axial forces of gravity, not the same equations", "geomTransf('Linear', tag), or build the "
+                   "frame with unilateral.structure.Frame2D and use Frame2D.p_delta")
+        if kind == "Corotational":
+            refuse(what, "large rotations (corotational kinematics) make the structure geometrically nonlinear; "
+                   "the method needs a linear structure", "geomTransf('Linear', tag)")
+        if kind != "Linear":
+            refuse(what, "only the Linear transformation is in this slice", "geomTransf('Linear', tag)")
+        if args:
+            refuse(f"{what} {args[0]!r}", "joint offsets (rigid end zones) are not in this slice",
+                   "geomTransf('Linear', tag) and model the offset by a stiff beam")
+        self.transforms[_tag(what, tag)] = kind
+
+    def uniaxialMaterial(self, kind, tag, *args):
+        """``uniaxialMaterial(kind, tag, ...)``: Elastic, ENT, ElasticPP, ElasticPPGap."""
+        what = f"uniaxialMaterial({kind!r}, {tag!r})"
+        tag = _tag(what, tag)
+        self.materials[tag] = parse_material(kind, args)
+
+    def element(self, kind, tag, *args):
+        """``element(kind, tag, ...)``: elasticBeamColumn, zeroLength."""
+        what = f"element({kind!r}, {tag!r})"
+        self._need_model(what)
+        tag = _tag(what, tag)
+        if tag in self.elements:
+            refuse(what, f"element {tag} is already defined", "a new tag")
+        self.elements[tag] = parse_element(kind, args, self)
+        self._changed()
+
+    # ------------------------------------------------------------------ loads
+    def timeSeries(self, kind, tag, *args):
+        """``timeSeries('Constant'|'Linear'|'Path', tag, ...)``."""
+        what = f"timeSeries({kind!r}, {tag!r})"
+        self.series[_tag(what, tag)] = parse_series(kind, args)
+        self._changed(loads=True)
+
+    def pattern(self, kind, tag, *args):
+        """``pattern('Plain', tag, tsTag)`` or ``pattern('UniformExcitation', tag, dir, '-accel', tsTag)``."""
+        what = f"pattern({kind!r}, {tag!r})"
+        tag = _tag(what, tag)
+        if tag in self.patterns:
+            refuse(what, f"pattern {tag} is already defined", "a new tag")
+        self.patterns[tag] = parse_pattern(kind, args, self.series)
+        self.current = tag
+        self._changed(loads=True)
+
+    def load(self, tag, *values):
+        """``load(node, Fx, Fy, Mz)`` in the last pattern defined (a Plain one)."""
+        what = f"load({tag!r})"
+        tag = _tag(what, tag)
+        if self.current is None or self.patterns[self.current].kind != "Plain":
+            refuse(what, "nodal loads belong to a Plain pattern", "pattern('Plain', tag, tsTag) before load()")
+        if tag not in self.nodes:
+            refuse(what, f"node {tag} is not defined", "define the node first")
+        if len(values) != 3 or any(isinstance(v, str) for v in values):
+            refuse(what, f"{values!r}: a 2-D node takes (Fx, Fy, Mz)", "load(node, Fx, Fy, Mz)")
+        self.patterns[self.current].loads.append((tag, np.array([float(v) for v in values])))
+        self._changed(loads=True)
+
+    def rayleigh(self, alphaM, betaK, betaKinit, betaKcomm):
+        """``rayleigh(alphaM, betaK, betaKinit, betaKcomm)``: on the nodes and elements defined now."""
+        factors = tuple(float(x) for x in (alphaM, betaK, betaKinit, betaKcomm))
+        if min(factors) < 0:
+            refuse(f"rayleigh{factors}", "negative damping factors", "factors >= 0")
+        self.damping = (factors, frozenset(self.nodes), frozenset(self.elements))
+        self._changed()
+
+    def loadConst(self, *args):
+        """``loadConst('-time', t)``: every pattern keeps its current factor; the time is set to ``t``."""
+        for p in self.patterns.values():
+            if p.frozen is None:
+                p.frozen = float(p.factor * self.series[p.series](np.array([self.time]))[0])
+        if args:
+            if args[0] != "-time" or len(args) != 2:
+                refuse(f"loadConst{args}", "the arguments are not in the subset", "loadConst('-time', 0.0)")
+            self.time = float(args[1])
+        self._changed(loads=True)
+
+    def setTime(self, t):
+        """``setTime(t)``: the domain time."""
+        self.time = float(t)
+
+    def getTime(self):
+        """``getTime()``: the domain time."""
+        return self.time

@@ -1,0 +1,194 @@
+"""Queries in OpenSees's layout and signs: ``nodeDisp``, ``nodeVel``, ``nodeAccel``, ``eleForce``,
+``eleResponse``, ``reactions`` and ``nodeReaction``.
+
+* Nodal values are those of the nodal DOFs (``ux, uy, rz``); with a ``UniformExcitation`` they
+  are relative to the ground, as in OpenSees. A DOF that is fixed, or a rotation nothing
+  stiffens, is 0.
+* ``eleForce`` of an ``elasticBeamColumn``: its global end forces ``(Fx, Fy, Mz)`` at ``i`` then
+  ``j``, the forces the nodes exert on the element (``K_e u_e``: no Rayleigh damping force, as in
+  OpenSees);
+  of a ``zeroLength``: ``-f`` at ``i`` and ``+f`` at ``j`` along each direction, ``f`` the material
+  force (tension positive).
+* ``eleResponse(zeroLength, 'deformation' | 'basicDeformation')``: the material deformations
+  ``u_j - u_i``; ``'basicForce'``: the material forces; ``'force'``: as ``eleForce``. For a beam
+  ``'force'``/``'globalForce'``, ``'localForce'`` and ``'basicForce'`` ``(N, M_i, M_j)``.
+* ``reactions()`` then ``nodeReaction``: the sum of the element forces at the node minus the nodal
+  loads applied there (OpenSees's static reactions: no inertia, no damping forces).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .elements import BeamColumn
+from .refusals import refuse
+
+__all__ = ["nodal", "element_force", "material_forces", "element_response", "nodal_reactions"]
+
+
+def _pick(values, dof, what):
+    values = [float(x) for x in values]
+    if dof is None or dof == -1:
+        return values
+    if not 1 <= int(dof) <= len(values):
+        refuse(what, f"DOF {dof} is not among 1..{len(values)}", "a DOF of the node")
+    return values[int(dof) - 1]
+
+
+def _ready(analysis, what):
+    if analysis.built is None or analysis.built_version != analysis.domain.version:
+        analysis.current()
+    return analysis.built
+
+
+def nodal(analysis, which, tag, dof=-1):
+    """``nodeDisp``, ``nodeVel`` or ``nodeAccel``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    which : str, ``"u"``, ``"ud"`` or ``"udd"``
+    tag : int, the node
+    dof : int, 1, 2 or 3; -1: all three
+
+    Returns
+    -------
+    float or list of 3 floats
+    """
+    what = f"node{ {'u': 'Disp', 'ud': 'Vel', 'udd': 'Accel'}[which] }({tag})".replace(" ", "")
+    tag = int(tag)
+    if tag not in analysis.domain.nodes:
+        refuse(what, f"node {tag} is not defined", "a defined node")
+    b = _ready(analysis, what)
+    U = b.nodal(getattr(analysis, which))
+    return _pick(U[b.row[tag]:b.row[tag] + 3], dof, what)
+
+
+def _element(analysis, tag, what):
+    tag = int(tag)
+    if tag not in analysis.domain.elements:
+        refuse(what, f"element {tag} is not defined", "a defined element")
+    return tag, analysis.domain.elements[tag]
+
+
+def material_forces(analysis, tag):
+    """``[(e, f), ...]``: deformation and force of each material of the zeroLength ``tag``."""
+    b = analysis.built
+    e = analysis.domain.elements[tag]
+    U, Ud = b.nodal(analysis.u), b.nodal(analysis.ud)
+    st = b.structure
+    u_st = np.asarray(_structure_u(b, analysis.u)).ravel()
+    sigma = st.natural.stresses(np.zeros(1), u_st[None, :], analysis.v[None, :])[0]
+    out = []
+    for material, direction, _, sign, strain, damp in b.springs[tag]:
+        ri, rj = b.row[e.i] + direction - 1, b.row[e.j] + direction - 1
+        de, dv = U[rj] - U[ri], Ud[rj] - Ud[ri]
+        out.append((de, material.force(de, dv, sigma[strain], sign) + damp * material.E * dv))
+    return out
+
+
+def _structure_u(b, u):
+    """The DOFs of the built structure (before the ties) of the reduced ``u``."""
+    return b.ties @ u
+
+
+def element_force(analysis, tag, dof=-1):
+    """``eleForce(tag, dof)``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    tag : int, the element
+    dof : int, 1..6; -1: all six
+
+    Returns
+    -------
+    float or list of 6 floats (``i`` then ``j``, global axes)
+    """
+    what = f"eleForce({tag})"
+    tag, e = _element(analysis, tag, what)
+    b = _ready(analysis, what)
+    return _pick(_global_force(analysis, b, tag, e), dof, what)
+
+
+def _global_force(analysis, b, tag, e):
+    if isinstance(e, BeamColumn):
+        rows, Ke, _ = b.beams[tag]
+        return Ke @ b.nodal(analysis.u)[rows]
+    out = np.zeros(6)
+    for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):
+        out[direction - 1] -= f
+        out[3 + direction - 1] += f
+    return out
+
+
+def element_response(analysis, tag, *args):
+    """``eleResponse(tag, *args)``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    tag : int, the element
+    args : the response, e.g. ``'force'``, ``'deformation'``, ``'basicForce'``, ``'localForce'``
+
+    Returns
+    -------
+    list of floats
+    """
+    what = f"eleResponse({tag}, {', '.join(map(repr, args))})"
+    tag, e = _element(analysis, tag, what)
+    b = _ready(analysis, what)
+    name = args[0] if args else None
+    if name in ("force", "forces", "globalForce", "globalForces") and (isinstance(e, BeamColumn)
+                                                                       or name in ("force", "forces")):
+        return [float(x) for x in _global_force(analysis, b, tag, e)]
+    if isinstance(e, BeamColumn):
+        f = _global_force(analysis, b, tag, e)
+        xi, xj = np.array(analysis.domain.nodes[e.i]), np.array(analysis.domain.nodes[e.j])
+        c, s = (xj - xi) / np.hypot(*(xj - xi))
+        R = np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]])
+        local = np.r_[R @ f[:3], R @ f[3:]]
+        if name in ("localForce", "localForces"):
+            return [float(x) for x in local]
+        if name in ("basicForce", "basicForces"):
+            return [float(local[3]), float(local[2]), float(local[5])]
+    else:
+        pairs = material_forces(analysis, tag)
+        if name in ("deformation", "deformations", "basicDeformation", "basicDeformations"):
+            return [float(de) for de, _ in pairs]
+        if name in ("basicForce", "basicForces"):
+            return [float(f) for _, f in pairs]
+    refuse(what, "the response is not in the subset", "'force' or 'deformation' (zeroLength); 'force', "
+           "'localForce' or 'basicForce' (elasticBeamColumn)")
+
+
+def nodal_reactions(analysis, *args):
+    """``reactions()``.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    args : none (``'-dynamic'`` and ``'-rayleigh'`` are refused)
+
+    Returns
+    -------
+    dict
+        ``{node tag: (3,) [Rx, Ry, Mz]}``.
+    """
+    if args:
+        refuse(f"reactions{args}", "reactions with inertia or damping ('-dynamic', '-rayleigh') are not in the "
+               "subset", "reactions() (the static reactions: element forces minus nodal loads)")
+    b = _ready(analysis, "reactions")
+    d = analysis.domain
+    R = np.zeros(b.mass.size)
+    for tag, e in d.elements.items():
+        f = _global_force(analysis, b, tag, e)
+        R[b.row[e.i]:b.row[e.i] + 3] += f[:3]
+        R[b.row[e.j]:b.row[e.j] + 3] += f[3:]
+    for p in d.patterns.values():
+        if p.kind != "Plain":
+            continue
+        factor = p.frozen if p.frozen is not None else p.factor * float(d.series[p.series](np.array([d.time]))[0])
+        for node, values in p.loads:
+            R[b.row[node]:b.row[node] + 3] -= factor * values
+    return {tag: R[b.row[tag]:b.row[tag] + 3] for tag in d.nodes}
