@@ -32,7 +32,7 @@ import scipy.sparse as sp
 from ..loads.units import STANDARD_GRAVITY
 from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
-from . import bulk, elements as el
+from . import bulk, elements as el, rigid
 from .dofs import DofMap, csr_of_entries, node_list
 
 _isfinite = math.isfinite
@@ -624,6 +624,17 @@ class Frame2D(_Frame):
                            A=_real(where, "A", A, ">0"), slack=_real(where, "slack", slack),
                            capacity=_real(where, "capacity", capacity, ">=0")))
 
+    # ------------------------------------------------------------------ rigid contacts (structure/rigid.py)
+    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None) -> None:
+        """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``):
+        :func:`.rigid.add_contact`. Its unknown is the compressive force, its row the opening."""
+        rigid.add_contact(self, name, node, direction=direction, gap=gap, mu=mu)
+
+    def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY):
+        """A rigid rectangular block rocking on its base corners, centre of mass at ``node``:
+        :func:`.rigid.add_block` (returns its :class:`~.rigid.RigidBlock`)."""
+        return rigid.add_block(self, name, node, width=width, height=height, mass=mass, J=J, base=base, g=g)
+
     # ------------------------------------------------------------------ plasticity and friction
     # The plasticity and friction of :class:`_Frame`, listed as this class's own (the API reference).
     yield_link = _Frame.yield_link
@@ -770,13 +781,14 @@ class Frame2D(_Frame):
         for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
             for terms in footing.moved_rows(self._coords) + (footing.shear_rows() if footing.sliding else []):
                 on_soil |= {(node, dof) for node, dof, _ in terms}
-        fields = self._assemble(dofs, exempt=on_soil)
+        fields = self._assemble(dofs, exempt=on_soil | rigid.exempt_dofs(self, dofs))
+        held = rigid.assemble(self, dofs, foundation=bool(self._foundations), p_delta=self._p_delta is not None)
         footings = None
         if self._foundations:
             from .foundation import Footings
 
             footings = Footings(self._foundations, first=len(fields["constraint_names"]))
-        structure = Structure(**fields, foundation=footings)
+        structure = Structure(**fields, foundation=footings, rigid=held)
         if self._p_delta is None:
             return structure
         if self._foundations:
@@ -838,6 +850,9 @@ class Structure:
         added to ``K`` by :meth:`to_model`.
     axial_forces : dict beam or bar name -> its static axial force under gravity (tension
         positive), with P-Delta; else None
+    rigid : :class:`~unilateral.structure.rigid.RigidPart` or None
+        The rigid contacts and blocks (:meth:`Frame2D.contact`, :meth:`Frame2D.rigid_block`):
+        their unknowns follow the frame's own in the model (not among ``constraint_names``).
 
     Results of a solution (end forces, reactions, base shear, drifts, accelerations) are in
     :mod:`unilateral.structure.forces`; :meth:`influence` and :meth:`ground_motion` build the load
@@ -860,6 +875,7 @@ class Structure:
     foundation: object = None
     geometric: sp.csr_matrix | None = None
     axial_forces: dict | None = None
+    rigid: object = None
 
     @property
     def n(self) -> int:
@@ -918,6 +934,8 @@ class Structure:
         the contacts. Its solutions have for the contacts ``v`` the openings and ``psi = -c``
         (minus the contact forces).
         """
+        if self.rigid is not None:                  # rigid contacts and blocks: structure/rigid.py
+            return self.rigid.to_model(self)
         if self.foundation is not None and not self.m:
             from .foundation import to_foundation_model
 

@@ -1,0 +1,373 @@
+"""Rigid unilateral contacts and rigid rocking blocks for :class:`~unilateral.structure.Frame2D`.
+
+**Rigid contact** (:func:`add_contact`, ``Frame2D.contact``): a node against the fixed ground with
+no compliance. The paper's contact is a spring ``k`` in series with the unilateral deformation
+``v`` (the opening); with ``k -> infinity`` its ``H = k`` has no finite value, so a rigid contact
+is written in the *dual* (force) form instead, a column of ``F`` with ``H = 0``:
+
+    M u'' + C u' + K u = q + N v,        psi = N^T u - g,   g = -gap,
+    v >= 0 (the compressive contact force),  psi >= 0 (the opening),  psi^T v = 0
+
+``N`` (n,) is the unit normal ``d`` (pointing from the ground to the node) carried to the free
+DOFs through the rigid links, ``u_full = T u``: ``N = T^T e_d``. The family
+:class:`~unilateral.constraints.RigidContact` gives these rows the row map ``P = -1``, so that
+each step's LCP is ``w = psi_n = psi_free + N^T D_eff^-1 N (1 - alpha) v_n >= 0``: its matrix
+``P W0 = (1 - alpha) N^T D_eff^-1 N`` is positive definite when the DOFs the contacts move carry
+mass (``D_eff = c0 M + (1 - alpha)(c1 C + K)``). ``K`` is the stiffness of the structure *without*
+its rigid contacts: singular for a free body, indefinite with the rocking's negative geometric
+stiffness; :class:`~unilateral.Model` is given it as is (its check of ``K`` is for the paper's
+primal contacts, whose bilateral structure is held).
+
+What the methods do with them:
+
+* ``direct``: the condensed LCP above, every rule (the compiled march of the general law).
+  An impact is *position-level*: the opening at the end of the step is held at zero, the
+  velocity follows from the rule. BDF1 gives a perfectly plastic impact (Moreau's sweeping
+  process in the limit ``dt -> 0``), the trapezoidal rule a velocity reversal (an elastic bounce,
+  then chatter), BDF2 a few steps of chatter and a partial loss (``docs/rocking.md``).
+* ``cq`` and ``modal``: ``Lambda(s) = -N^T D(s)^-1 N``; they apply where ``K`` is positive
+  definite (a mass on a spring against a rigid stop: they agree with ``direct`` to round-off),
+  and are refused otherwise: the poles of ``D(s)^-1`` at ``s = 0`` (a free body) or ``s > 0``
+  (rocking) make the convolution weights grow without bound (:func:`method_refusal`).
+* ``event``: refused: it integrates the smooth motion between contact changes and has no impact
+  law (a rigid contact closing with a velocity needs a jump of the velocity).
+
+Friction (``mu``) on a rigid contact is refused for now: the Coulomb law of the library acts on an
+elastic stick ``kt`` and reads the normal force from a primal contact's row; hold the tangential
+motion by a support (no slip) or use ``Frame2D.soil(..., mu=, kt=)``.
+
+**Rigid block** (:func:`add_block`, ``Frame2D.rigid_block``): a rectangle of width ``2 b`` and
+height ``2 h`` with its centre of mass at a node, standing on its two base corners; see
+:class:`RigidBlock` and ``docs/rocking.md`` for the linearised equations of rocking it reproduces
+(Housner 1963).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..loads.units import STANDARD_GRAVITY
+from . import elements as el
+
+
+@dataclass(frozen=True)
+class RigidContact:
+    """One rigid contact as given: ``name``, ``node``, the normal's ``terms`` ``((dof, d), ...)``
+    (unit, from the ground to the node) and the initial ``gap`` (opening at ``u = 0``, length)."""
+
+    name: str
+    node: object
+    terms: tuple
+    gap: float
+
+
+@dataclass(frozen=True)
+class RigidBlock:
+    """A rigid rectangular block rocking on its two base corners.
+
+    Attributes
+    ----------
+    name : str
+    node : the centre-of-mass node (a slave of ``base``), carrying ``mass`` and ``J``
+    base : the base-centre node (the master: ``uy``, ``rz`` free, ``ux`` supported: no slip)
+    corners : (left, right) corner nodes (slaves of ``base``), each in rigid contact with the
+        ground (the contacts have the corners' names)
+    b, h : half-width and half-height, length (the centre is ``h`` above the contact plane)
+    mass : mass, force time^2/length;  J : rotary inertia about the centre, force length time^2
+    g : gravity of the second-order term, length/time^2 (0: none)
+    """
+
+    name: str
+    node: object
+    base: object
+    corners: tuple
+    b: float
+    h: float
+    mass: float
+    J: float
+    g: float
+
+    @property
+    def W(self) -> float:
+        """Weight ``m g``, force."""
+        return self.mass * self.g
+
+    @property
+    def I0(self) -> float:
+        """Rotary inertia about a base corner, ``J + m (b^2 + h^2)``, force length time^2."""
+        return self.J + self.mass * (self.b ** 2 + self.h ** 2)
+
+    @property
+    def p(self) -> float:
+        """Frequency parameter of the linearised rocking, ``p = sqrt(W h / I0)``, rad/time."""
+        return math.sqrt(self.W * self.h / self.I0)
+
+    @property
+    def alpha(self) -> float:
+        """Slenderness angle ``atan(b / h)``, rad."""
+        return math.atan2(self.b, self.h)
+
+    @property
+    def restitution(self) -> float:
+        """Housner's ratio of the angular velocities after/before an impact, ``1 - 2 m b^2 / I0``
+        (angular momentum about the new corner conserved; ``1 - 3/2 sin^2 alpha`` for a uniform
+        rectangle)."""
+        return 1.0 - 2.0 * self.mass * self.b ** 2 / self.I0
+
+    @property
+    def uplift_acceleration(self) -> float:
+        """Horizontal ground acceleration at which a corner lifts, ``g b / h``, length/time^2."""
+        return self.g * self.b / self.h
+
+    def first_impact_time(self, theta0) -> float:
+        """Time from the release at rest from the tilt ``theta0`` (rad, ``0 < theta0 < b/h``) to
+        the first impact, ``acosh((b/h) / (b/h - theta0)) / p``, of the linearised equation
+        ``I0 theta'' = W (h theta - b)`` (``theta`` the tilt about the pivot corner)."""
+        a = self.b / self.h
+        if not 0.0 < theta0 < a:
+            raise ValueError(f"theta0={theta0!r} must lie in (0, b/h = {a:.6g}): beyond b/h the block overturns")
+        return math.acosh(a / (a - theta0)) / self.p
+
+    def tilt(self, t, theta0) -> np.ndarray:
+        """Closed-form tilt ``b/h + (theta0 - b/h) cosh(p t)`` (rad) of the linearised free rocking
+        released at rest from ``theta0``, until the first impact; ``t`` (N,) times."""
+        a = self.b / self.h
+        return a + (theta0 - a) * np.cosh(self.p * np.asarray(t, dtype=float))
+
+
+@dataclass(frozen=True)
+class RigidPart:
+    """The rigid contacts and blocks of a built frame (``Structure.rigid``).
+
+    Attributes
+    ----------
+    contacts : tuple of RigidContact, in the order of their unknowns (after the frame's own)
+    N : (n, mr) csr, the columns of ``F`` of the contacts (``N = T^T e_d``)
+    gap : (mr,) initial openings, length
+    geometric : (n, n) csr, the blocks' second-order gravity terms (``-W h`` on each block's
+        ``rz``), added to ``K``
+    blocks : dict name -> RigidBlock
+    """
+
+    contacts: tuple
+    N: sp.csr_matrix
+    gap: np.ndarray
+    geometric: sp.csr_matrix
+    blocks: dict
+
+    @property
+    def names(self) -> tuple:
+        return tuple(c.name for c in self.contacts)
+
+    def to_model(self, structure):
+        """The :class:`~unilateral.Model` of ``structure`` with its rigid contacts (see the module)."""
+        return _model(structure, self)
+
+
+# ---------------------------------------------------------------------- the builders
+def _parts(frame) -> dict:
+    """The rigid contacts and blocks defined on ``frame`` so far (kept on the frame)."""
+    parts = frame.__dict__.get("_rigid")
+    if parts is None:
+        parts = frame.__dict__["_rigid"] = {"contacts": [], "blocks": {}}
+    return parts
+
+
+def add_contact(frame, name, node, *, direction="uy", gap=0.0, mu=None) -> None:
+    """Rigid unilateral contact of ``node`` with the fixed ground (``Frame2D.contact``).
+
+    Parameters
+    ----------
+    frame : Frame2D
+    name : str, the contact's name (its unknown and row)
+    node : the node (a slave of a rigid link too)
+    direction : ``"ux"``, ``"uy"`` or a vector ``(dx, dy)``: the normal, from the ground to the
+        node (the direction in which the node separates); default ``"uy"``
+    gap : initial opening at ``u = 0``, length, >= 0
+    mu : must be None (friction on a rigid contact is not available: see the module)
+
+    The contact's unknown ``v`` is the compressive force (force) and ``-psi`` of a solution the
+    opening (``Solution.psi`` holds ``P psi = -opening``).
+    """
+    where = frame._label("contact", name)
+    frame._node(where, "node", node)
+    if mu is not None:
+        raise ValueError(f"{where}: mu={mu!r}: friction on a rigid contact is not available (the Coulomb law acts "
+                         "on an elastic stick kt and on the normal force of a compliant contact); hold the "
+                         "tangential motion by a support (no slip), or use soil(..., mu=, kt=)")
+    terms = el.direction_terms(where, direction)
+    if any(dof == "rz" for dof, _ in terms):
+        raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy' or a vector (dx, dy)")
+    _parts(frame)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0")))
+    frame._names.add(name)
+
+
+def add_block(frame, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY) -> RigidBlock:
+    """A rigid rectangular block with its centre of mass at ``node`` (``Frame2D.rigid_block``).
+
+    Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
+    ``node`` as the master of the block (its ``ux`` supported: the base cannot slide; ``uy`` and
+    ``rz`` free), links ``node`` and the corners ``"<name>.left"``, ``"<name>.right"`` (at
+    ``-+ width / 2`` on the base line) rigidly to it, puts ``mass`` and ``J`` on ``node``, a
+    rigid contact with the ground (vertical, named after the corner) at each corner, and the
+    second-order term of the weight (see :class:`RigidBlock`).
+
+    Parameters
+    ----------
+    frame : Frame2D
+    name : str;  node : the centre-of-mass node, defined, free (not supported, not a slave)
+    width, height : ``2 b`` and ``2 h``, length, > 0
+    mass : force time^2/length, > 0
+    J : rotary inertia about the centre, force length time^2; None: the uniform rectangle's
+        ``m (b^2 + h^2) / 3``
+    base : id of the base-centre node to create, or None
+    g : gravity of the weight's geometric stiffness ``-W h`` on the base's ``rz`` (length/time^2,
+        >= 0; the load of the weight itself is ``Structure.gravity(g)``); 0: none
+
+    Returns
+    -------
+    RigidBlock
+    """
+    where = frame._label("rigid_block", name)
+    frame._node(where, "node", node)
+    b = _number(where, "width", width, ">0") / 2
+    h = _number(where, "height", height, ">0") / 2
+    m = _number(where, "mass", mass, ">0")
+    J = m * (b * b + h * h) / 3.0 if J is None else _number(where, "J", J, ">=0")
+    g = _number(where, "g", g, ">=0")
+    base = f"{name}.base" if base is None else base
+    corners = (f"{name}.left", f"{name}.right")
+    x, y = (float(c) for c in frame._coords[node])
+    frame.node(base, x, y - h)
+    frame.node(corners[0], x - b, y - h)
+    frame.node(corners[1], x + b, y - h)
+    frame.support(base, ux=True, uy=False, rz=False)
+    for slave in (node, *corners):
+        frame.rigid_link(base, slave)
+    frame.mass(node, m, J=J)
+    frame._names.add(name)
+    for corner in corners:
+        add_contact(frame, corner, corner, direction="uy")
+    block = RigidBlock(name, node, base, corners, b, h, m, J, g)
+    _parts(frame)["blocks"][name] = block
+    return block
+
+
+# ---------------------------------------------------------------------- assembly
+def exempt_dofs(frame, dofs) -> set:
+    """The free DOFs ``(node, dof)`` the rigid contacts move: no element need stiffen them (their
+    mass and the contacts hold them)."""
+    out = set()
+    for contact in _parts(frame)["contacts"]:
+        column = _column(contact, dofs)
+        out |= {dofs.free[i] for i in column.indices}
+    return out
+
+
+def assemble(frame, dofs, *, foundation=False, p_delta=False) -> RigidPart | None:
+    """The :class:`RigidPart` of ``frame`` on the free DOFs ``dofs``, or None without rigid contacts."""
+    parts = frame.__dict__.get("_rigid")
+    if not parts or not parts["contacts"]:
+        return None
+    if foundation:
+        raise ValueError("contact/rigid_block: rigid contacts together with a foundation on a soil medium are not "
+                         "available")
+    if p_delta:
+        raise ValueError("contact/rigid_block: p_delta with rigid contacts is not available (the static axial "
+                         "forces need the structure held; a rigid block has its own second-order term, g)")
+    contacts = tuple(parts["contacts"])
+    n = dofs.n
+    N = sp.hstack([_column(c, dofs).T for c in contacts], format="csr") if contacts else sp.csr_matrix((n, 0))
+    for j, c in enumerate(contacts):
+        if N[:, j].nnz == 0:
+            raise ValueError(f"contact {c.name!r}: node {c.node!r} cannot move along the normal (supported); "
+                             "the contact would act on nothing")
+    rows, vals = [], []
+    for block in parts["blocks"].values():
+        if block.g:
+            rows.append(dofs.index(block.base, "rz"))
+            vals.append(-block.W * block.h)
+    geometric = sp.csr_matrix((vals, (rows, rows)), shape=(n, n))
+    return RigidPart(contacts, N, np.array([c.gap for c in contacts]), geometric, dict(parts["blocks"]))
+
+
+def _column(contact, dofs) -> sp.csr_matrix:
+    """``(T^T e_d)^T`` (1, n) of a contact: its normal on the free DOFs."""
+    row = None
+    for dof, d in contact.terms:
+        r = d * dofs.T[dofs.full_index(contact.node, dof)]
+        row = r if row is None else row + r
+    row = sp.csr_matrix(row)
+    row.eliminate_zeros()
+    return row
+
+
+def _model(structure, part):
+    """The Model of the frame's own elements with the rigid contacts appended (see the module)."""
+    from ..constraints import RigidContact as RigidFamily
+    from ..model import Model
+
+    nat = structure.natural
+    n, m, mr = structure.n, structure.m, len(part.contacts)
+    G, E, B = sp.csr_matrix(nat.G), sp.csr_matrix(nat.E), sp.csr_matrix(nat.B)
+    GE = G @ E
+    K = (GE @ G.T + part.geometric).tocsr()
+    theta = nat.theta(0.0)
+    F = sp.hstack([GE @ B, part.N], format="csr").toarray()
+    H = np.zeros((m + mr, m + mr))
+    H[:m, :m] = nat.A + (B.T @ E @ B).toarray()
+    g = np.concatenate([np.asarray(B.T @ (E @ theta)).ravel() + nat.r, -part.gap])
+    C, F_v, H_v = structure.C, None, None
+    if nat.E_v is not None:
+        GEv = G @ sp.csr_matrix(nat.E_v)
+        C = GEv @ G.T if C is None else C + GEv @ G.T
+        F_v = np.hstack([(GEv @ B).toarray(), np.zeros((n, mr))])
+        H_v = np.zeros((m + mr, m + mr))
+        H_v[:m, :m] = (B.T @ sp.csr_matrix(nat.E_v) @ B).toarray()
+    families = list(structure.families()) + [RigidFamily(np.arange(m, m + mr), name="rigid contact")]
+    # K may be singular or indefinite (see the module): the Model is built on a placeholder and then
+    # given K, as Structure.to_model does with P-Delta's geometric stiffness
+    model = Model(M=structure.M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,
+                  q_imposed=np.asarray(GE @ theta).ravel(), dof_names=structure.dofs.names,
+                  constraint_names=list(structure.constraint_names) + list(part.names), families=families)
+    model.K = K
+    return model
+
+
+# ---------------------------------------------------------------------- loads and results
+def ground_motion(structure, a_g, direction="ux") -> tuple:
+    """The term ``(-T^T M_full r_full, a_g)`` of a ground acceleration ``a_g(t)`` along ``direction``.
+
+    ``r_full`` is 1 on the ``direction`` of every node, supported or slave (``Structure.gravity``
+    with a unit acceleration along it): a block's centre, a slave of its base whose ``ux`` is
+    supported, gets its inertia force ``-m a_g`` at the height ``h``, i.e. the moment ``m h a_g``
+    on the base's ``rz``. (``Structure.ground_motion`` is 1 on the free DOFs only, which is 0 for
+    a block.) For a :class:`~unilateral.loads.LoadHistory`: ``LoadHistory(st.gravity(), [term])``.
+    """
+    if direction not in ("ux", "uy"):
+        raise ValueError(f"direction={direction!r} is not valid for a ground motion; valid: 'ux', 'uy'")
+    if not callable(a_g):
+        raise TypeError(f"a_g must be a time function a_g(t), got {a_g!r}")
+    unit = (1.0, 0.0) if direction == "ux" else (0.0, 1.0)
+    return -structure.gravity(1.0, unit), a_g
+
+
+def block_rotation(structure, sol, name) -> np.ndarray:
+    """History (N+1,) of the rotation ``rz`` (rad, counter-clockwise) of the block ``name``."""
+    block = structure.rigid.blocks[name]
+    return structure.node_displacement(sol, block.base, "rz")
+
+
+def _number(where, arg, value, bound) -> float:
+    """``float(value)``, finite, ``> 0`` (``">0"``) or ``>= 0`` (``">=0"``)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{where}: {arg} must be a real number, got {value!r}")
+    x = float(value)
+    if not math.isfinite(x) or (bound == ">0" and x <= 0) or (bound == ">=0" and x < 0):
+        raise ValueError(f"{where}: {arg}={value!r} must be finite and {bound[:-1]} 0")
+    return x
