@@ -357,10 +357,122 @@ def ground_motion(structure, a_g, direction="ux") -> tuple:
     return -structure.gravity(1.0, unit), a_g
 
 
+def initial_forces(model, u0, q0, udot0=None, *, tol=1e-12) -> np.ndarray:
+    """Contact forces ``v0`` (m,) consistent with the initial state ``(u0, udot0)`` under the load
+    ``q0`` (n,), for ``initial={"u0": u0, "udot0": udot0, "v0": v0}``.
+
+    The rigid contacts that touch (opening and its rate within ``tol`` of the model's scale) carry
+    the forces of the acceleration-level LCP ``w = N_A^T u0'' >= 0, v_A >= 0, w^T v_A = 0`` with
+    ``M u0'' = q0 - K u0 - C udot0 + F v``; the other unknowns those of
+    :func:`~unilateral.initial.given_state` (``u`` held). Without it the rigid contacts start at
+    ``v0 = 0`` and the first step's acceleration is that of a free fall, an ``O(dt)`` error of the
+    trapezoidal rule and BDF2 (the forces are taken at ``t = 0`` by their history terms).
+
+    Parameters
+    ----------
+    model : Model with rigid contacts (:class:`~unilateral.constraints.RigidContact` family); ``M``
+        invertible (every free DOF with mass)
+    u0, q0 : (n,) displacements (length) and load (force);  udot0 : (n,) or None (at rest)
+    tol : relative tolerance of a touching contact
+
+    Returns
+    -------
+    v0 : (m,)
+    """
+    from ..constraints import RigidContact as RigidFamily
+    from ..initial import given_state, static_lcp
+    from ..lcp import get_lcp_solver
+    from ..linalg import dense
+
+    u0 = np.asarray(u0, dtype=float)
+    udot0 = np.zeros_like(u0) if udot0 is None else np.asarray(udot0, dtype=float)
+    v0 = given_state(model, {"u0": u0, "udot0": udot0}).v.copy()
+    rigid_idx = np.concatenate([f.indices for f in model.families if isinstance(f, RigidFamily)] or [[]])
+    rigid_idx = rigid_idx.astype(int)
+    F, M = dense(model.F), dense(model.M)
+    N = F[:, rigid_idx]
+    opening = N.T @ u0 - model.g(0.0)[rigid_idx]
+    rate = N.T @ udot0
+    scale = 1.0 + float(np.max(np.abs(u0), initial=0.0))
+    touching = rigid_idx[(np.abs(opening) <= tol * scale) & (np.abs(rate) <= tol * (1.0 + np.abs(udot0).max()))]
+    v0[rigid_idx] = 0.0
+    if touching.size == 0:
+        return v0
+    f = np.asarray(q0, dtype=float) - model.K @ u0 + F @ v0 - model.damping() @ udot0
+    X = np.linalg.solve(M, np.column_stack([np.asarray(f).ravel(), F[:, touching]]))
+    NA = F[:, touching]
+    v, _, message = static_lcp(NA.T @ X[:, 1:], -(NA.T @ X[:, 0]), get_lcp_solver("bpp"))
+    if message:
+        raise ValueError("initial_forces: no contact forces hold the initial state: " + message)
+    v0[touching] = v
+    return v0
+
+
 def block_rotation(structure, sol, name) -> np.ndarray:
     """History (N+1,) of the rotation ``rz`` (rad, counter-clockwise) of the block ``name``."""
     block = structure.rigid.blocks[name]
     return structure.node_displacement(sol, block.base, "rz")
+
+
+def block_energy(structure, sol, name) -> np.ndarray:
+    """Mechanical energy (N+1,) of the block ``name`` in the linearised model, force length:
+    ``m uy'^2 / 2 + (J + m h^2) theta'^2 / 2 - W h theta^2 / 2 + W uy`` (``uy``, ``theta`` of the
+    base node; constant while the block pivots on a corner or flies, lost at the impacts)."""
+    block = structure.rigid.blocks[name]
+    T = structure.dofs.T
+    rows = [T[structure.dofs.full_index(block.base, dof)] for dof in ("uy", "rz")]
+    (uy, th), (vy, om) = ([np.asarray(r @ x.T).ravel() for r in rows] for x in (sol.u, sol.udot))
+    m, h, W = block.mass, block.h, block.W
+    return 0.5 * m * vy ** 2 + 0.5 * (block.J + m * h * h) * om ** 2 - 0.5 * W * h * th ** 2 + W * uy
+
+
+def impacts(structure, sol, name) -> list[dict]:
+    """The impacts of the block ``name``: the sign changes of its rotation.
+
+    Each impact is a dict with ``step`` (the first step past the crossing), ``time`` (the crossing:
+    from the closed-form pivoting motion of the step before, :meth:`RigidBlock.tilt`'s equation,
+    if one corner carried the block then, else by linear interpolation; s), and ``ratio``, the
+    measured ratio of the angular velocities after/before, ``sqrt(E_after / E_before)`` with
+    :func:`block_energy` at the extremes of the tilt before and after the impact (the energy of a
+    pivoting phase is ``I0 omega^2 / 2`` at ``theta = 0``); ``nan`` if no extreme follows.
+    Housner's value is :attr:`RigidBlock.restitution`.
+    """
+    block = structure.rigid.blocks[name]
+    theta = block_rotation(structure, sol, name)
+    omega = np.asarray(structure.dofs.T[structure.dofs.full_index(block.base, "rz")] @ sol.udot.T).ravel()
+    energy = block_energy(structure, sol, name)
+    s = np.sign(theta)
+    steps = np.flatnonzero((s[1:] * s[:-1] < 0) | ((s[1:] == 0) & (s[:-1] != 0))) + 1
+    extremes = np.flatnonzero(np.sign(omega[1:]) * np.sign(omega[:-1]) < 0) + 1     # omega changes sign
+    contacts = [sol.constraint_names.index(c) for c in block.corners] if sol.constraint_names else []
+    out = []
+    for k in steps:
+        before = extremes[extremes < k]
+        after = extremes[extremes > k]
+        e0 = energy[before[-1]] if before.size else energy[0]
+        ratio = math.sqrt(energy[after[0]] / e0) if after.size and e0 > 0 and energy[after[0]] >= 0 else math.nan
+        dt = sol.t[k] - sol.t[k - 1]
+        pivoting = contacts and np.count_nonzero(sol.v[k - 1, contacts] > 0) == 1
+        tau = (_pivot_crossing(block, abs(theta[k - 1]), -abs(omega[k - 1]), 2 * dt) if pivoting
+               else theta[k - 1] / (theta[k - 1] - theta[k]) * dt)
+        out.append({"step": int(k), "time": float(sol.t[k - 1] + tau), "ratio": ratio})
+    return out
+
+
+def _pivot_crossing(block, phi, phidot, span) -> float:
+    """Time ``tau`` in ``(0, span]`` at which the pivoting tilt ``phi + ...`` reaches 0: the root of
+    ``a + (phi - a) cosh(p tau) + phidot / p sinh(p tau)``, ``a = b / h`` (bisection to round-off)."""
+    a, p = block.b / block.h, block.p
+    f = lambda tau: a + (phi - a) * math.cosh(p * tau) + phidot / p * math.sinh(p * tau)
+    lo, hi = 0.0, span
+    if f(hi) > 0:
+        return span
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
+    return 0.5 * (lo + hi)
 
 
 def _number(where, arg, value, bound) -> float:
