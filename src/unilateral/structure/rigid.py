@@ -133,6 +133,22 @@ class RigidBlock:
             raise ValueError(f"theta0={theta0!r} must lie in (0, b/h = {a:.6g}): beyond b/h the block overturns")
         return math.acosh(a / (a - theta0)) / self.p
 
+    def impact_times(self, theta0, count) -> np.ndarray:
+        """Times (count,) of the first ``count`` impacts of the linearised free rocking released at
+        rest from ``theta0`` with Housner's impact law (the angular velocity times ``r`` at each).
+
+        The impact velocity ``omega_1 = p sqrt(2 a theta0 - theta0^2)`` (``a = b/h``: energy), and a
+        phase that leaves ``theta = 0`` with ``omega`` returns to it after
+        ``(2 / p) atanh(omega / (p a))``; ``omega_{k+1} = r omega_k``.
+        """
+        a, p, r = self.b / self.h, self.p, self.restitution
+        t = [self.first_impact_time(theta0)]
+        omega = p * math.sqrt(2 * a * theta0 - theta0 ** 2)
+        for _ in range(count - 1):
+            omega *= r
+            t.append(t[-1] + 2.0 / p * math.atanh(omega / (p * a)))
+        return np.array(t[:count])
+
     def tilt(self, t, theta0) -> np.ndarray:
         """Closed-form tilt ``b/h + (theta0 - b/h) cosh(p t)`` (rad) of the linearised free rocking
         released at rest from ``theta0``, until the first impact; ``t`` (N,) times."""
