@@ -372,7 +372,7 @@ class _Frame(ABC):
                                                                                self._axes)
 
 
-class Frame2D(_Frame):
+class Frame2D(rigid.RigidContacts, _Frame):
     """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
 
     Nodes have the DOFs ``ux``, ``uy`` (along global x, y) and ``rz`` (counter-clockwise). Define
@@ -624,17 +624,6 @@ class Frame2D(_Frame):
                            A=_real(where, "A", A, ">0"), slack=_real(where, "slack", slack),
                            capacity=_real(where, "capacity", capacity, ">=0")))
 
-    # ------------------------------------------------------------------ rigid contacts (structure/rigid.py)
-    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None) -> None:
-        """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``):
-        :func:`.rigid.add_contact`. Its unknown is the compressive force, its row the opening."""
-        rigid.add_contact(self, name, node, direction=direction, gap=gap, mu=mu)
-
-    def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY):
-        """A rigid rectangular block rocking on its base corners, centre of mass at ``node``:
-        :func:`.rigid.add_block` (returns its :class:`~.rigid.RigidBlock`)."""
-        return rigid.add_block(self, name, node, width=width, height=height, mass=mass, J=J, base=base, g=g)
-
     # ------------------------------------------------------------------ plasticity and friction
     # The plasticity and friction of :class:`_Frame`, listed as this class's own (the API reference).
     yield_link = _Frame.yield_link
@@ -777,20 +766,19 @@ class Frame2D(_Frame):
             if footing.rigid and footing.m > 1:
                 rotated.add(footing.node)               # the footing rocks on its patches
         dofs = DofMap(self._coords, self._restrained, rotated, self._links)
-        on_soil = set()
+        on_soil = rigid.exempt_dofs(self, dofs)         # held by rigid contacts (rigid.py), and:
         for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
             for terms in footing.moved_rows(self._coords) + (footing.shear_rows() if footing.sliding else []):
                 on_soil |= {(node, dof) for node, dof, _ in terms}
-        fields = self._assemble(dofs, exempt=on_soil | rigid.exempt_dofs(self, dofs))
-        held = rigid.assemble(self, dofs, foundation=bool(self._foundations), p_delta=self._p_delta is not None)
+        fields = self._assemble(dofs, exempt=on_soil)
         footings = None
         if self._foundations:
             from .foundation import Footings
 
             footings = Footings(self._foundations, first=len(fields["constraint_names"]))
-        structure = Structure(**fields, foundation=footings, rigid=held)
+        structure = Structure(**fields, foundation=footings)
         if self._p_delta is None:
-            return structure
+            return rigid.attach(self, structure)
         if self._foundations:
             raise ValueError("p_delta: not available with a foundation on a soil medium")
         g, (dx, dy) = self._p_delta
@@ -850,9 +838,6 @@ class Structure:
         added to ``K`` by :meth:`to_model`.
     axial_forces : dict beam or bar name -> its static axial force under gravity (tension
         positive), with P-Delta; else None
-    rigid : :class:`~unilateral.structure.rigid.RigidPart` or None
-        The rigid contacts and blocks (:meth:`Frame2D.contact`, :meth:`Frame2D.rigid_block`):
-        their unknowns follow the frame's own in the model (not among ``constraint_names``).
 
     Results of a solution (end forces, reactions, base shear, drifts, accelerations) are in
     :mod:`unilateral.structure.forces`; :meth:`influence` and :meth:`ground_motion` build the load
@@ -875,7 +860,6 @@ class Structure:
     foundation: object = None
     geometric: sp.csr_matrix | None = None
     axial_forces: dict | None = None
-    rigid: object = None
 
     @property
     def n(self) -> int:
@@ -934,8 +918,6 @@ class Structure:
         the contacts. Its solutions have for the contacts ``v`` the openings and ``psi = -c``
         (minus the contact forces).
         """
-        if self.rigid is not None:                  # rigid contacts and blocks: structure/rigid.py
-            return self.rigid.to_model(self)
         if self.foundation is not None and not self.m:
             from .foundation import to_foundation_model
 

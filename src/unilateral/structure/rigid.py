@@ -1,6 +1,6 @@
 """Rigid unilateral contacts and rigid rocking blocks for :class:`~unilateral.structure.Frame2D`.
 
-**Rigid contact** (:func:`add_contact`, ``Frame2D.contact``): a node against the fixed ground with
+**Rigid contact** (``Frame2D.contact``, :meth:`RigidContacts.contact`): a node against the fixed ground with
 no compliance. The paper's contact is a spring ``k`` in series with the unilateral deformation
 ``v`` (the opening); with ``k -> infinity`` its ``H = k`` has no finite value, so a rigid contact
 is written in the *dual* (force) form instead, a column of ``F`` with ``H = 0``:
@@ -36,7 +36,7 @@ Friction (``mu``) on a rigid contact is refused for now: the Coulomb law of the 
 elastic stick ``kt`` and reads the normal force from a primal contact's row; hold the tangential
 motion by a support (no slip) or use ``Frame2D.soil(..., mu=, kt=)``.
 
-**Rigid block** (:func:`add_block`, ``Frame2D.rigid_block``): a rectangle of width ``2 b`` and
+**Rigid block** (``Frame2D.rigid_block``, :meth:`RigidContacts.rigid_block`): a rectangle of width ``2 b`` and
 height ``2 h`` with its centre of mass at a node, standing on its two base corners; see
 :class:`RigidBlock` and ``docs/rocking.md`` for the linearised equations of rocking it reproduces
 (Housner 1963).
@@ -44,6 +44,8 @@ height ``2 h`` with its centre of mass at a node, standing on its two base corne
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import math
 import numbers
 from dataclasses import dataclass
@@ -194,122 +196,143 @@ def _parts(frame) -> dict:
     return parts
 
 
-def add_contact(frame, name, node, *, direction="uy", gap=0.0, mu=None) -> None:
-    """Rigid unilateral contact of ``node`` with the fixed ground (``Frame2D.contact``).
+class RigidContacts:
+    """The rigid contacts and blocks of :class:`~unilateral.structure.Frame2D` (a base of it)."""
 
-    Parameters
-    ----------
-    frame : Frame2D
-    name : str, the contact's name (its unknown and row)
-    node : the node (a slave of a rigid link too)
-    direction : ``"ux"``, ``"uy"`` or a vector ``(dx, dy)``: the normal, from the ground to the
-        node (the direction in which the node separates); default ``"uy"``
-    gap : initial opening at ``u = 0``, length, >= 0
-    mu : must be None (friction on a rigid contact is not available: see the module)
+    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None) -> None:
+        """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``).
 
-    The contact's unknown ``v`` is the compressive force (force) and ``-psi`` of a solution the
-    opening (``Solution.psi`` holds ``P psi = -opening``).
-    """
-    where = frame._label("contact", name)
-    frame._node(where, "node", node)
-    if mu is not None:
-        raise ValueError(f"{where}: mu={mu!r}: friction on a rigid contact is not available (the Coulomb law acts "
-                         "on an elastic stick kt and on the normal force of a compliant contact); hold the "
-                         "tangential motion by a support (no slip), or use soil(..., mu=, kt=)")
-    terms = el.direction_terms(where, direction)
-    if any(dof == "rz" for dof, _ in terms):
-        raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy' or a vector (dx, dy)")
-    _parts(frame)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0")))
-    frame._names.add(name)
+        Parameters
+        ----------
+        name : str, the contact's name (its unknown and row, after the frame's own unknowns)
+        node : the node (a slave of a rigid link too)
+        direction : ``"ux"``, ``"uy"`` or a vector ``(dx, dy)``: the normal, from the ground to the
+            node (the direction in which the node separates); default ``"uy"``
+        gap : initial opening at ``u = 0``, length, >= 0
+        mu : must be None (friction on a rigid contact is not available: see
+            :mod:`unilateral.structure.rigid`)
 
+        The contact's unknown ``v`` is the compressive force (force) and ``-psi`` of a solution the
+        opening (``Solution.psi`` holds ``P psi = -opening``).
+        """
+        where = self._label("contact", name)
+        self._node(where, "node", node)
+        if mu is not None:
+            raise ValueError(f"{where}: mu={mu!r}: friction on a rigid contact is not available (the Coulomb law "
+                             "acts on an elastic stick kt and on the normal force of a compliant contact); hold "
+                             "the tangential motion by a support (no slip), or use soil(..., mu=, kt=)")
+        terms = el.direction_terms(where, direction)
+        if any(dof == "rz" for dof, _ in terms):
+            raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy' or a vector (dx, dy)")
+        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0")))
+        self._names.add(name)
 
-def add_block(frame, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY) -> RigidBlock:
-    """A rigid rectangular block with its centre of mass at ``node`` (``Frame2D.rigid_block``).
+    def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY) -> RigidBlock:
+        """A rigid rectangular block rocking on its base corners, its centre of mass at ``node``.
 
-    Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
-    ``node`` as the master of the block (its ``ux`` supported: the base cannot slide; ``uy`` and
-    ``rz`` free), links ``node`` and the corners ``"<name>.left"``, ``"<name>.right"`` (at
-    ``-+ width / 2`` on the base line) rigidly to it, puts ``mass`` and ``J`` on ``node``, a
-    rigid contact with the ground (vertical, named after the corner) at each corner, and the
-    second-order term of the weight (see :class:`RigidBlock`).
+        Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
+        ``node`` as the master of the block (its ``ux`` supported: the base cannot slide; ``uy`` and
+        ``rz`` free), links ``node`` and the corners ``"<name>.left"``, ``"<name>.right"`` (at
+        ``-+ width / 2`` on the base line) rigidly to it, puts ``mass`` and ``J`` on ``node``, a
+        rigid contact with the ground (vertical, named after the corner) at each corner, and the
+        second-order term of the weight (see :class:`RigidBlock`, ``docs/rocking.md``).
 
-    Parameters
-    ----------
-    frame : Frame2D
-    name : str;  node : the centre-of-mass node, defined, free (not supported, not a slave)
-    width, height : ``2 b`` and ``2 h``, length, > 0
-    mass : force time^2/length, > 0
-    J : rotary inertia about the centre, force length time^2; None: the uniform rectangle's
-        ``m (b^2 + h^2) / 3``
-    base : id of the base-centre node to create, or None
-    g : gravity of the weight's geometric stiffness ``-W h`` on the base's ``rz`` (length/time^2,
-        >= 0; the load of the weight itself is ``Structure.gravity(g)``); 0: none
+        Parameters
+        ----------
+        name : str;  node : the centre-of-mass node, defined, free (not supported, not a slave)
+        width, height : ``2 b`` and ``2 h``, length, > 0
+        mass : force time^2/length, > 0
+        J : rotary inertia about the centre, force length time^2; None: the uniform rectangle's
+            ``m (b^2 + h^2) / 3``
+        base : id of the base-centre node to create, or None
+        g : gravity of the weight's geometric stiffness ``-W h`` on the base's ``rz``
+            (length/time^2, >= 0; the load of the weight itself is ``Structure.gravity(g)``); 0: none
 
-    Returns
-    -------
-    RigidBlock
-    """
-    where = frame._label("rigid_block", name)
-    frame._node(where, "node", node)
-    b = _number(where, "width", width, ">0") / 2
-    h = _number(where, "height", height, ">0") / 2
-    m = _number(where, "mass", mass, ">0")
-    J = m * (b * b + h * h) / 3.0 if J is None else _number(where, "J", J, ">=0")
-    g = _number(where, "g", g, ">=0")
-    base = f"{name}.base" if base is None else base
-    corners = (f"{name}.left", f"{name}.right")
-    x, y = (float(c) for c in frame._coords[node])
-    frame.node(base, x, y - h)
-    frame.node(corners[0], x - b, y - h)
-    frame.node(corners[1], x + b, y - h)
-    frame.support(base, ux=True, uy=False, rz=False)
-    for slave in (node, *corners):
-        frame.rigid_link(base, slave)
-    frame.mass(node, m, J=J)
-    frame._names.add(name)
-    for corner in corners:
-        add_contact(frame, corner, corner, direction="uy")
-    block = RigidBlock(name, node, base, corners, b, h, m, J, g)
-    _parts(frame)["blocks"][name] = block
-    return block
+        Returns
+        -------
+        RigidBlock
+        """
+        where = self._label("rigid_block", name)
+        self._node(where, "node", node)
+        b = _number(where, "width", width, ">0") / 2
+        h = _number(where, "height", height, ">0") / 2
+        m = _number(where, "mass", mass, ">0")
+        J = m * (b * b + h * h) / 3.0 if J is None else _number(where, "J", J, ">=0")
+        g = _number(where, "g", g, ">=0")
+        base = f"{name}.base" if base is None else base
+        corners = (f"{name}.left", f"{name}.right")
+        x, y = (float(c) for c in self._coords[node])
+        self.node(base, x, y - h)
+        self.node(corners[0], x - b, y - h)
+        self.node(corners[1], x + b, y - h)
+        self.support(base, ux=True, uy=False, rz=False)
+        for slave in (node, *corners):
+            self.rigid_link(base, slave)
+        self.mass(node, m, J=J)
+        self._names.add(name)
+        for corner in corners:
+            self.contact(corner, corner, direction="uy")
+        block = RigidBlock(name, node, base, corners, b, h, m, J, g)
+        _parts(self)["blocks"][name] = block
+        return block
 
 
 # ---------------------------------------------------------------------- assembly
 def exempt_dofs(frame, dofs) -> set:
     """The free DOFs ``(node, dof)`` the rigid contacts move: no element need stiffen them (their
-    mass and the contacts hold them)."""
+    mass and the contacts hold them). Raises where rigid contacts are not available (with a
+    foundation on a soil medium, with P-Delta)."""
+    contacts = _parts(frame)["contacts"] if "_rigid" in frame.__dict__ else []
+    if not contacts:
+        return set()
+    if frame._foundations:
+        raise ValueError("contact/rigid_block: rigid contacts together with a foundation on a soil medium are not "
+                         "available")
+    if frame._p_delta is not None:
+        raise ValueError("contact/rigid_block: p_delta with rigid contacts is not available (the static axial "
+                         "forces need the structure held; a rigid block has its own second-order term, g)")
     out = set()
-    for contact in _parts(frame)["contacts"]:
-        column = _column(contact, dofs)
-        out |= {dofs.free[i] for i in column.indices}
+    for contact in contacts:
+        out |= {dofs.free[i] for i in _column(contact, dofs).indices}
     return out
 
 
-def assemble(frame, dofs, *, foundation=False, p_delta=False) -> RigidPart | None:
-    """The :class:`RigidPart` of ``frame`` on the free DOFs ``dofs``, or None without rigid contacts."""
+def attach(frame, structure):
+    """``structure`` with the :class:`RigidPart` of ``frame`` (a ``RigidStructure``: a subclass with
+    the field ``rigid`` whose ``to_model`` appends the rigid contacts), or ``structure`` itself
+    without rigid contacts."""
     parts = frame.__dict__.get("_rigid")
     if not parts or not parts["contacts"]:
-        return None
-    if foundation:
-        raise ValueError("contact/rigid_block: rigid contacts together with a foundation on a soil medium are not "
-                         "available")
-    if p_delta:
-        raise ValueError("contact/rigid_block: p_delta with rigid contacts is not available (the static axial "
-                         "forces need the structure held; a rigid block has its own second-order term, g)")
+        return structure
+    dofs = structure.dofs
     contacts = tuple(parts["contacts"])
-    n = dofs.n
-    N = sp.hstack([_column(c, dofs).T for c in contacts], format="csr") if contacts else sp.csr_matrix((n, 0))
+    N = sp.hstack([_column(c, dofs).T for c in contacts], format="csr")
     for j, c in enumerate(contacts):
         if N[:, j].nnz == 0:
             raise ValueError(f"contact {c.name!r}: node {c.node!r} cannot move along the normal (supported); "
                              "the contact would act on nothing")
-    rows, vals = [], []
-    for block in parts["blocks"].values():
-        if block.g:
-            rows.append(dofs.index(block.base, "rz"))
-            vals.append(-block.W * block.h)
-    geometric = sp.csr_matrix((vals, (rows, rows)), shape=(n, n))
-    return RigidPart(contacts, N, np.array([c.gap for c in contacts]), geometric, dict(parts["blocks"]))
+    rows = [dofs.index(block.base, "rz") for block in parts["blocks"].values() if block.g]
+    vals = [-block.W * block.h for block in parts["blocks"].values() if block.g]
+    geometric = sp.csr_matrix((vals, (rows, rows)), shape=(dofs.n, dofs.n))
+    part = RigidPart(contacts, N, np.array([c.gap for c in contacts]), geometric, dict(parts["blocks"]))
+    values = {f.name: getattr(structure, f.name) for f in dataclasses.fields(structure)}
+    return _with_rigid(type(structure))(**values, rigid=part)
+
+
+@functools.lru_cache(maxsize=None)
+def _with_rigid(base):
+    """The subclass of the structure class ``base`` with the field ``rigid`` (a :class:`RigidPart`)."""
+    def to_model(self):
+        """The :class:`~unilateral.Model` with the rigid contacts after the frame's own unknowns
+        (:mod:`unilateral.structure.rigid`)."""
+        return _model(self, self.rigid)
+
+    doc = (f"A built frame with rigid contacts: :class:`{base.__name__}` and ``rigid``, the "
+           ":class:`~unilateral.structure.rigid.RigidPart` (contacts, blocks), whose unknowns follow the "
+           "frame's own in the model (not among ``constraint_names``).")
+    return dataclasses.make_dataclass("RigidStructure", [("rigid", object, None)], bases=(base,), frozen=True,
+                                      eq=False, namespace={"to_model": to_model, "__doc__": doc,
+                                                           "__module__": __name__})
 
 
 def _column(contact, dofs) -> sp.csr_matrix:
