@@ -200,3 +200,22 @@ def test_the_example_runs():
     out = subprocess.run([sys.executable, str(path), "--quick"], capture_output=True, text=True, timeout=600, env=env)
     assert out.returncode == 0, out.stderr
     assert "Housner" in out.stdout and "impact" in out.stdout
+
+
+def test_a_column_on_the_block_builds_and_starts_at_rest():
+    """A beam on the block's centre (a slave node): massless rotations condensed in initial_forces."""
+    fr = Frame2D()
+    fr.node("c", 0.0, 0.6)
+    fr.node("top", 0.0, 3.0)
+    block = fr.rigid_block("B", "c", width=0.4, height=1.2, mass=1.0)
+    fr.beam("col", "c", "top", E=30e6, A=0.01, I=1e-4)
+    fr.mass("top", 0.2)
+    st = fr.build()
+    model = st.to_model()
+    assert model.constraint_names == ["B.left", "B.right"] and st.rigid.blocks["B"] is block
+    q = st.gravity(block.g)
+    v0 = rigid.initial_forces(model, np.zeros(model.n), q)
+    np.testing.assert_allclose(v0, [block.W / 2] * 2)          # at t = 0 the column is not yet compressed
+    sol = ul.solve(model, LoadHistory(q), dt=1e-3, t_end=0.1, method="direct", rule="bdf1",
+                   initial={"u0": np.zeros(model.n), "v0": v0})
+    assert sol.success and np.abs(sol.u).max() < 1e-4

@@ -330,9 +330,11 @@ def _with_rigid(base):
     doc = (f"A built frame with rigid contacts: :class:`{base.__name__}` and ``rigid``, the "
            ":class:`~unilateral.structure.rigid.RigidPart` (contacts, blocks), whose unknowns follow the "
            "frame's own in the model (not among ``constraint_names``).")
-    return dataclasses.make_dataclass("RigidStructure", [("rigid", object, None)], bases=(base,), frozen=True,
-                                      eq=False, namespace={"to_model": to_model, "__doc__": doc,
-                                                           "__module__": __name__})
+    name = f"Rigid{base.__name__}"
+    cls = dataclasses.make_dataclass(name, [("rigid", object, None)], bases=(base,), frozen=True, eq=False,
+                                     namespace={"to_model": to_model, "__doc__": doc, "__module__": __name__})
+    globals()[name] = cls                       # found by its name: a built structure pickles
+    return cls
 
 
 def _column(contact, dofs) -> sp.csr_matrix:
@@ -438,13 +440,28 @@ def initial_forces(model, u0, q0, udot0=None, *, tol=1e-12) -> np.ndarray:
     if touching.size == 0:
         return v0
     f = np.asarray(q0, dtype=float) - model.K @ u0 + F @ v0 - model.damping() @ udot0
-    X = np.linalg.solve(M, np.column_stack([np.asarray(f).ravel(), F[:, touching]]))
     NA = F[:, touching]
+    X = _accelerations(M, dense(model.K), np.column_stack([np.asarray(f).ravel(), NA]))
     v, _, message = static_lcp(NA.T @ X[:, 1:], -(NA.T @ X[:, 0]), get_lcp_solver("bpp"))
     if message:
         raise ValueError("initial_forces: no contact forces hold the initial state: " + message)
     v0[touching] = v
     return v0
+
+
+def _accelerations(M, K, R) -> np.ndarray:
+    """``u''`` (n, k) of the forces ``R`` (n, k): ``M^-1 R`` on the DOFs with mass, the DOFs without
+    (a massless rotation of a beam's end) following by the static condensation
+    ``u0'' = -K00^-1 K0m um''`` (a force on a massless DOF is refused)."""
+    mass = np.diag(M) > 0
+    if mass.all():
+        return np.linalg.solve(M, R)
+    if np.abs(R[~mass, 1:]).max(initial=0.0) > 0:
+        raise ValueError("initial_forces: a rigid contact acts on a DOF without mass; give the contact node mass")
+    out = np.zeros_like(R)
+    out[mass] = np.linalg.solve(M[np.ix_(mass, mass)], R[mass])
+    out[~mass] = -np.linalg.solve(K[np.ix_(~mass, ~mass)], K[np.ix_(~mass, mass)] @ out[mass])
+    return out
 
 
 def block_rotation(structure, sol, name) -> np.ndarray:
