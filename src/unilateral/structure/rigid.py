@@ -160,7 +160,7 @@ class RigidBlock:
 
 @dataclass(frozen=True)
 class RigidPart:
-    """The rigid contacts and blocks of a built frame (``Structure.rigid``).
+    """The rigid contacts and blocks of a built frame (``structure.rigid`` of its ``RigidStructure``).
 
     Attributes
     ----------
