@@ -112,6 +112,20 @@ class SoilContact(Contact):
         return tuple((int(i), int(i), -2.0) for i in self.indices)
 
 
+class RigidContact(SoilContact):
+    """Rigid unilateral contacts (no compliance: ``H = 0``), in the dual (force) form.
+
+    The unknown ``v_j >= 0`` is the compressive contact force, the column ``F_j = N_j`` the
+    direction in which it pushes the structure away from the obstacle, and the row
+    ``psi_j = N_j^T u - g_j`` the opening (``g_j = -gap``). The row map ``P_jj = -1`` (that of
+    :class:`SoilContact`) makes the LCP's ``w = psi >= 0``: the opening, complementary to the
+    force, with the positive definite step matrix ``N^T D_eff^-1 N``
+    (:mod:`unilateral.structure.rigid`). ``K`` is then the stiffness of the structure *without* its
+    rigid contacts, which may be singular or indefinite (a free block, the negative stiffness of
+    rocking).
+    """
+
+
 class SoilShear(ConstraintFamily):
     """The horizontal force of a footing patch on a soil given in the Laplace domain (dual form).
 

@@ -14,6 +14,7 @@ from ..soil.foundation_model import FoundationModel
 from .base import Method
 from .clcp_march import FFT_HISTORY_MIN_STEPS, march_weights
 from .common import clcp_on_matrix_model, failed_at_start, finish
+from .rigid import refusal as rigid_refusal
 
 
 class CQ(Method):
@@ -39,6 +40,10 @@ class CQ(Method):
     name = "cq"
     solves = frozenset({"matrices", "foundation", "laplace kernel"})
     options = ("L", "rho", "history", "engine")
+
+    def refusal(self, model) -> str | None:
+        """None, or why not: rigid contacts on a structure not stable without them (:mod:`.rigid`)."""
+        return rigid_refusal(model, self.name)
 
     def memory_estimate(self, model, disc) -> dict:
         out = super().memory_estimate(model, disc)

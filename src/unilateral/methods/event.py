@@ -10,6 +10,7 @@ from ..result import Solution, State
 from .base import Method
 from .common import failed_at_start, initial_state, step_loads
 from .stepping import SolvedRun
+from .rigid import refusal as rigid_refusal
 
 
 class Event(Method):
@@ -52,6 +53,10 @@ class Event(Method):
     name = "event"
     options = ("tol", "max_events")
     cq_rules_only = False
+
+    def refusal(self, model) -> str | None:
+        """None, or why not: rigid contacts (no impact law, :mod:`.rigid`)."""
+        return rigid_refusal(model, self.name)
 
     def solve(self, model, load, initial, disc, run):
         march = self.start(model, load, initial, disc, run)

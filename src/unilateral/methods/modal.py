@@ -15,6 +15,7 @@ from ..soil.foundation_model import FoundationModel
 from .base import Method
 from .clcp_march import ENGINES, compiled_applies, use_compiled
 from .common import clcp_on_matrix_model
+from .rigid import refusal as rigid_refusal
 
 
 class Modal(Method):
@@ -45,7 +46,11 @@ class Modal(Method):
 
     def refusal(self, model) -> str | None:
         """None if the pole-residue form of ``model``'s kernel exists, else why not (it is computed
-        here, and kept on the model for the solve: :func:`~unilateral.model.remembered`)."""
+        here, and kept on the model for the solve: :func:`~unilateral.model.remembered`); rigid
+        contacts on a structure not stable without them are refused (:mod:`.rigid`)."""
+        why_not = rigid_refusal(model, self.name)
+        if why_not is not None:
+            return why_not
         try:
             if model.kind == "foundation":
                 remembered(model, ("modal form",), model.modal_form)

@@ -32,7 +32,7 @@ import scipy.sparse as sp
 from ..loads.units import STANDARD_GRAVITY
 from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
-from . import bulk, elements as el
+from . import bulk, elements as el, rigid
 from .dofs import DofMap, csr_of_entries, node_list
 from .modes import check_frequency_range
 
@@ -374,7 +374,7 @@ class _Frame(ABC):
                                                                                self._axes)
 
 
-class Frame2D(_Frame):
+class Frame2D(rigid.RigidContacts, _Frame):
     """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
 
     Nodes have the DOFs ``ux``, ``uy`` (along global x, y) and ``rz`` (counter-clockwise). Define
@@ -768,7 +768,7 @@ class Frame2D(_Frame):
             if footing.rigid and footing.m > 1:
                 rotated.add(footing.node)               # the footing rocks on its patches
         dofs = DofMap(self._coords, self._restrained, rotated, self._links)
-        on_soil = set()
+        on_soil = rigid.exempt_dofs(self, dofs)         # held by rigid contacts (rigid.py), and:
         for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
             for terms in footing.moved_rows(self._coords) + (footing.shear_rows() if footing.sliding else []):
                 on_soil |= {(node, dof) for node, dof, _ in terms}
@@ -780,7 +780,7 @@ class Frame2D(_Frame):
             footings = Footings(self._foundations, first=len(fields["constraint_names"]))
         structure = Structure(**fields, foundation=footings)
         if self._p_delta is None:
-            return structure
+            return rigid.attach(self, structure)
         if self._foundations:
             raise ValueError("p_delta: not available with a foundation on a soil medium")
         g, (dx, dy) = self._p_delta
