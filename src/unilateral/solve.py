@@ -320,7 +320,8 @@ def _blas_controller():
 
 def _applicable(model, rule) -> list:
     """The names of the registered methods that apply to ``model`` with ``rule``."""
-    return [name for name, cls in METHODS.items() if cls().applies(model, rule) is None]
+    return [name for name, cls in METHODS.items()
+            if cls().applies(model, rule) is None and cls().refusal(model) is None]
 
 
 def _step_count(steps) -> int:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..constraints import SoilContact
-from ..model import _check_definite, remembered
+from ..model import check_definite, remembered
 
 
 def rigid_contacts(model) -> list:
@@ -50,7 +50,7 @@ def refusal(model, method) -> str | None:
 
 def _definite(K) -> str | None:
     try:
-        _check_definite("K", K, strict=True)
+        check_definite("K", K, strict=True)
     except ValueError as exc:
         return str(exc)
     d = K.diagonal() if hasattr(K, "tocsr") else np.diag(K)
