@@ -41,7 +41,7 @@ import numpy as np
 
 from ..io.summary import RATE_KINDS
 from . import FigureDataError
-from .plots import PAGE_WIDTH, _figure, _styled, envelope, math_unit, save_figure
+from .plots import PAGE_WIDTH, _figure, _styled, envelope, math_unit, plain_text, save_figure
 
 MAX_PANELS = 6
 #: Most panels of the hysteresis figure.
@@ -223,7 +223,7 @@ def _draw(draw, ds):
 def _text(value, limit: int = MAX_TEXT) -> str:
     """``value`` as text of at most ``limit`` characters (cut with an ellipsis)."""
     text = str(value)
-    return text if len(text) <= limit else text[:limit - 1] + "\u2026"
+    return plain_text(text if len(text) <= limit else text[:limit - 1] + "\u2026")
 
 
 def _listing(names, limit: int = 10) -> str:
