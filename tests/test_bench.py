@@ -132,7 +132,7 @@ def test_scaling_figure(tmp_path):
     # the Python loop: these short runs in fresh processes would mostly time numba's start
     config = ScalingConfig(steps=(32, 64), steps_methods=("direct python",), sizes=(4, 8),
                            sizes_steps=20, sizes_methods=("direct python",))
-    records = run_scaling(config, limits=Limits(timeout=120.0))
+    records = run_scaling(config, limits=Limits(timeout=600.0))    # a hang guard: the runs take seconds
     assert [(r["sweep"], r["N"], r["m"]) for r in records] == [("N", 32, 3), ("N", 64, 3),
                                                                 ("m", 20, 4), ("m", 20, 8)]
     assert all(r["status"] == "ok" and r["total_s"] > 0 for r in records)

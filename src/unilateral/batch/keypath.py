@@ -135,3 +135,90 @@ def get_key_path(data: dict, text: str, default=None):
         else:
             return default
     return node
+
+
+# ---------------------------------------------------------------------- validation errors
+_SCALAR_TAGS = {"float": (int, float), "int": (int,), "str": (str,), "bool": (bool,)}
+
+
+def _branch_tag(key) -> bool:
+    """Whether ``key`` of a pydantic error location names a member of a plain union (``float``,
+    ``list[float]``, ``constrained-float``, ``literal['T1']``), not a key of the file."""
+    return isinstance(key, str) and (key in _SCALAR_TAGS or "[" in key or key.startswith("constrained-")
+                                     or key.startswith(("function-", "lax-", "json-or-python")))
+
+
+def _fits(tag: str, value) -> bool:
+    """Whether the union member ``tag`` is the one meant for ``value`` (by the value's TOML type)."""
+    if tag.startswith("literal[") or tag == "str" or tag.startswith("constrained-str"):
+        return isinstance(value, str)
+    if tag.startswith(("list[", "tuple[", "set[")):
+        return isinstance(value, list)
+    if tag.startswith("dict["):
+        return isinstance(value, dict)
+    number = isinstance(value, int | float) and not isinstance(value, bool)
+    if tag in ("float", "int") or tag.startswith(("constrained-float", "constrained-int")):
+        return number
+    return True
+
+
+class PlainErrors:
+    """The errors of a pydantic ``ValidationError`` located by the file's keys only: the members of
+    a plain union are dropped from the locations (``records.angle.list[float][0]`` ->
+    ``records.angle[0]``), and of a union's members only the errors of the one meant for the
+    value's type are kept (a list, a number, a string), the others when none is.
+
+    Parameters
+    ----------
+    exc : pydantic.ValidationError
+    data : dict
+        The document validated.
+    """
+
+    def __init__(self, exc, data):
+        self.exc, self.data = exc, data
+
+    def errors(self) -> list[dict]:
+        groups: dict = {}
+        for error in self.exc.errors():
+            loc = tuple(error["loc"])
+            at = next((k for k, key in enumerate(loc) if _branch_tag(key)), None)
+            if at is None:
+                groups.setdefault((loc, None), []).append((True, error))
+                continue
+            value = _value_at(self.data, loc[:at])
+            plain = tuple(key for key in loc if not _branch_tag(key))
+            groups.setdefault((loc[:at], "union"), []).append((_fits(loc[at], value), {**error, "loc": plain}))
+        out, seen = [], set()
+        for members in groups.values():
+            members = [(fits, _plain_message(error)) for fits, error in members]
+            kept = [error for fits, error in members if fits] or [error for _, error in members]
+            for error in kept:
+                if (error["loc"], error["msg"]) not in seen:
+                    seen.add((error["loc"], error["msg"]))
+                    out.append(error)
+        return out
+
+
+def _value_at(data, loc):
+    """The raw value at the location ``loc`` of ``data`` (None where there is none)."""
+    value = data
+    for key in loc:
+        if isinstance(key, int) and isinstance(value, list) and key < len(value):
+            value = value[key]
+        elif isinstance(value, dict) and key in value:
+            value = value[key]
+        elif not _branch_tag(key):
+            return None
+    return value
+
+
+def _plain_message(error: dict) -> dict:
+    """``error`` with pydantic's wording of a list's length ("List should have at least 1 item after
+    validation, not 0") said plainly."""
+    ctx = error.get("ctx") or {}
+    if error["type"] == "too_short" and "min_length" in ctx:
+        return {**error, "msg": f"needs at least {ctx['min_length']} item(s), got {ctx.get('actual_length', 0)}"}
+    if error["type"] == "too_long" and "max_length" in ctx:
+        return {**error, "msg": f"takes at most {ctx['max_length']} item(s), got {ctx.get('actual_length')}"}
+    return error

@@ -37,6 +37,15 @@ WORKERS_PER_CORE = 4
 """Most worker processes of a local cluster per core of the machine."""
 CONNECT_TIMEOUT = "10s"
 """How long to try to reach a scheduler given by its address."""
+LOST_WORKER_TIMEOUT = "365 days"
+"""While a study runs, how long a Dask cluster object of this process (a LocalCluster) waits for a
+worker that left to come back before it closes the worker's nanny (Dask's default, 15 s, closed the
+nanny of a worker restarted after a timeout whenever the restart outlasted it, on a loaded machine:
+the cluster was left with no worker and the study waited for one forever). A restarted worker
+always comes back: its nanny starts it again."""
+WORKER_WAIT = 600.0
+"""Seconds the inputs wait for a worker to scatter them to (after a restart) before the study
+stops with a :class:`ClusterError`: a hang guard, far beyond any restart."""
 
 
 class ClusterError(ValueError):
@@ -326,7 +335,16 @@ def _run_dask(todo, inputs: StudyInputs, run_id: str, cluster_spec, done: _Recor
     A worker restarted after a timeout gets the inputs again; a task cancelled because the inputs
     it needed were lost meanwhile (the restarted worker held their only copy) is submitted again,
     once per restart and up to ``ALLOWED_FAILURES`` times more (a cancellation by someone else).
+    A worker that left is waited for (:data:`LOST_WORKER_TIMEOUT`, :data:`WORKER_WAIT`).
     """
+    import dask
+
+    with dask.config.set({"distributed.deploy.lost-worker-timeout": LOST_WORKER_TIMEOUT}):
+        _run_on(todo, inputs, run_id, cluster_spec, done)
+
+
+def _run_on(todo, inputs: StudyInputs, run_id: str, cluster_spec, done: _Recorder) -> None:
+    """:func:`_run_dask` once the cluster's settings are set."""
     from concurrent.futures import CancelledError
 
     from distributed import as_completed
@@ -393,7 +411,11 @@ class _Tasks:
         records = {digest: f"unilateral-record-{digest[:24]}-{tag}" for digest in self.inputs.records}
         data = {key: self.inputs.variants[index] for index, key in variants.items()}
         data.update({key: self.inputs.records[digest] for digest, key in records.items()})
-        self.client.wait_for_workers(1)
+        try:
+            self.client.wait_for_workers(1, timeout=WORKER_WAIT)
+        except TimeoutError:
+            raise ClusterError(f"no worker joined the cluster within {WORKER_WAIT:g} s (after a restart, or at the "
+                               "start): the study stops; run the same command again to continue") from None
         scattered = self.client.scatter(data, broadcast=True, hash=False)
         old = [*self.variants.values(), *self.records.values()]
         self.variants = {index: scattered[key] for index, key in variants.items()}

@@ -47,6 +47,7 @@ NonNegative = Annotated[float, Field(ge=0)]
 Name = Annotated[str, Field(min_length=1)]
 FileName = Annotated[str, Field(min_length=1)]
 NodeId = Annotated[Union[int, str], Field()]
+NodePair = Annotated[list[NodeId], Field(min_length=2, max_length=2, title="node pair")]
 
 
 # ---------------------------------------------------------------------- models
@@ -168,8 +169,8 @@ class Quantity(Table):
     node: NodeId | None = Field(None, description="displacement, residual: the node.")
     dof: str | None = Field(None, description=('"ux", "uy", "rz" (2-D frames), "ux" ... "rz" (3-D frames) or a DOF '
                                                'name (matrix-level models).'))
-    pairs: list[Annotated[list[NodeId], Field(min_length=2, max_length=2)]] | None = Field(None, description=(
-        "drift: [upper, lower] node pairs, one storey each; the peak over the pairs."))
+    pairs: Annotated[list[NodePair], Field(min_length=1)] | None = Field(None, description=(
+        "drift: [upper, lower] node pairs, one storey each (at least one); the peak over the pairs."))
     ratio: bool = Field(True, description="drift: divided by the storey height (difference of y).")
 
     USES: ClassVar[dict] = {"uplift": ("elements", "over"), "contact_force": ("elements", "over"),

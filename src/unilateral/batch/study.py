@@ -24,7 +24,7 @@ from pydantic import ValidationError
 from ..modelfile import ModelFileError, build_model_spec
 from ..modelfile.build import read_toml
 from ..modelfile.errors import Problems, did_you_mean, key_path, toml_value, translate, value_problem
-from .keypath import KeyPathError, parse_key_path, set_key_path
+from .keypath import KeyPathError, PlainErrors, parse_key_path, set_key_path
 from .schema import StudyFile
 
 RECORD_SUFFIXES = (".at2", ".txt", ".dat", ".csv")
@@ -180,7 +180,7 @@ def read_study_document(source: Path) -> tuple[StudyFile, dict]:
     try:
         return StudyFile.model_validate(data), data
     except ValidationError as exc:
-        raise Problems(translate(exc, data, StudyFile)) from None
+        raise Problems(translate(PlainErrors(exc, data), data, StudyFile)) from None
 
 
 def load_study(path) -> Study:

@@ -275,7 +275,7 @@ def _model_figure(drawing: ModelDrawing):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    from .plots import DPI, PAGE_WIDTH, math_unit
+    from .plots import DPI, PAGE_WIDTH, math_unit, plain_text
 
     xy = np.array(list(drawing.coords.values()) or [(0.0, 0.0)])
     size = max(float(np.ptp(xy[:, 0])), float(np.ptp(xy[:, 1])), 1e-9)
@@ -298,7 +298,7 @@ def _model_figure(drawing: ModelDrawing):
     ax.set_xlabel(f"$x$ [{unit}]" if unit else "$x$")
     ax.set_ylabel(f"$y$ [{unit}]" if unit else "$y$")
     if drawing.title:
-        ax.set_title(str(drawing.title)[:200])
+        ax.set_title(plain_text(str(drawing.title)[:200]))
     handles = [_legend_handle(kind) for kind in kinds]
     fig.legend(handles=handles, loc="upper center", ncol=3, frameon=False, fontsize=7,
                bbox_to_anchor=(0.5, 1.0 - (top + main_h + gap - 0.05) / height))

@@ -106,7 +106,7 @@ def _figure(drawing: ModelDrawing3D):
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
 
-    from .plots import DPI, PAGE_WIDTH, math_unit
+    from .plots import DPI, PAGE_WIDTH, math_unit, plain_text
 
     xyz = np.array(list(drawing.coords.values()) or [(0.0, 0.0, 0.0)], dtype=float)
     size = max(float(np.ptp(xyz, axis=0).max()), 1e-9)
@@ -153,7 +153,7 @@ def _figure(drawing: ModelDrawing3D):
     for setter, axis in zip((ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), "xyz"):
         setter(f"${axis}$ [{unit}]" if unit else f"${axis}$")
     if drawing.title:
-        ax.set_title(str(drawing.title)[:200])
+        ax.set_title(plain_text(str(drawing.title)[:200]))
     handles = [Line2D([], [], color=KIND_STYLES[k][1], linestyle=KIND_STYLES[k][2], linewidth=KIND_STYLES[k][3],
                       label=KIND_STYLES[k][0]) for k in dict.fromkeys(kinds)]
     if drawing.ties:

@@ -56,6 +56,24 @@ def math_unit(unit: str) -> str:
     return f"$\\mathrm{{{body}}}$"
 
 
+def plain_text(text) -> str:
+    """``text`` as matplotlib draws it without failing: as given if its ``$...$`` parts are valid
+    mathtext (or it has none), else with every ``$`` escaped (drawn literally). A title or label
+    read from a file (``title = "$\\frac{$"``) made the drawing raise, after the run was solved."""
+    import re
+
+    text = str(text)
+    if len(re.findall(r"(?<!\\)\$", text)) < 2:
+        return text
+    from matplotlib.mathtext import MathTextParser
+
+    try:
+        MathTextParser("path").parse(text)
+    except (ValueError, RuntimeError, IndexError, KeyError, TypeError):
+        return re.sub(r"(?<!\\)\$", r"\\$", text)
+    return text
+
+
 def _styled(function):
     """Run ``function`` under the house style, restoring the caller's rcParams afterwards."""
     @functools.wraps(function)

@@ -41,7 +41,7 @@ import numpy as np
 
 from ..io.summary import RATE_KINDS
 from . import FigureDataError
-from .plots import PAGE_WIDTH, _figure, _styled, envelope, math_unit, save_figure
+from .plots import PAGE_WIDTH, _figure, _styled, envelope, math_unit, plain_text, save_figure
 
 MAX_PANELS = 6
 #: Most panels of the hysteresis figure.
@@ -55,11 +55,41 @@ MAX_LABELS_JSON = 100_000
 
 
 def main_case(ds) -> str | None:
-    """The case the single-case figures show: ``unilateral`` if present."""
+    """The case the single-case figures show: ``unilateral`` if present (None without the dimension
+    ``case``).
+
+    Raises
+    ------
+    FigureDataError
+        The dimension ``case`` has length 0.
+    """
     if "case" not in ds.dims:
         return None
-    cases = [str(c) for c in ds["case"].values]
+    cases = case_names(ds)
     return "unilateral" if "unilateral" in cases else cases[0]
+
+
+def case_names(ds) -> list[str]:
+    """The names of the cases of ``ds`` (its coordinate ``case``).
+
+    Raises
+    ------
+    FigureDataError
+        The dimension ``case`` has length 0: there is no case to draw.
+    """
+    cases = [str(c) for c in ds["case"].values]
+    if not cases:
+        raise FigureDataError("the dimension case has length 0: the file holds no case to draw (a results.nc "
+                              "has 1 or more, e.g. unilateral and bilateral)")
+    return cases
+
+
+def _components(d, family: str) -> None:
+    """Check that the dimension ``<family>_component`` of ``d`` (if any) is not empty."""
+    dim = f"{family}_component"
+    if d.sizes.get(dim, 1) == 0 and d.sizes.get(f"{family}_element", 0) > 0:
+        raise FigureDataError(f"the dimension {dim} has length 0, yet the file has {d.sizes[f'{family}_element']} "
+                              f"{family} element(s): their forces have no component to draw (1 or 2 expected)")
 
 
 def _case(ds, name):
@@ -193,7 +223,7 @@ def _draw(draw, ds):
 def _text(value, limit: int = MAX_TEXT) -> str:
     """``value`` as text of at most ``limit`` characters (cut with an ellipsis)."""
     text = str(value)
-    return text if len(text) <= limit else text[:limit - 1] + "\u2026"
+    return plain_text(text if len(text) <= limit else text[:limit - 1] + "\u2026")
 
 
 def _listing(names, limit: int = 10) -> str:
@@ -257,7 +287,7 @@ def history_figure(ds):
     nd = ds["node_displacement"].sel(node=node, component=dof)
     labels = case_labels(ds)
     t = ds["time"].values
-    curves = ({labels.get(str(c), str(c)): nd.sel(case=c).values for c in ds["case"].values}
+    curves = ({labels.get(c, c): nd.sel(case=c).values for c in case_names(ds)}
               if "case" in nd.dims else {"": nd.values})
     peak = max(float(np.max(np.abs(y))) for y in curves.values())
     unit, factor = ("rad", 1.0) if dof == "rz" else length_scale(_unit(ds, "length"), peak)
@@ -461,6 +491,7 @@ def _yield_panels(d) -> list[dict]:
     (a 3-D hinge's: along the component of its larger peak, :func:`_along`)."""
     if "yield_force" not in d:
         return []
+    _components(d, "yield")
     force, deformation = d["yield_force"].values, d["yield_element_deformation"].values
     plastic = d["plastic_deformation"].values
     positive, negative = d["yield_limit_positive"].values, d["yield_limit_negative"].values
@@ -488,6 +519,7 @@ def _friction_panels(d) -> list[dict]:
     contact's along the component of its larger peak)."""
     if "friction_force" not in d:
         return []
+    _components(d, "friction")
     force, motion, slip = d["friction_force"].values, d["tangential_deformation"].values, d["slip"].values
     panels = []
     for k, name in enumerate(d["friction_element"].values):
@@ -507,6 +539,9 @@ def _along(d, family, plastic, force, k) -> tuple[int, str]:
     in the panel's title (none for an element with one component)."""
     names = [str(c) for c in d[f"{family}_component_name"].values[k]]
     count = sum(map(bool, names))
+    if count == 0:
+        raise FigureDataError(f"{family}_component_name names no component of the {family} element "
+                              f"{_text(d[f'{family}_element'].values[k], 60)!r} (all {len(names)} names are empty)")
     peaks = np.nanmax(np.abs(plastic[:, k, :count]), axis=0, initial=0.0)
     if not peaks.any():
         peaks = np.nanmax(np.abs(force[:, k, :count]), axis=0, initial=0.0)
@@ -579,7 +614,7 @@ def base_forces_figure(ds):
     if "base_shear" not in ds:
         return None
     t = ds["time"].values
-    cases = [None] if "case" not in ds.dims else [str(c) for c in ds["case"].values]
+    cases = [None] if "case" not in ds.dims else case_names(ds)
     labels = case_labels(ds)
     shear = [_case(ds, c)["base_shear"].values for c in cases]
     moment = [_case(ds, c)["overturning_moment"].values for c in cases]
@@ -665,7 +700,7 @@ def spectra_figure(ds):
     if "floor_spectrum" in ds:
         labels = case_labels(ds)
         floors = ds["floor_spectrum"]
-        cases = [str(c) for c in ds["case"].values] if "case" in floors.dims else [None]
+        cases = case_names(ds) if "case" in floors.dims else [None]
         for k, case in enumerate(cases):
             values = floors.sel(case=case).values if case is not None else floors.values
             for j, node in enumerate(floors["floor"].values):
@@ -674,14 +709,31 @@ def spectra_figure(ds):
     ax.margins(x=0)
     ax.set_ylim(bottom=0.0)
     direction = {"ux": "horizontal", "uy": "vertical"}.get(str(attrs.get("direction", "")), "")
-    damping = attrs.get("damping")
+    damping = _damping(attrs.get("damping"))
     ax.set(xlabel=f"period $T$ [{math_unit(time)}]" if time else "period $T$",
            ylabel=f"$S_a$ [{math_unit(unit)}]" if unit else "$S_a$",
            title=(f"Pseudo-acceleration response spectra, {direction} "
-                  f"({100 * float(damping):g} % damping)" if damping is not None else
+                  f"({100 * damping:g} % damping)" if damping is not None else
                   "Pseudo-acceleration response spectra").replace("  ", " "))
     ax.legend(loc="upper right", ncol=2 if len(ax.lines) > 6 else 1)
     return fig
+
+
+def _damping(value) -> float | None:
+    """The attribute ``damping`` of ``ground_spectrum`` as a number (None without it).
+
+    Raises
+    ------
+    FigureDataError
+        It is not one finite number.
+    """
+    if value is None:
+        return None
+    number = np.asarray(value)
+    if number.ndim != 0 or number.dtype.kind not in "iuf" or not np.isfinite(number):
+        raise FigureDataError(f"the attribute damping = {_text(value, 60)!r} of ground_spectrum is not a number; "
+                              "a damping ratio such as 0.05 (5 %) is expected")
+    return float(number)
 
 
 def structure_figure(ds):

@@ -80,6 +80,9 @@ zero padding of :func:`free_field`."""
 MAX_FFT_LENGTH = 2 ** 22
 """Largest FFT length :func:`free_field` pads to (beyond 16 times the record's length)."""
 
+#: Thickest layer [L]: far beyond any site, and the FFT length of the column stays computable
+#: (``1e308`` overflowed it).
+MAX_THICKNESS = 1e7
 _LAYER_KEYS = ("thickness", "G", "Vs", "nu", "rho", "damping")
 _BASE_KEYS = ("G", "Vs", "nu", "rho", "damping")
 
@@ -284,7 +287,7 @@ def _material(where: str, spec, keys: tuple, wave: str) -> tuple[float, float, f
         if "thickness" not in spec:
             raise ValueError(f"{where}: missing 'thickness' (the layer's thickness [L] > 0)")
         thickness = _number(where, "thickness", spec["thickness"], lower=0.0, closed=False, what="the layer's "
-                            "thickness [L]")
+                            "thickness [L]", upper=MAX_THICKNESS, upper_closed=True)
     if "rho" not in spec:
         raise ValueError(f"{where}: missing 'rho' (the mass density [F T^2/L^4] > 0)")
     rho = _number(where, "rho", spec["rho"], lower=0.0, closed=False, what="mass density [F T^2/L^4]")

@@ -33,6 +33,10 @@ class Event(Method):
     inactive one is held at its frozen value; friction whose normal contact is a Kelvin element
     is refused (use ``cq``, ``modal`` or ``direct``).
 
+    The bilateral case (``bilateral=True``, the reference of a model file's
+    ``bilateral_reference``) has no contact change to follow: it is solved by ``method="direct"``
+    with the run's rule, and ``stats["bilateral_method"]`` is ``"direct"``.
+
     ``stats`` has ``event_times``, ``event_constraints``, ``event_kinds`` ("open"/"close",
     "yield"/"unload", "slip"/"stick") and ``contact_changes``.
 
@@ -65,8 +69,7 @@ class Event(Method):
     def start(self, model, load, initial, disc, run):
         """The event march begun at the initial state, followed as far as it is asked for."""
         if run.bilateral:
-            raise ValueError("method='event' follows the contact changes; for the bilateral case "
-                             "(bilateral=True) use method='direct' or 'modal'")
+            return _bilateral(model, load, initial, disc, run)
         run.stats.pop("rule", None)
         run.stats["n"] = model.n
         load_generator(model, load, disc.t)           # refuses loads without an exact form, clearly
@@ -78,6 +81,18 @@ class Event(Method):
         march = EventMarch.of(model, load, disc.t, init.u, init.udot, init.v,
                               tol=self.config.get("tol", 1e-13), max_events=self.config.get("max_events"))
         return EventRun(model, run, disc, march, self.config.get("tol", 1e-13))
+
+
+def _bilateral(model, load, initial, disc, run):
+    """The bilateral case (every constraint held, ``bilateral=True``): no contact change to follow,
+    so it is solved by ``method="direct"`` (its bilateral sweep, with the run's rule); the
+    statistics say so (``bilateral_method``)."""
+    from .direct import Direct
+
+    run.stats["bilateral_method"] = "direct"
+    run.stats["method_note"] = (f"method='event' follows contact changes, which a bilateral case has none of: "
+                                f"solved by method='direct' (rule={disc.rule.name!r})")
+    return Direct().start(model, load, initial, disc, run)
 
 
 class EventRun:

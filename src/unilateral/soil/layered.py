@@ -108,6 +108,7 @@ from .. import _validate as V
 from . import lamb
 from .halfspace import HalfSpace, component_blocks, laplace_points
 from .patches import RectangularPatches, pair_table
+from .layer_ranges import check_modulus, check_thickness
 
 __all__ = ["Layered"]
 
@@ -132,9 +133,10 @@ def _layer_material(j, d, damping_model, omega_ref):
             raise ValueError(f"{where} is missing the key {key!r}")
     if ("G" in d) == ("Vs" in d):
         raise ValueError(f"{where} needs exactly one of the keys 'G' and 'Vs'")
-    h = _positive(f"{where}['thickness']", d["thickness"])
+    h = check_thickness(f"{where}['thickness']", _positive(f"{where}['thickness']", d["thickness"]))
     rho = _positive(f"{where}['rho']", d["rho"])
-    G = _positive(f"{where}['G']", d["G"]) if "G" in d else rho * _positive(f"{where}['Vs']", d["Vs"]) ** 2
+    G = check_modulus(where, _positive(f"{where}['G']", d["G"]) if "G" in d else None,
+                      _positive(f"{where}['Vs']", d["Vs"]) if "Vs" in d else None, rho)
     nu = _number(f"{where}['nu']", d["nu"])
     if not 0.0 <= nu < 0.5:
         raise ValueError(f"{where}['nu'] must lie in [0, 0.5), got {nu!r}")
