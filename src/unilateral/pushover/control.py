@@ -1,9 +1,9 @@
 """The control DOF of a pushover and the structure it is given for.
 
 The control displacement is ``u_c = e . u`` with ``e`` (n,) a row of ``u_full = T u`` (a free DOF,
-or a slave node's DOF that follows its master). On a bare :class:`~unilateral.Model`, ``node`` is
-the index of a DOF or its name (``model.dof_names``), or ``node`` and ``dof`` together name it
-(``"3.ux"``).
+or a slave node's DOF that follows its master). On a bare :class:`~unilateral.Model`, ``node`` and
+``dof`` together name a DOF (``"3.ux"`` of ``model.dof_names``), or else ``node`` is the index of a
+DOF or its full name.
 """
 
 from __future__ import annotations
@@ -78,13 +78,13 @@ def control_vector(structure, model, node, dof) -> tuple[np.ndarray, str]:
 def _model_control(model, node, dof) -> tuple[np.ndarray, str]:
     """The control DOF of a bare model: an index, a name, or ``"node.dof"``."""
     names = list(model.dof_names)
-    if isinstance(node, numbers.Integral) and not isinstance(node, bool):
+    if f"{node}.{dof}" in names:
+        k = names.index(f"{node}.{dof}")
+    elif isinstance(node, numbers.Integral) and not isinstance(node, bool):
         if not 0 <= int(node) < model.n:
             raise ValueError(f"node={node!r} is not a DOF of the model: give an index 0..{model.n - 1} or a name "
                              f"of model.dof_names")
         k = int(node)
-    elif f"{node}.{dof}" in names:
-        k = names.index(f"{node}.{dof}")
     elif str(node) in names:
         k = names.index(str(node))
     else:

@@ -79,6 +79,9 @@ def _named(structure, model, pattern: str, dof: str) -> np.ndarray:
     if dof not in ("ux", "uy"):
         raise ValueError(f"pattern={pattern!r} acts along dof={dof!r}, which is not a translation; "
                          "use dof='ux' or 'uy' (or give the pattern as a load vector)")
+    if pattern == "triangular" and structure is None:
+        raise ValueError("pattern='triangular' needs the heights of the nodes: give a structure "
+                         "(Frame2D or Structure), not a bare Model, or give the pattern as a load vector")
     r = direction_vector(structure, model, dof)
     Mr = np.asarray(model.M @ r, dtype=float).ravel()
     total = float(r @ Mr)
@@ -88,9 +91,6 @@ def _named(structure, model, pattern: str, dof: str) -> np.ndarray:
     if pattern == "uniform":
         p = Mr
     elif pattern == "triangular":
-        if structure is None:
-            raise ValueError("pattern='triangular' needs the heights of the nodes: give a structure "
-                             "(Frame2D or Structure), not a bare Model, or give the pattern as a load vector")
         p = Mr * _heights(structure)
     else:
         p = r * np.asarray(model.M @ first_mode(model), dtype=float).ravel()
