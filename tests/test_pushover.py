@@ -145,8 +145,6 @@ def test_a_bare_model_and_a_frame_builder():
     fr.mass(1, 2.0)
     r3 = pushover(fr, "uniform", node=1, target=0.1)
     assert r3.load_factor[-1] == pytest.approx(Fy / 2.0) and r3.base_shear[-1] == pytest.approx(Fy)
-    r4 = st.pushover([1.0], node=1, target=0.1)
-    assert r4.load_factor == pytest.approx(r.load_factor)
 
 
 # ---------------------------------------------------------------------- (c) uplift of a rigid block

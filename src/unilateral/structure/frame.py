@@ -1130,12 +1130,6 @@ class Structure:
                                       None if vdot is None else np.atleast_2d(vdot))
         return sigma[:, self.constraint_strains]
 
-    def pushover(self, pattern, **options):
-        """A static pushover of this structure: :func:`unilateral.pushover.pushover` ``(self, pattern, **options)``."""
-        from ..pushover import pushover
-
-        return pushover(self, pattern, **options)
-
     def node_displacement(self, sol, node, dof) -> np.ndarray:
         """History (N+1,) of DOF ``dof`` of ``node`` (supported and slave nodes included)."""
         if sol.u is None or sol.u.shape[1] != self.n:
