@@ -276,7 +276,7 @@ class Simulation:
         if k <= self._run.done:                 # computed ahead (a compiled chunk): no work to do
             done = self._run.done
         else:
-            with self._scope():
+            with self._scope(blas=k - self._run.done > 1):   # one step: setting the threads costs more
                 done = self._run.extend(k)
         self.n = min(done, k)
         if done >= k:
@@ -297,12 +297,13 @@ class Simulation:
 
 
 @contextlib.contextmanager
-def _scope(model, policy):
-    """A context in which ``policy`` is in force and BLAS runs with one thread if ``model`` is small
-    (the policy's ``blas_one_thread_max_n``); the threads are left as they are for larger models."""
+def _scope(model, policy, blas=True):
+    """A context in which ``policy`` is in force and, with ``blas``, BLAS runs with one thread if
+    ``model`` is small (the policy's ``blas_one_thread_max_n``; 20 us to set and restore); the
+    threads are left as they are for larger models."""
     n = getattr(model, "n", None)
     with size_policy(policy):
-        if n is None or n > policy.blas_one_thread_max_n:
+        if not blas or n is None or n > policy.blas_one_thread_max_n:
             yield
         else:
             with _blas_controller().limit(limits=1, user_api="blas"):
