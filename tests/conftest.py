@@ -8,6 +8,18 @@ import scipy.linalg as sla
 
 import unilateral as ul
 
+#: The files of ``pytest -m smoke``: the README, the entry points, every method against direct,
+#: stepping, the LCP solvers and the paper's example, in about a minute.
+SMOKE_FILES = {"test_readme.py", "test_solve.py", "test_conformance.py", "test_simulation.py", "test_lcp.py",
+               "test_size_policy.py", "test_architecture.py", "test_example_outputs.py"}
+
+
+def pytest_collection_modifyitems(config, items):
+    """Mark the tests of :data:`SMOKE_FILES` ``smoke``."""
+    for item in items:
+        if item.path.name in SMOKE_FILES:
+            item.add_marker(pytest.mark.smoke)
+
 # The paper's example (docs/theory.md, "The paper's example"), in kN, m, s.
 MASS = 40.0            # kN s^2/m
 K_SOIL = 200e3         # kN/m
