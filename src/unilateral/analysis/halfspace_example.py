@@ -107,6 +107,7 @@ def run_dataset(cases: dict, *, structure, model, load, figure: dict, meta: dict
         (:func:`unilateral.analysis.run.case_labels` of the constraints' kinds).
     """
     from ..io.dataset import cases_dataset
+    from .constraint_units import with_constraint_units
     from .outputs import (_on_common_axis, _strip_unit, _structure_results, _with_constraint_coords,
                           _with_node_displacements, _with_results)
 
@@ -119,6 +120,7 @@ def run_dataset(cases: dict, *, structure, model, load, figure: dict, meta: dict
     results = _structure_results(structure, model, cases, load=load, units=units, rule=rule, point=None,
                                  storeys=None)
     ds = _with_results(ds, results, True, list(padded))
+    ds = with_constraint_units(ds, structure, units)
     labels = example_labels(ds)
     ds.attrs["case_labels"] = json.dumps({name: labels.get(name, name) for name in padded})
     return ds

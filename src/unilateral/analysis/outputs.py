@@ -12,7 +12,10 @@ tables end there, and in ``results.nc`` its values after that are NaN.
                            frame, the structure's results of :mod:`unilateral.analysis.results`
                            (end forces, reactions, base shear, overturning moment, drifts,
                            accelerations, energies, modes), each with ``long_name`` and ``units``;
-                           a 3-D frame's: :data:`NOT_IN_3D` (its note in ``summary.json``)
+                           a 3-D frame's: :data:`NOT_IN_3D` (its note in ``summary.json``); the
+                           unit of each constraint's ``v`` and ``psi`` (rad and kN m for a hinge)
+                           in the coordinates ``v_unit`` and ``psi_unit``
+                           (:mod:`unilateral.analysis.constraint_units`)
 ``displacements.csv``      the unilateral case, one column per DOF (``bilateral_...`` likewise)
 ``constraints.csv``        ``v`` (uplift, plastic multiplier, slip) and ``psi`` per constraint unknown
                            (every CSV header states its unit: ``time [s]``, ``3.ux [m]``,
@@ -55,15 +58,21 @@ from ..io.atomic import WriteError, to_jsonable, write_json_atomic, write_text_a
 from ..io.dataset import Variable, cases_dataset, save_netcdf
 from ..io.folder import OutputFolder
 from ..io.results import save_csv
-from ..io.summary import format_summary, summary
+from ..io.summary import summary
 from ..result import Solution
 from ..solve import solve
-from .results import ground_motions_of, structure_results
+from .constraint_units import with_constraint_units
+from .terminal import (DISSIPATED, ENERGY_WARNING, FAILURE_HINT, _result_lines, case_name,  # noqa: F401 (re-exported)
+                     energy_warnings, report)
+from .results import ground_motion_samples, load_samples_of, structure_results
+from .results3d import structure_results_3d
+
+#: :func:`unilateral.analysis.results3d.structure_results_3d` by its former name here.
+_structure_results_3d = structure_results_3d
+#: :func:`unilateral.analysis.results.load_samples_of` by its former name here.
+_load_samples = load_samples_of
 
 COMPONENTS = ("ux", "uy", "rz")
-#: What to try when a case fails (printed under its message).
-FAILURE_HINT = ("  what to try: a smaller time step (--dt), another LCP solver (--lcp bpp or lemke), or "
-                "--method direct; the outputs hold the case up to where it stopped")
 
 
 def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", initial="static",
@@ -175,10 +184,11 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         ds = _with_node_displacements(ds, cases, structure, units)
         ds = _with_constraint_coords(ds, structure)
         if model is not None:
-            results_of = _structure_results_3d if three_d else _structure_results
+            results_of = structure_results_3d if three_d else _structure_results
             extra_results = results_of(structure, model, computed, load=load, units=units,
                                        rule=rule or main.stats.get("rule", "bdf2"), point=point, storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
+        ds = with_constraint_units(ds, structure, units)
     ds, responses = _with_spectra(ds, structure, extra_results, spectra, dt=_time_step(main), units=units,
                                   names=list(cases), three_d=three_d)
     response = responses[0] if responses else None
@@ -419,155 +429,12 @@ NOT_IN_3D = ("3-D frame: results.nc holds the displacements of every node (ux, u
              "floor_spectra yet (the model file's check refuses them)")
 
 
-def _load_samples(load, t, dt=None):
-    """The applied load (N+1, n) the run used at the times ``t`` (step ``dt``, default ``t[1] - t[0]``),
-    or None without a load.
-
-    A :class:`~unilateral.loads.LoadHistory` gives the samples the time-stepping used, its hat-function
-    averages (:meth:`~unilateral.loads.LoadHistory.grid_samples`, row 0 one-sided at ``t = 0+``, as
-    :mod:`unilateral.methods.common` and the batch's energy balance take them), not its point values:
-    with these the accelerations of the rule satisfy the equations of motion at every step (the
-    initial acceleration is that of row 0) and the work of the loads is the work the run put in.
-    """
-    if load is None:
-        return None
-    if isinstance(load, np.ndarray):
-        return np.asarray(load, dtype=float)[: len(t)]
-    if callable(getattr(load, "grid_samples", None)) and len(t) > 1:
-        step = float(dt) if dt else float(t[1] - t[0])
-        if np.allclose(np.diff(t), step, rtol=1e-9, atol=0.0):
-            return np.asarray(load.grid_samples(step, len(t) - 1)[0], dtype=float)
-    if callable(getattr(load, "sample", None)):
-        return np.asarray(load.sample(t), dtype=float)
-    if callable(load):
-        return np.array([load(tk) for tk in t], dtype=float)
-    return None
-
-
-def _structure_results_3d(structure, model, cases, *, load, units, rule, point, storeys=None):
-    """The results of a 3-D frame for :func:`_with_results`, per case: the base forces of
-    :func:`unilateral.structure.forces3d.base_forces` (``base_Fx`` ... ``base_Mz``, time) about
-    ``point`` (default: the centre of the base), the support and ground reactions, the drift ratios,
-    the accelerations (``acceleration``, ``absolute_acceleration``, ``ground_acceleration``), the end
-    forces of :func:`unilateral.structure.forces3d.end_forces` (``end_force``, ``axial_force``), the
-    histories of the yield and friction elements (:mod:`unilateral.analysis.inelastic`: hinges and
-    friction cones with the components ``roty``, ``rotz`` and ``t1``, ``t2``) and, with a load, the
-    energy balance (``energy_*``), and their peaks."""
-    from ..structure import forces3d as F3
-    from .inelastic import Inelastic
-    from .results import (_abs_peak, _energy_keys, _extreme, _put, acceleration_peaks, acceleration_results,
-                          bilateral_modes, element_end_forces, energy_peaks, energy_results, ground_motions_of)
-
-    units = units or {}
-    force, length, time = units.get("force", ""), units.get("length", ""), units.get("time", "")
-    acc_unit = f"{length}/{time}^2" if length and time else ""
-    moment = f"{force} {length}".strip()
-    main = max(cases.values(), key=lambda sol: len(sol.t))
-    samples = _load_samples(load, main.t, main.stats.get("dt"))
-    motions = ground_motions_of(structure, load)
-    point = F3.base_point(structure) if point is None else tuple(float(x) for x in point)
-    words = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
-             "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
-    variables, peaks, coords = {}, {}, {}
-    energy_keys = _energy_keys(structure)
-    inelastic = Inelastic(structure, units)
-    coords |= inelastic.coords()
-    for case, sol in cases.items():
-        if sol.u is None or len(sol.t) < 2:
-            continue
-        h = F3.histories(structure, sol, rule, load0=None if samples is None else samples[0])
-        acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
-        _node_accelerations(variables, structure, h, motions, case=case, unit=acc_unit)
-        ends = F3.end_forces(structure, h)
-        end = element_end_forces(coords, structure, ends, F3.END_COMPONENTS)
-        _put(variables, "end_force", ("time", "element", "end_component"), case, end,
-             "end forces and moments on the element in its local axes x' (i->j), y', z' (N, Vy, Vz along them; T, "
-             "My, Mz about them, right-hand positive)", f"{force} (N, V); {moment} (T, M)".strip())
-        axial = np.where(np.any(end[:, :, 6] != 0, axis=0), end[:, :, 6], end[:, :, 9])
-        _put(variables, "axial_force", ("time", "element"), case, axial,
-             "element force along its axis, tension positive (moment of a rotational spring)", force)
-        reaction = F3.reactions(structure, h, sol)
-        base = F3.base_forces(structure, reaction, point)
-        moment = f"{force} {length}".strip()
-        if reaction["support"]:
-            coords["support"] = list(reaction["support"])
-            entry = variables.setdefault("support_reaction", (("time", "support"), {}, {
-                "long_name": "force (moment about rx, ry, rz) of the support on the structure at node.dof",
-                **({"units": f"{force} or {moment}"} if force else {})}))
-            entry[1][case] = np.column_stack(list(reaction["support"].values()))
-        grounded = {**reaction["ground_elements"], **reaction.get("footings", {})}
-        if grounded:
-            coords["ground_element"] = list(grounded)
-            coords["force_component"] = list(F3.BASE_COMPONENTS)
-            entry = variables.setdefault("ground_reaction", (("time", "ground_element", "force_component"), {}, {
-                "long_name": "force and moment of the ground on the structure through the element or the footing "
-                             "patch, at its node", **({"units": f"{force} (F); {moment} (M)"} if force else {})}))
-            entry[1][case] = np.stack(list(grounded.values()), axis=1)
-        for key, values in base.items():
-            unit = force if key.startswith("F") else f"{force} {length}".strip()
-            entry = variables.setdefault(f"base_{key}", (("time",), {}, {
-                "long_name": f"{words[key]}, the resultant of the ground's forces on the structure"
-                             + ("" if key.startswith("F") else " about base_point"), **({"units": unit} if unit else {})}))
-            entry[1][case] = np.asarray(values, dtype=float)
-        peaks[case] = {"base_forces": {key: _extreme(sol.t, values) for key, values in base.items()},
-                       "end_forces": {name: {comp: _abs_peak(h.t, f[:, k]) for k, comp in enumerate(F3.END_COMPONENTS)
-                                             if np.any(f[:, k])} for name, f in ends.items()}}
-        if motions:
-            peaks[case]["absolute_acceleration"] = acceleration_peaks(structure, h, motions, ("ux", "uy", "uz"))
-        energy = None
-        if samples is not None:
-            fnd = structure.foundation
-            energy = energy_results(variables, structure, h, samples, case=case,
-                                    contact=None if fnd is None else fnd.contact_load(structure, sol),
-                                    keys=energy_keys, unit=moment)
-            peaks[case]["energy"] = energy_peaks(h.t, energy, energy_keys)
-        if inelastic:                           # the frame's own unknowns (h: without the footings')
-            histories = inelastic.histories(h, structure.element_deformations(h.u, h.v)[0])
-            for name, (dims, values, long_name, unit) in histories.items():
-                _put(variables, name, dims, case, values, long_name, unit)
-            peaks[case] |= inelastic.peaks(h.t, h, histories, None if energy is None else energy["unknown_work"])
-        drifts = F3.storey_drifts(structure, h)
-        if drifts:
-            coords["storey"] = list(drifts)
-            for axis in "xy":
-                entry = variables.setdefault(f"drift_ratio_{axis}", (("time", "storey"), {}, {
-                    "long_name": f"interstorey drift ratio along {axis}, the largest over the plan's corners",
-                    "units": "1"}))
-                entry[1][case] = np.column_stack([d[f"max_ratio_{axis}"] for d in drifts.values()])
-            peaks[case]["drift_ratio"] = {f"{label} {axis}": _abs_peak(sol.t, d[f"max_ratio_{axis}"])
-                                          for label, d in drifts.items() for axis in "xy"}
-    _, static = bilateral_modes(structure, model, peaks, coords, time_unit=units.get("time", ""))
-    return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
-            "attrs": {"base_point": list(point)}}
-
-
-def _node_accelerations(variables, structure, h, motions, *, case, unit):
-    """``node_acceleration`` (time, node, component) of a 3-D frame: the accelerations of the rule of every
-    node's six DOFs relative to the ground (supported DOFs 0, rigidly linked nodes following their
-    masters) and, under ground motions, ``node_absolute_acceleration``: plus the ground's translation
-    ``sum a_g,k d_k`` on the ``ux``, ``uy``, ``uz`` of every node (a supported node moves with the ground)."""
-    from .results import _put
-
-    relative = structure.dofs.nodal(h.uddot)                    # (N+1, nodes, 6)
-    _put(variables, "node_acceleration", ("time", "node", "component"), case, relative,
-         "acceleration of every node relative to the ground (of the time rule)", f"{unit} (ux, uy, uz); rad/s^2 "
-         "(rx, ry, rz)" if unit else "")
-    if motions:
-        absolute = relative.copy()
-        for direction, a_g in motions:
-            d = np.zeros(relative.shape[2])
-            d[list(structure.dofs.dof_names).index(direction)] = 1.0
-            absolute += np.asarray(a_g(h.t), dtype=float)[:, None, None] * d
-        _put(variables, "node_absolute_acceleration", ("time", "node", "component"), case, absolute,
-             "absolute acceleration of every node: relative plus the ground's", f"{unit} (ux, uy, uz); rad/s^2 "
-             "(rx, ry, rz)" if unit else "")
-
-
 def _structure_results(structure, model, cases, *, load, units, rule, point, storeys):
     main = max(cases.values(), key=lambda sol: len(sol.t))        # the longest time axis
-    samples = _load_samples(load, main.t, main.stats.get("dt"))
+    samples = load_samples_of(load, main.t, main.stats.get("dt"))
     return structure_results(structure, model, cases, rule=rule, load_samples=samples,
-                             ground_motions=ground_motions_of(structure, load), point=point,
+                             ground_motions=ground_motion_samples(structure, load, main.t, main.stats.get("dt")),
+                             point=point,
                              storey_pairs=storeys, units=units)
 
 
@@ -752,215 +619,6 @@ def _csv(columns) -> str:
     writer.writerow(columns)
     writer.writerows(np.column_stack(list(columns.values())).astype(float).tolist())
     return buffer.getvalue()
-
-
-def report(result: dict) -> str:
-    """The terminal summary of a run: :func:`format_summary`, the main history's extremes and the
-    structure's key results (periods, base shear, overturning moment, drift, energy balance)."""
-    extra = result.get("extra", {})
-    text = format_summary({**result, "extra": {k: v for k, v in extra.items()
-                                               if k not in ("figure", "cases", "figure_node", "figure_dof",
-                                                            "comparison")}})
-    units = result.get("units") or {}
-    labels = result.get("case_labels") or {}       # the legend labels of the figures, if not the case names
-    fig = extra.get("figure")
-    if fig:
-        unit = units.get("length", "") if fig["dof"] != "rz" else "rad"
-        lines = [f"{fig['dof']} of node {fig['node']} [{unit}]: static {fig['static']:.4g}"]
-        width = max(15, *(len(labels.get(name, name)) for name in fig["peak"]))
-        for name, peak in fig["peak"].items():
-            lines.append(f"  {labels.get(name, name):>{width}}: max {peak:.4g}, min {fig['minimum'][name]:.4g}")
-        text += "\n\n" + "\n".join(lines)
-    results = result.get("results") or {}
-    if results:
-        text += "\n\n" + "\n".join(_result_lines(results, units, labels))
-    if result.get("spectra"):
-        text += "\n" + _spectra_line(result["spectra"], units)
-        for direction, each in result["spectra"].get("by_direction", {}).items():     # a 3-D frame's other directions
-            if direction != result["spectra"]["direction"]:
-                text += "\n" + _spectra_line(each, units)
-    for name, case in extra.get("cases", {}).items():
-        if not case["success"]:
-            text += (f"\n{case_name(name, labels)} case FAILED at t = {case.get('t_reached', float('nan')):.4g} "
-                     f"(step {case.get('steps_computed', '?')}): {case['message']}\n{FAILURE_HINT}")
-    for warning in result.get("warnings", ()):
-        text += f"\nWARNING: {warning}"
-    return text
-
-
-def _spectra_line(spectra: dict, units: dict) -> str:
-    """``response spectra (5 % damping, ux): peak Sa 11 m/s^2 at T = 0.58 s (ground), ...`` of the
-    ``spectra`` of ``summary.json``: the ground and at most two floors."""
-    length, time = units.get("length", ""), units.get("time", "")
-    unit = f" {length}/{time}^2" if length and time else ""
-    peaks = [("ground", spectra["ground"])] + [(f"node {node}, {case}", peak)
-                                               for case, nodes in spectra.get("floors", {}).items()
-                                               for node, peak in nodes.items()]
-    shown = "; ".join(f"{p['Sa']:.4g}{unit} at T = {p['period']:.3g} {time} ({where})".replace(" )", ")")
-                      for where, p in peaks[:3])
-    more = f"; {len(peaks) - 3} more in spectra.csv" if len(peaks) > 3 else ""
-    return (f"response spectra ({100 * spectra['damping']:g} % damping, {spectra['direction']}): peak Sa "
-            f"{shown}{more}")
-
-
-#: A relative error of the energy balance above this is warned about (terminal and summary.json).
-ENERGY_WARNING = 0.02
-
-
-def case_name(name: str, labels: dict) -> str:
-    """A case on the terminal: its key (``unilateral``, ``bilateral``) and its legend label, if other."""
-    label = (labels or {}).get(name, name)
-    return name if label == name else f"{name} ({label})"
-
-
-def energy_warnings(results: dict, *, rule=None, dt=None) -> list[str]:
-    """Warnings for the cases whose energy balance is off by more than :data:`ENERGY_WARNING`."""
-    out = []
-    for case, p in results.items():
-        error = (p.get("energy") or {}).get("max_relative_error")
-        if error is None or not error > ENERGY_WARNING:
-            continue
-        step = f" (now {dt:g}, e.g. half of it)" if isinstance(dt, (int, float)) else ""
-        if rule in ("bdf1", "bdf2"):
-            what = (f"the {rule} rule damps numerically at this time step: use --rule trapezoidal (it conserves "
-                    f"energy) or a smaller --dt{step}")
-        else:
-            what = f"the time step is too coarse for the contacts: use a smaller --dt{step}"
-        out.append(f"{case} case: the energy balance is off by {100 * error:.2g} % (more than "
-                   f"{100 * ENERGY_WARNING:g} %) at t = {p['energy'].get('t_max_relative_error', float('nan')):.4g}; "
-                   f"{what}")
-    return out
-
-
-def _shear_is_zero(p: dict) -> bool:
-    """No horizontal force reaches the ground (vertical loads only): the base shear is zero at every step."""
-    shear, vertical = p["base_shear"], p.get("base_vertical") or {}
-    scale = max(abs(vertical.get("max", 0.0)), abs(vertical.get("min", 0.0)), 1e-300)
-    return max(abs(shear["max"]), abs(shear["min"])) <= 1e-9 * scale
-
-
-def _result_lines(results: dict, units: dict, labels=None) -> list[str]:
-    force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
-    lines = []
-    for case, p in results.items():
-        if not lines and p.get("periods"):
-            periods = ", ".join(f"{T:.4g}" for T in p["periods"][:3])
-            lines.append(f"periods of the bilateral structure [{time}]: {periods}")
-            for label, values in p.get("frame_periods", {}).items():
-                lines.append(f"  {label}, alone (the gaps open): {', '.join(f'{T:.4g}' for T in values)}")
-        head = f"{(labels or {}).get(case, case)}:"
-        if "base_forces" in p:                                  # a 3-D frame
-            parts = []
-            for key, b in p["base_forces"].items():
-                peak = b["max"] if abs(b["max"]) >= abs(b["min"]) else b["min"]
-                unit = force if key.startswith("F") else f"{force} {length}"
-                parts.append(f"{key} {peak:.4g} {unit}".rstrip())
-            lines.append(f"{head} peak base forces {', '.join(parts)}")
-            if p.get("drift_ratio"):
-                label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
-                lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}, at a corner) "
-                             f"at t = {d['t']:.4g} {time}".rstrip())
-            lines += [f"{' ' * len(head)} {line}" for line in _family_lines(p, units)]
-            if p.get("energy"):
-                lines.append(_energy_line(p["energy"], head, force, length))
-            continue
-        shear = p["base_shear"]
-        peak = shear["max"] if abs(shear["max"]) >= abs(shear["min"]) else shear["min"]
-        t_peak = shear["t_max"] if peak == shear["max"] else shear["t_min"]
-        mom = p["overturning_moment"]
-        mpeak = mom["max"] if abs(mom["max"]) >= abs(mom["min"]) else mom["min"]
-        t_m = mom["t_max"] if mpeak == mom["max"] else mom["t_min"]
-        if _shear_is_zero(p) and p.get("base_vertical"):
-            vert = p["base_vertical"]
-            vpeak = vert["max"] if abs(vert["max"]) >= abs(vert["min"]) else vert["min"]
-            t_v = vert["t_max"] if vpeak == vert["max"] else vert["t_min"]
-            lines.append(f"{head} no base shear (no horizontal force on the ground); peak vertical ground force "
-                         f"{vpeak:.4g} {force} at t = {t_v:.4g} {time}; overturning moment {mpeak:.4g} {force} "
-                         f"{length} at t = {t_m:.4g} {time}")
-        else:
-            lines.append(f"{head} peak base shear {peak:.4g} {force} at t = {t_peak:.4g} {time}; "
-                         f"overturning moment {mpeak:.4g} {force} {length} at t = {t_m:.4g} {time}")
-        for label, b in p.get("frames", {}).items():
-            fshear = b["base_shear"]
-            fpeak = fshear["max"] if abs(fshear["max"]) >= abs(fshear["min"]) else fshear["min"]
-            t_f = fshear["t_max"] if fpeak == fshear["max"] else fshear["t_min"]
-            lines.append(f"{' ' * len(head)} {label}: peak base shear {fpeak:.4g} {force} at t = {t_f:.4g} {time}")
-        if p.get("drift_ratio"):
-            label, d = max(p["drift_ratio"].items(), key=lambda item: abs(item[1]["value"]))
-            lines.append(f"{' ' * len(head)} peak drift ratio {d['value']:.3g} (storey {label}) at t = {d['t']:.4g} {time}")
-        if p.get("linear_members_note"):
-            lines.append(f"{' ' * len(head)} note: {p['linear_members_note']}")
-        lines += [f"{' ' * len(head)} {line}" for line in _family_lines(p, units)]
-        if p.get("energy"):
-            lines.append(_energy_line(p["energy"], head, force, length))
-    return lines
-
-
-def _energy_line(e: dict, head: str, force: str, length: str) -> str:
-    """``energy balance: relative error ..., input work ..., dissipated ...`` of a case's peaks ``e``."""
-    terms = " + ".join(f"{e[key]:.4g} ({word})" for key, word in DISSIPATED if key in e)
-    return (f"{' ' * len(head)} energy balance: relative error {e['max_relative_error']:.2g}, "
-            f"input work {e['input_work']:.4g}, dissipated {terms} [{force} {length}]")
-
-
-#: The dissipation terms of the energy balance in the terminal summary.
-DISSIPATED = (("damping_dissipated", "damping"), ("contact_dissipated", "contact"), ("plastic_work", "plastic"),
-              ("friction_work", "friction"))
-
-
-def _family_lines(p: dict, units: dict) -> list[str]:
-    """The yield and friction lines of a case's peaks ``p``, and then its residual drift."""
-    lines = []
-    if p.get("yield_elements"):
-        lines.append(_yield_line(p["yield_elements"], units))
-    if p.get("friction_elements"):
-        lines.append(_friction_line(p["friction_elements"], units))
-    drift = p.get("residual_drift")
-    if lines and drift:
-        lines.append(f"residual drift ratio {100 * drift['ratio']:.2g} % (storey {drift['storey']}) at the last "
-                     f"step, t = {drift['t']:.4g} {units.get('time', '')}".rstrip())
-    return lines
-
-
-def _yield_line(elements: dict, units: dict) -> str:
-    """``yield: 14 of 18 hinges yielded, peak ductility 3.2 (B1.i), ...``."""
-    kinds = {e["kind"] for e in elements.values()}
-    noun = {"hinge": "hinges", "yield link": "yield links"}.get(kinds.pop(), "") if len(kinds) == 1 else ""
-    yielded = sum(e["yielded"] for e in elements.values())
-    text = f"yield: {yielded or 'none'} of {len(elements)} {noun or 'yield elements'} yielded"
-    if not yielded:
-        ratios = {name: e["peak_force_ratio"]["value"] for name, e in elements.items()}
-        name = max(ratios, key=ratios.get)
-        return text + f", peak force {ratios[name]:.3g} x the yield force ({name})"
-    ductile = {name: e["ductility"]["value"] for name, e in elements.items() if "ductility" in e}
-    if ductile:
-        name = max(ductile, key=ductile.get)
-        text += f", peak ductility {ductile[name]:.3g} ({name})"
-    rigid = {name: e for name, e in elements.items() if "ductility" not in e}
-    if rigid:
-        name, e = max(rigid.items(), key=lambda item: abs(item[1]["peak_plastic_deformation"]["value"]))
-        word = "rotation" if e["unit"] == "rad" else "deformation"
-        text += f", peak plastic {word} {abs(e['peak_plastic_deformation']['value']):.3g} {e['unit']} ({name})"
-    work = [e["plastic_work"] for e in elements.values() if e["plastic_work"] is not None]
-    if work:
-        text += f", plastic work {sum(work):.4g} {units.get('force', '')} {units.get('length', '')}".rstrip()
-    return text
-
-
-def _friction_line(elements: dict, units: dict) -> str:
-    """``friction: 2 of 9 friction elements slid, peak slip 0.012 m (F1), ...``."""
-    length = units.get("length", "")
-    slid = sum(e["slid"] for e in elements.values())
-    if not slid:
-        return f"friction: none of {len(elements)} friction elements slid"
-    name, e = max(elements.items(), key=lambda item: abs(item[1]["peak_slip"]["value"]))
-    text = (f"friction: {slid} of {len(elements)} friction elements slid, peak slip "
-            f"{abs(e['peak_slip']['value']):.3g} {length} ({name}), total slip "
-            f"{sum(e['total_slip'] for e in elements.values()):.3g} {length}")
-    work = [e["friction_work"] for e in elements.values() if e["friction_work"] is not None]
-    if work:
-        text += f", friction work {sum(work):.4g} {units.get('force', '')} {length}".rstrip()
-    return text
 
 
 def _with_unit(label, units, dof):

@@ -8,7 +8,7 @@ variable                  dims                                   content
 ========================  =====================================  ===================================
 ``acceleration``          time, dof                              ``u''`` of the rule (relative)
 ``absolute_acceleration`` time, dof                              ``u'' + r a_g`` (ground motion only)
-``ground_acceleration``   time, excitation                       ``a_g`` of each ground motion
+``ground_acceleration``   time, excitation                       ``a_g`` as the run sampled it
 ``end_force``             time, element, end_component           ``N_i, V_i, M_i, N_j, V_j, M_j``
 ``axial_force``           time, element                          ``N_j``: tension positive
 ``support_reaction``      time, support                          force of the ground at ``node.dof``
@@ -26,7 +26,7 @@ variable                  dims                                   content
 ``mode_shape``, ...
 ========================  =====================================  ===================================
 
-A 3-D frame's results (:func:`unilateral.analysis.outputs._structure_results_3d`) share the
+A 3-D frame's results (:func:`unilateral.analysis.results3d.structure_results_3d`) share the
 accelerations (:func:`acceleration_results`), the energy balance (:func:`energy_results`, the
 arithmetic of :mod:`unilateral.analysis.energy` is that of the natural form, free of the dimension)
 and the yield and friction elements' histories (:class:`~unilateral.analysis.inelastic.Inelastic`:
@@ -55,21 +55,22 @@ ENERGY_KEYS = ("kinetic", "elastic_structure", "elastic_unilateral", "damping_di
 FAMILY_ENERGY = {"plastic_work": "yield", "friction_work": "friction"}
 
 
-def ground_motions_of(structure, load) -> list:
-    """``[(direction, a_g)]`` of the ground-motion terms ``(-M r, a_g)`` of a LoadHistory (directions
-    ``ux``, ``uy`` and, for a 3-D frame, ``uz``). A term along a vector ``d`` (``r = sum_k d_k r_k``,
-    a record at an angle in plan) is one entry per axis it moves along, ``(axis, d_k a_g)``: the
-    accelerations and spectra that sum ``r_k a_g,k`` see the same ground motion."""
+def ground_terms(structure, load) -> list:
+    """``[(direction, term, c)]``: the ground-motion terms ``(-M r, a_g)`` of a LoadHistory, each as
+    the index ``term`` of its term in ``load.terms`` and the share ``c`` of it along ``direction``
+    (``ux``, ``uy`` and, for a 3-D frame, ``uz``). A term along a vector ``d`` (``r = sum_k d_k r_k``,
+    a record at an angle in plan) is one entry per axis it moves along, ``(axis, term, d_k)``; a
+    term along one axis is ``(axis, term, 1.0)``."""
     out = []
     names = getattr(structure.dofs, "dof_names", ("ux", "uy", "rz"))
     axes = [d for d in ("ux", "uy", "uz") if d in names]
     patterns = np.column_stack([-np.asarray(structure.M @ structure.influence(d)).ravel() for d in axes])
-    for vector, f in getattr(load, "terms", ()):
+    for term, (vector, _) in enumerate(getattr(load, "terms", ())):
         vector = np.asarray(vector, dtype=float)
         single = [d for k, d in enumerate(axes)
                   if patterns[:, k].any() and np.allclose(vector, patterns[:, k], rtol=1e-12, atol=0.0)]
         if single:
-            out.append((single[0], f))
+            out.append((single[0], term, 1.0))
             continue
         if len(axes) < 3 or not vector.any():
             continue                                        # vectors: 3-D frames (model files, Frame3D.influence)
@@ -77,8 +78,86 @@ def ground_motions_of(structure, load) -> list:
         along = np.abs(d) > 1e-15
         if (along.sum() >= 2 and np.abs(patterns @ d - vector).max() <= 1e-12 * np.abs(vector).max()
                 and abs(np.linalg.norm(d) - 1.0) <= 1e-9):
-            out += [(axis, _Scaled(f, float(c))) for axis, c, on in zip(axes, d, along) if on]
+            out += [(axis, term, float(c)) for axis, c, on in zip(axes, d, along) if on]
     return out
+
+
+def ground_motions_of(structure, load) -> list:
+    """``[(direction, a_g)]`` of the ground-motion terms of a LoadHistory (:func:`ground_terms`), ``a_g``
+    the time function of the record (its point values; the run used :func:`ground_motion_samples`).
+    The accelerations and spectra that sum ``r_k a_g,k`` see the same ground motion."""
+    out = []
+    for direction, term, c in ground_terms(structure, load):
+        f = load.terms[term][1]
+        out.append((direction, f if c == 1.0 else _Scaled(f, c)))
+    return out
+
+
+def ground_motion_samples(structure, load, t, dt=None) -> list:
+    """``[(direction, a_g)]`` with ``a_g`` (N+1,) the ground accelerations the run used at the times ``t``.
+
+    The time-stepping integrates each term of a :class:`~unilateral.loads.LoadHistory` through its
+    samples of :meth:`~unilateral.loads.LoadHistory.grid_factors` (hat-function averages, row 0
+    one-sided at ``t = 0+``; :func:`unilateral.methods.common.step_loads`), not through the record's
+    point values: with these samples the absolute accelerations close the equations of motion at every
+    step (base shear = ``r^T (M a_abs + C u')``), and they are the ones the input work of the energy
+    balance takes. A time axis that is not uniform (step ``dt``, default ``t[1] - t[0]``) takes the
+    point values.
+
+    Parameters
+    ----------
+    structure : Structure
+    load : LoadHistory, or anything else (no ground motion: ``[]``)
+    t : (N+1,) times [time unit], ``t_k = k dt``
+    dt : float, optional: the run's time step [time unit]
+
+    Returns
+    -------
+    list of ``(direction, ndarray (N+1,))`` [length/time^2], in the order of :func:`ground_terms`
+    """
+    terms = ground_terms(structure, load)
+    if not terms:
+        return []
+    t = np.asarray(t, dtype=float)
+    step = float(dt) if dt else (float(t[1] - t[0]) if t.size > 1 else 0.0)
+    if t.size > 1 and callable(getattr(load, "grid_factors", None)) and \
+            np.allclose(np.diff(t), step, rtol=1e-9, atol=0.0):
+        factors = load.grid_factors(step, t.size - 1)[0]
+        return [(direction, c * np.asarray(factors[:, term], dtype=float)) for direction, term, c in terms]
+    return [(direction, c * np.asarray(load.terms[term][1](t), dtype=float)) for direction, term, c in terms]
+
+
+def load_samples_of(load, t, dt=None):
+    """The applied load (N+1, n) the run used at the times ``t`` (step ``dt``, default ``t[1] - t[0]``),
+    or None without a load.
+
+    A :class:`~unilateral.loads.LoadHistory` gives the samples the time-stepping used, its hat-function
+    averages (:meth:`~unilateral.loads.LoadHistory.grid_samples`, row 0 one-sided at ``t = 0+``, as
+    :mod:`unilateral.methods.common` and the batch's energy balance take them), not its point values:
+    with these the accelerations of the rule satisfy the equations of motion at every step (the
+    initial acceleration is that of row 0) and the work of the loads is the work the run put in.
+    """
+    if load is None:
+        return None
+    if isinstance(load, np.ndarray):
+        return np.asarray(load, dtype=float)[: len(t)]
+    if callable(getattr(load, "grid_samples", None)) and len(t) > 1:
+        step = float(dt) if dt else float(t[1] - t[0])
+        if np.allclose(np.diff(t), step, rtol=1e-9, atol=0.0):
+            return np.asarray(load.grid_samples(step, len(t) - 1)[0], dtype=float)
+    if callable(getattr(load, "sample", None)):
+        return np.asarray(load.sample(t), dtype=float)
+    if callable(load):
+        return np.array([load(tk) for tk in t], dtype=float)
+    return None
+
+
+def motions_at(ground_motions, t) -> list:
+    """``[(direction, a_g (N+1,))]`` of ``ground_motions`` at the times ``t`` (N+1,): a time function is
+    evaluated there, samples (of a longer run, :func:`ground_motion_samples`) are cut to ``t``'s length."""
+    t = np.asarray(t, dtype=float)
+    return [(d, np.asarray(a_g(t), dtype=float) if callable(a_g) else np.asarray(a_g, dtype=float)[: t.size])
+            for d, a_g in ground_motions]
 
 
 class _Scaled:
@@ -103,7 +182,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     rule : the time rule of the runs (name or Rule)
     load_samples : (N+1, n) applied load at the steps, optional (energy input and initial
         acceleration; without it no energy balance is computed)
-    ground_motions : ``[(direction, a_g)]``, see :func:`ground_motions_of`
+    ground_motions : ``[(direction, a_g)]``: the samples (N+1,) the run used, :func:`ground_motion_samples`
+        (or time functions, :func:`ground_motions_of`, evaluated at the steps)
     point : (x0, y0) of the overturning moment; default: the centre of the base
         (:func:`unilateral.structure.forces.base_point`: the mean x of the ground-connected nodes
         at the lowest level)
@@ -381,17 +461,19 @@ def acceleration_results(variables, coords, structure, h, ground_motions, *, cas
     _put(variables, "acceleration", ("time", "dof"), case, h.uddot,
          "acceleration relative to the ground (of the time rule)", unit)
     if ground_motions:
+        motions = motions_at(ground_motions, h.t)
         _put(variables, "absolute_acceleration", ("time", "dof"), case,
-             F.absolute_acceleration(structure, h, ground_motions), "absolute acceleration u'' + r a_g", unit)
+             F.absolute_acceleration(structure, h, motions), "absolute acceleration u'' + r a_g", unit)
         _put(variables, "ground_acceleration", ("time", "excitation"), case,
-             np.column_stack([np.asarray(a_g(h.t), dtype=float) for _, a_g in ground_motions]),
-             "ground acceleration a_g", unit)
+             np.column_stack([a_g for _, a_g in motions]),
+             "ground acceleration a_g as the run used it (the record's hat-function averages over the steps, "
+             "those of the input work)", unit)
         coords["excitation"] = [f"{k}:{d}" for k, (d, _) in enumerate(ground_motions)]
 
 
 def acceleration_peaks(structure, h, ground_motions, directions=("ux", "uy")) -> dict:
     """The peak absolute acceleration (``value``, ``t``) of each free DOF with mass along ``directions``."""
-    acc = F.absolute_acceleration(structure, h, ground_motions)
+    acc = F.absolute_acceleration(structure, h, motions_at(ground_motions, h.t))
     names = structure.dofs.names
     return {names[k]: _abs_peak(h.t, acc[:, k]) for k in range(acc.shape[1])
             if names[k].endswith(directions) and structure.M[k, k] > 0}

@@ -163,7 +163,8 @@ class Quantity(Table):
         description="Column name (letters, digits, _).")
     type: Literal[QUANTITY_TYPES] = Field(title="quantity type")
     elements: list[Name] | None = Field(None, description="uplift, contact_force: unilateral elements "
-                                                          "(default: all).")
+                                                          "(default: every contact unknown; plastic "
+                                                          "multipliers, slips and shears left out).")
     over: Literal["max", "each"] = Field("max", title="combination", description=(
         "uplift, contact_force: max over the elements (one column), or each (one column per element)."))
     node: NodeId | None = Field(None, description="displacement, residual: the node.")

@@ -437,10 +437,13 @@ def quantity_columns(doc: StudyFile, variants) -> list[str]:
     for quantity in doc.quantities:
         if quantity.type in ("uplift", "contact_force") and quantity.over == "each":
             names = quantity.elements
-            if names is None:
+            if names is None:                   # the contacts (plastic multipliers and slips left out)
+                from .worker import contact_names
+
                 names = []
                 for variant in variants:
-                    names += [n for n in variant.constraint_names if n not in names]
+                    contacts = contact_names(getattr(variant.spec, "model", None), variant.constraint_names)
+                    names += [n for n in contacts if n not in names]
             columns += [f"{quantity.name}.{n}" for n in names]
         else:
             columns.append(quantity.name)

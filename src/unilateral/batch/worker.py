@@ -213,6 +213,28 @@ def analysis_load(spec, vector, record, scale: float):
 
 
 # ---------------------------------------------------------------------- peaks
+def contact_names(model, names=None) -> list:
+    """The names of the contact unknowns of ``model`` (the family kind ``"contact"``: soil and gap
+    elements, cables, footing patches): the default elements of the quantities ``uplift`` and
+    ``contact_force``, whose ``v`` is an opening and ``psi`` minus a contact force. Plastic multipliers
+    (``yield``), slips (``friction``) and a sliding footing's shears (``shear``) are left out.
+
+    Parameters
+    ----------
+    model : Model or FoundationModel (its step law's ``kinds``, one per unknown)
+    names : the unknowns' names (default ``model.constraint_names``)
+
+    Returns
+    -------
+    list of str, in the model's order (every name if the model states no kinds)
+    """
+    names = list(model.constraint_names if names is None else names)
+    kinds = getattr(getattr(model, "law", None), "kinds", None)
+    if kinds is None or len(kinds) != len(names):
+        return names
+    return [n for n, kind in zip(names, kinds) if kind == "contact"]
+
+
 def _peak(x) -> float:
     x = np.asarray(x, dtype=float)
     return float(np.max(np.abs(x))) if x.size else math.nan
@@ -226,7 +248,11 @@ def collect(quantity: dict, sol, spec, ys: dict, frame: FrameResults | None = No
     kind, name = quantity["type"], quantity["name"]
     notes = []
     if kind in ("uplift", "contact_force"):
-        names = quantity["elements"] or list(sol.constraint_names)
+        names = quantity["elements"] or contact_names(spec.model, sol.constraint_names)
+        if not names:
+            return {name: math.nan} if quantity["over"] != "each" else {}, [
+                f"{name}: not available: the model has no contact unknowns (its unknowns are plastic "
+                "multipliers, slips or shears; name them in elements to take their peaks)"]
         missing = [n for n in names if n not in sol.constraint_names]
         if missing:
             raise KeyError(f"quantity {name}: no unilateral element {missing[0]!r} "
@@ -255,7 +281,10 @@ def collect(quantity: dict, sol, spec, ys: dict, frame: FrameResults | None = No
     if kind in ("base_shear", "energy_error"):
         if frame is None:
             return {name: math.nan}, [f"{name}: {NOTES[kind]}"]
-        return {name: frame.peak_base_shear() if kind == "base_shear" else frame.energy_error()}, notes
+        try:
+            return {name: frame.peak_base_shear() if kind == "base_shear" else frame.energy_error()}, notes
+        except (ValueError, TypeError, NotImplementedError) as exc:     # refused with its reason, not 0
+            return {name: math.nan}, [f"{name}: not available: {exc}"]
     raise ValueError(f"unknown quantity type {kind!r}")
 
 
@@ -295,8 +324,9 @@ class FrameResults:
     :class:`~unilateral.structure.forces.BaseForceOperator`, the energies those of its
     :class:`~unilateral.analysis.energy.EnergyBalance`. A footing on a soil medium is handled as
     :func:`unilateral.analysis.results.structure_results` does: the frame alone, loaded by the
-    contact forces too (vertical: no base shear), whose work went into the soil. Both numbers
-    equal those of ``structure_results`` to round-off (``tests/test_batch.py``).
+    contact forces too, whose work went into the soil; the soil's forces on the footings are
+    ground reactions (the horizontal ones of footings that slide are in the base shear). Both
+    numbers equal those of ``structure_results`` to round-off (``tests/test_batch.py``).
 
     Parameters
     ----------
@@ -330,14 +360,28 @@ class FrameResults:
         peak of the horizontal resultant ``sqrt(Fx^2 + Fy^2)``
         (:func:`unilateral.structure.forces3d.base_forces`)."""
         if not self.three_d:
-            return _peak(self.operators.base_forces.base_shear(self.state))
+            shear = self.operators.base_forces.base_shear(self.state)
+            if self.foundation is not None:         # the soil's forces on the footings (horizontal: sliding)
+                forces, _ = self.foundation.ground_reactions(self.operators.structure, self.sol)
+                shear = shear + sum(f[:, 0] for f in forces.values())
+            return _peak(shear)
         from ..structure import forces3d as F3
 
         structure, sol = self.operators.structure, self.sol
-        load0 = self.load.sample(sol.t[:1])[0] if hasattr(self.load, "sample") else None
-        h = F3.histories(structure, sol, self.rule, load0=load0)
+        h = F3.histories(structure, sol, self.rule, load0=self.initial_load())
         base = F3.base_forces(structure, F3.reactions(structure, h, sol), F3.base_point(structure))
         return _peak(np.hypot(base["Fx"], base["Fy"]))
+
+    def initial_load(self):
+        """The load (n,) the run used at ``t = 0+`` (row 0 of its samples, :func:`_load_samples`: the
+        hat-function average of a LoadHistory), for the initial acceleration; None without a load."""
+        sol = self.sol
+        if self.load is None or len(sol.t) < 2:
+            return None
+        q = _load_samples(self.load, sol.u.shape[1], len(sol.t) - 1, float(sol.t[1] - sol.t[0]))
+        if isinstance(q, np.ndarray):
+            return q[0]
+        return q.constant + q.factors[0] @ q.vectors
 
     def energy_error(self) -> float:
         """Largest relative error of the energy balance over the run."""

@@ -428,7 +428,8 @@ def gaps_figure(ds):
     if not gaps:
         return None
     t = d["time"].values
-    e, psi = d["constraint_deformation"].values, d["psi"].values
+    e = d["constraint_deformation"].values
+    psi = impact_forces(d["psi"].values, _force_reference(_case(ds, main_case(ds))))
     gap = d["constraint_gap"].values.astype(float)
     names = [str(c) for c in d["constraint"].values]
     lunit, lf = length_scale(_unit(d, "length"), max(float(np.max(np.abs(e[:, gaps]))), float(np.max(gap[gaps]))))
@@ -446,10 +447,43 @@ def gaps_figure(ds):
         ax.legend(loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2, frameon=False, borderaxespad=0.1)
         low.plot(*envelope(t, -ff * psi[:, i]), color="C3")
         low.set_ylim(0.0, 1.08 * ff * float(-psi[:, i].min()) or 1.0)
+        if not np.any(psi[:, i] < 0.0):
+            low.text(0.5, 0.5, "no impact (the gap never closes)", transform=low.transAxes, ha="center",
+                     va="center", color="0.4")
         low.margins(x=0)
         low.set_ylabel(_axis("contact\nforce", funit))
     axes[-1, 0].set_xlabel(_axis("time t", _unit(d, "time")))
     return fig
+
+
+#: Contact forces below this fraction of the run's force scale (:func:`_force_reference`) are round-off:
+#: the gaps figure draws them as zero, not as impacts.
+ROUND_OFF = 1e-9
+
+
+def impact_forces(psi, reference: float):
+    """``psi`` (N+1, m) with the values of magnitude at most ``ROUND_OFF * reference`` set to 0.
+
+    Parameters
+    ----------
+    psi : (N+1, m) constraint reactions [force] (compression negative)
+    reference : float, the force scale of the run [force] (:func:`_force_reference`)
+
+    Returns
+    -------
+    (N+1, m) ndarray, a copy
+    """
+    psi = np.array(psi, dtype=float)
+    psi[np.abs(psi) <= ROUND_OFF * reference] = 0.0
+    return psi
+
+
+def _force_reference(d) -> float:
+    """The force scale of a case: the largest magnitude of its constraint reactions (every family),
+    base forces and element axial forces [force]; 0 without any."""
+    peaks = [float(np.nanmax(np.abs(d[name].values), initial=0.0))
+             for name in ("psi", "base_vertical", "base_shear", "base_Fz", "axial_force") if name in d]
+    return max(peaks, default=0.0)
 
 
 @_styled
