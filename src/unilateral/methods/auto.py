@@ -2,24 +2,18 @@
 
 from __future__ import annotations
 
-import functools
-
-from ..kernels import KernelModel
 from ..lcp import BlockPrincipalPivoting
 from ..march.policy import current_policy
-from ..model import Model
-from ..soil.foundation_model import FoundationModel
 from .cq import CQ
 from .direct import Direct
 from .modal import Modal
 from .time_kernel import TimeKernelMethod
 
 
-@functools.singledispatch
 def choose_method(model, rule, solver, options):
     """The method of ``method="auto"`` and the reason (measured in the benchmark suite).
 
-    One rule per model class (registered below; a new model class registers its own).
+    One rule per kind of problem (:data:`RULES`, by the problem's ``kind``; a new kind adds its own).
 
     Parameters
     ----------
@@ -32,18 +26,19 @@ def choose_method(model, rule, solver, options):
     -------
     method : Method (an instance) ; reason : str
     """
-    raise TypeError(f"method='auto' has no rule for a {type(model).__name__}")
+    choose = RULES.get(getattr(model, "kind", None))
+    if choose is None:
+        raise TypeError(f"method='auto' has no rule for a {type(model).__name__}")
+    return choose(model, rule, solver, options)
 
 
-@choose_method.register
-def _(model: KernelModel, rule, solver, options):
+def _kernel(model, rule, solver, options):
     if model.domain == "time":
         return TimeKernelMethod(), "a KernelModel of a TimeKernel is solved by product integration of its Lambda(t)"
     return CQ(**options.get("cq", {})), "a KernelModel is solved by convolution quadrature of its Lambda(s)"
 
 
-@choose_method.register
-def _(model: Model, rule, solver, options):
+def _matrices(model, rule, solver, options):
     if "cq" in options:
         return CQ(**options["cq"]), "cq_options were given"
     if "modal" in options:
@@ -65,8 +60,7 @@ def _(model: Model, rule, solver, options):
     return Direct(), f"direct stepping ({space}) is the fastest end to end for this model"
 
 
-@choose_method.register
-def _(model: FoundationModel, rule, solver, options):
+def _foundation(model, rule, solver, options):
     """cq or modal for a FoundationModel (the dual CLCP in the contact forces)."""
     if "cq" in options:
         return CQ(**options["cq"]), "cq_options were given"
@@ -76,6 +70,10 @@ def _(model: FoundationModel, rule, solver, options):
         return _modal_or(Modal(), "a foundation on a rational soil: the recursive history of the poles of the "
                          "structure and the soil costs O(r m) per step", model, CQ(), "cq")
     return CQ(), "a foundation on a soil given by Phi(s): convolution quadrature of the dual kernel"
+
+
+#: The rule of ``method="auto"`` for each kind of problem.
+RULES = {"matrices": _matrices, "foundation": _foundation, "laplace kernel": _kernel, "time kernel": _kernel}
 
 
 def _modal_or(modal, reason, model, other, name):

@@ -2,15 +2,12 @@
 
 from __future__ import annotations
 
-import functools
 
 import numpy as np
 
 from .. import _validate as V
 from ..initial import InitialState, static_lcp
-from ..kernels import KernelModel, MatrixKernel, cq_weights
-from ..model import Model
-from ..soil.foundation_model import FoundationModel
+from ..kernels import MatrixKernel, cq_weights
 from .base import Method
 from .clcp_march import FFT_HISTORY_MIN_STEPS, march_weights
 from .common import clcp_on_matrix_model, failed_at_start, finish
@@ -72,12 +69,15 @@ class CQ(Method):
         return ({k: self.config[k] for k in ("L", "rho") if k in self.config},
                 {k: self.config[k] for k in ("history", "engine") if k in self.config})
 
-    @functools.singledispatchmethod
     def solve(self, model, load, initial, disc, run):
-        raise TypeError(f"method='cq' solves a Model, KernelModel or FoundationModel, not a {type(model).__name__}")
+        """Solve by the route of ``model``'s kind (matrices, a foundation, a Laplace-domain kernel)."""
+        route = {"matrices": self._solve_matrices, "laplace kernel": self._solve_kernel,
+                 "foundation": self._solve_foundation_model}.get(getattr(model, "kind", None))
+        if route is None:
+            raise TypeError(self.applies(model, disc.rule) or f"method='cq' does not solve {model!r}")
+        return route(model, load, initial, disc, run)
 
-    @solve.register
-    def _(self, model: Model, load, initial, disc, run):
+    def _solve_matrices(self, model, load, initial, disc, run):
         weight_options, march = self._options()
         run.stats["n"] = model.n
 
@@ -88,14 +88,12 @@ class CQ(Method):
 
         return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
 
-    @solve.register
-    def _(self, model: KernelModel, load, initial, disc, run):
+    def _solve_kernel(self, model, load, initial, disc, run):
         if load is not None:
             raise ValueError("load is not used by a KernelModel: its psiL carries the loading; pass load=None")
         return self._solve_kernel_model(model, initial, disc, run, *self._options())
 
-    @solve.register
-    def _(self, model: FoundationModel, load, initial, disc, run):
+    def _solve_foundation_model(self, model, load, initial, disc, run):
         return self._solve_foundation(model, load, initial, disc, run, *self._options())
 
     def _solve_foundation(self, model, load, initial, disc, run, weight_options, march):

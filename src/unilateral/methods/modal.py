@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import functools
 
 import numpy as np
 
@@ -10,8 +9,6 @@ from .. import _validate as V
 from ..model import remembered
 from ..kernels import PoleResidueKernel
 from ..march.clcp import march_cq, march_cq_compiled
-from ..model import Model
-from ..soil.foundation_model import FoundationModel
 from .base import Method
 from .clcp_march import ENGINES, compiled_applies, use_compiled
 from .common import clcp_on_matrix_model
@@ -68,19 +65,21 @@ class Modal(Method):
         modes = self.config.get("modes")
         return remembered(model, ("poles", repr(modes)), lambda: PoleResidueKernel.from_model(model, modes=modes))
 
-    @functools.singledispatchmethod
     def solve(self, model, load, initial, disc, run):
-        raise TypeError(f"method='modal' solves a Model or FoundationModel, not a {type(model).__name__}")
+        """Solve by the route of ``model``'s kind (matrices or a foundation)."""
+        route = {"matrices": self._solve_matrices,
+                 "foundation": self._solve_foundation_model}.get(getattr(model, "kind", None))
+        if route is None:
+            raise TypeError(self.applies(model, disc.rule) or f"method='modal' does not solve {model!r}")
+        return route(model, load, initial, disc, run)
 
     def _engine(self):
         return V.choice("modal_options['engine']", self.config.get("engine", "auto"), ENGINES)
 
-    @solve.register
-    def _(self, model: FoundationModel, load, initial, disc, run):
+    def _solve_foundation_model(self, model, load, initial, disc, run):
         return self._solve_foundation(model, load, initial, disc, run, self._engine())
 
-    @solve.register
-    def _(self, model: Model, load, initial, disc, run):
+    def _solve_matrices(self, model, load, initial, disc, run):
         engine = self._engine()
         run.stats["n"] = model.n
         why_not = self.refusal(model)

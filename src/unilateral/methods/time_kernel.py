@@ -7,7 +7,7 @@ import numpy as np
 from .. import _validate as V
 from ..discretization import Discretization
 from ..initial import InitialState, static_lcp
-from ..kernels import KernelModel, time_kernel_weights
+from ..kernels import time_kernel_weights
 from ..kernels.time_domain import QUADRATURES, RATE_RULES
 from ..run_context import RunContext
 from .base import Method
@@ -100,7 +100,7 @@ def solve_time_kernel(model, *, dt, t_end, initial="static", lcp="bpp", lcp_opti
         ``u`` and ``udot`` are None; ``stats`` has ``method = "time-kernel"``, the LCP statistics
         and ``time`` per phase (``setup``, ``weights``, ``initial``, ``steps``).
     """
-    if not (isinstance(model, KernelModel) and model.domain == "time"):
+    if getattr(model, "kind", None) != "time kernel":
         raise TypeError(f"model must be a KernelModel of a TimeKernel (TimeKernelModel), got {V.describe(model)}")
     disc = Discretization.from_user(dt, t_end)
     run = RunContext.from_user(lcp, lcp_options, bilateral, callback)
