@@ -152,7 +152,7 @@ class Simulation:
             raise TypeError("model must be a unilateral.Model, KernelModel or FoundationModel, got "
                             f"{V.describe(model)}")
         options = _method_options(options)
-        time_kernel = getattr(model, "domain", "") == "time"
+        time_kernel = model.kind == "time kernel"
         if time_kernel and (method not in ("auto", "time-kernel") or load is not None or options
                             or disc.rule.name != "bdf2"):
             raise ValueError(

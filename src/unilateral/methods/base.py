@@ -66,6 +66,14 @@ class Method(ABC):
                     "'bdf1', 'bdf2', 'trapezoidal' (use method='direct' for Newmark and HHT)")
         return None
 
+    def by_kind(self, model, disc, routes: dict):
+        """The route of ``model``'s ``kind`` among ``routes`` (kind -> callable), for a method that
+        solves several kinds; ``TypeError`` with the reason of :meth:`applies` if it has none."""
+        route = routes.get(getattr(model, "kind", None))
+        if route is None:
+            raise TypeError(self.applies(model, disc.rule) or f"method={self.name!r} does not solve {model!r}")
+        return route
+
     def refusal(self, model) -> str | None:
         """None, or why this method cannot solve ``model`` after all: a check that costs more than
         :meth:`applies` (e.g. the poles of ``modal``), made for the method chosen only."""

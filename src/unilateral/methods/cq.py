@@ -71,10 +71,8 @@ class CQ(Method):
 
     def solve(self, model, load, initial, disc, run):
         """Solve by the route of ``model``'s kind (matrices, a foundation, a Laplace-domain kernel)."""
-        route = {"matrices": self._solve_matrices, "laplace kernel": self._solve_kernel,
-                 "foundation": self._solve_foundation_model}.get(getattr(model, "kind", None))
-        if route is None:
-            raise TypeError(self.applies(model, disc.rule) or f"method='cq' does not solve {model!r}")
+        route = self.by_kind(model, disc, {"matrices": self._solve_matrices, "laplace kernel": self._solve_kernel,
+                                           "foundation": self._solve_foundation_model})
         return route(model, load, initial, disc, run)
 
     def _solve_matrices(self, model, load, initial, disc, run):

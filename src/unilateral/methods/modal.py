@@ -67,10 +67,7 @@ class Modal(Method):
 
     def solve(self, model, load, initial, disc, run):
         """Solve by the route of ``model``'s kind (matrices or a foundation)."""
-        route = {"matrices": self._solve_matrices,
-                 "foundation": self._solve_foundation_model}.get(getattr(model, "kind", None))
-        if route is None:
-            raise TypeError(self.applies(model, disc.rule) or f"method='modal' does not solve {model!r}")
+        route = self.by_kind(model, disc, {"matrices": self._solve_matrices, "foundation": self._solve_foundation_model})
         return route(model, load, initial, disc, run)
 
     def _engine(self):
