@@ -74,8 +74,8 @@ class Direct(Method):
                 break
             reasons[spec.name] = "its arrays could not be built for this rule or matrix layout"
         if march is None:
-            raise ValueError(f"{self.option_name}['engine']={engine!r}: no direct march could begin ("
-                             + "; ".join(f"{name}: {why}" for name, why in reasons.items()) + ")")
+            raise ValueError(f"{self.option_name}['engine']={engine!r}: no direct march could begin "
+                             f"({_listed(reasons)})")
         run.timer.lap("factorize")
         run.stats.update(march=spec.name, march_alternatives=reasons, engine=spec.engine,
                          lcp_space=spec.space)
@@ -198,6 +198,10 @@ def pick_march(problem: MarchProblem, option: str):
     reasons = {spec.name: spec.applies(problem) for spec in MARCHES}
     candidates = [spec for spec in MARCHES if reasons[spec.name] is None]
     if not candidates:
-        raise ValueError(f"{option}={problem.engine!r}: no direct march applies to this problem ("
-                         + "; ".join(f"{name}: {why}" for name, why in reasons.items()) + ")")
+        raise ValueError(f"{option}={problem.engine!r}: no direct march applies to this problem ({_listed(reasons)})")
     return candidates, {name: why for name, why in reasons.items() if why is not None}
+
+
+def _listed(reasons: dict) -> str:
+    """``"name: why; name: why"`` of the marches that do not apply."""
+    return "; ".join(f"{name}: {why}" for name, why in reasons.items())
