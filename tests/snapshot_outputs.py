@@ -124,6 +124,9 @@ def main(argv=None):
     print("unilateral from", unilateral.__file__)
     store = {"cases": {}}
     with tempfile.TemporaryDirectory() as tmp:
+        # a cache of compiled code of its own: numba's cache does not see a change in a function that
+        # a cached one calls from another module, so an old cache could freeze an old build's numbers
+        os.environ["NUMBA_CACHE_DIR"] = str(Path(tmp) / "numba-cache")
         for name in CASES:
             seconds = run_case(name, Path(tmp) / name)
             store["cases"][name] = digest(Path(tmp) / name)
