@@ -60,6 +60,12 @@ class NaturalForm:
     E_v: object = None
     theta_rate: object = None
 
+    def imposed_strains(self, t) -> np.ndarray:
+        """``theta`` at the times ``t`` (N,): (N, ne), or (ne,) when it is constant (broadcasts)."""
+        if isinstance(self.theta, ConstantStrain):
+            return self.theta.value
+        return np.array([self.theta(tk) for tk in np.atleast_1d(t)])
+
     def stresses(self, t, u, v, udot=None, vdot=None) -> np.ndarray:
         """Element stresses ``sigma = E eps + E_v eps'`` with ``eps = G^T u - B v - theta``.
 
@@ -72,11 +78,7 @@ class NaturalForm:
         sigma : (N, ne)
         """
         t = np.atleast_1d(t)
-        if isinstance(self.theta, ConstantStrain):
-            theta = self.theta.value
-        else:
-            theta = np.array([self.theta(tk) for tk in t])
-        eps = (self.G.T @ u.T).T - (self.B @ v.T).T - theta
+        eps = (self.G.T @ u.T).T - (self.B @ v.T).T - self.imposed_strains(t)
         sigma = (self.E @ eps.T).T
         if self.E_v is not None:
             if udot is None or vdot is None:

@@ -30,14 +30,14 @@ import scipy.sparse as sp
 
 from ..loads.units import STANDARD_GRAVITY
 from ..model import NaturalForm  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
-from . import elements as el
+from . import elements as el, support_motion
 from . import elements3d as el3
 from .dofs import DofMap  # noqa: F401  (likewise)
 from .dofs3d import IN_PLANE, DofMap3D
 from .frame import Structure, _Frame, _friction, _hardening, _real, _strength
 
 
-class Frame3D(_Frame):
+class Frame3D(support_motion.SupportMotions, _Frame):
     """Builder of a space frame with unilateral elements (foundation uplift, pounding, cables).
 
     Nodes have the DOFs ``ux``, ``uy``, ``uz`` (along global x, y, z) and ``rx``, ``ry``, ``rz``
@@ -531,7 +531,7 @@ class Frame3D(_Frame):
             from .foundation3d import Footings3D
 
             fields["foundation"] = Footings3D(self._foundations, first=len(fields["constraint_names"]))
-        return Structure3D(**fields)
+        return support_motion.attach(self, Structure3D(**fields))
 
     # ------------------------------------------------------------------ helpers
     def _tied(self, node, dof) -> bool:
