@@ -51,7 +51,7 @@ class CQ(Method):
             out["the FFT of the weights (2 x 8 (N+1) m^2 complex)"] = 256.0 * (N + 1) * m ** 2
             coupled = m
         else:                   # only the soil's: SOIL_FFT_POINTS (J+1) per entry (its diagonal if uncoupled)
-            from ..soil.foundation_model import SOIL_FFT_POINTS
+            from ..soil.flexibility import SOIL_FFT_POINTS
 
             memory = getattr(soil, "memory", None)
             J = N if memory is None else min(N, int(np.ceil(memory / disc.dt)) + 64)

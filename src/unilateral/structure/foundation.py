@@ -161,7 +161,7 @@ def soil_flexibility(soil, patches, where="soil", components="z"):
     soil : SoilFlexibility
     spec : SoilSpec or None
     """
-    from ..soil.foundation_model import SoilFlexibility
+    from ..soil.flexibility import SoilFlexibility
 
     rows = len(components) * patches.m
     if isinstance(soil, SoilFlexibility):
@@ -517,7 +517,7 @@ def shared_medium(footings, elevation: str) -> bool:
 
 def _group_soil(footings):
     """One flexibility of all the footings' patches (see :class:`Footings`)."""
-    from ..soil.foundation_model import SoilFlexibility
+    from ..soil.flexibility import SoilFlexibility
 
     if len(footings) == 1:
         return footings[0].soil
