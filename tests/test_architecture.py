@@ -124,7 +124,7 @@ LONG_FUNCTIONS = {
     "soil/lamb.py:_axis_factors": 94, "kernels/time_domain.py:from_laplace": 93,
     "structure/frame3d.py:foundation": 91, "batch/study.py:_static_problems": 90, "soil/fit.py:fit_rational": 88,
     "structure/foundation.py:soil_flexibility": 87, "structure/frame.py:foundation": 86,
-    "march/event_config.py:__init__": 86, "model/__init__.py:from_natural": 84,
+    "march/event_config.py:__init__": 86,
 }
 
 
