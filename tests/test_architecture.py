@@ -122,7 +122,7 @@ LONG_FUNCTIONS = {
     "loads/site_response.py:free_field": 100, "linalg.py:stiff_split": 100, "analysis/outputs.py:_write_all": 100,
     "batch/runner.py:run_study": 95, "analysis/results3d.py:structure_results_3d": 96,
     "soil/lamb.py:_axis_factors": 94, "kernels/time_domain.py:from_laplace": 93,
-    "structure/frame3d.py:foundation": 91, "batch/study.py:_static_problems": 90,
+    "batch/study.py:_static_problems": 90,
     "structure/frame.py:foundation": 86,
     "march/event_config.py:__init__": 86,
 }

@@ -197,26 +197,10 @@ class Frame3D(support_motion.SupportMotions, _Frame):
             ``tests/test_sliding_footings3d.py``'s tower at 0.5 rad). With 32 facets the pivoting
             solver failed at a step of that run.
         """
-        from .foundation3d import Footings3D, build_footing, check_plan_overlap, grid_nodes
+        from .foundation3d import Footings3D, build_footing, check_plan_overlap
 
         where = self._label("foundation", name)
-        if nodes is None:
-            if node is None:
-                raise ValueError(f"{where}: give node (a rigid footing's node) or nodes (a flexible footing's grid "
-                                 "of nodes)")
-            self._node(where, "node", node)
-        else:
-            for i, row in enumerate(grid_nodes(where, nodes)):
-                for j, other in enumerate(row):
-                    self._node(where, f"nodes[{i}][{j}]", other)
-            if node is not None:
-                self._node(where, "node", node)
-            if patches is not None:
-                raise ValueError(f"{where}: patches={patches!r}: a flexible footing has one patch per node of "
-                                 "nodes; remove patches")
-            if mass or Jx or Jy or Jz:
-                raise ValueError(f"{where}: mass={mass!r}, Jx={Jx!r}, Jy={Jy!r}, Jz={Jz!r} are for a rigid footing; "
-                                 "give a flexible footing's masses to its nodes with Frame3D.mass")
+        self._check_footing_nodes(where, node, nodes, patches, (mass, Jx, Jy, Jz))
         fnd = build_footing(name=name, node=node, width=width, length=length, soil=soil,
                             patches=(3, 3) if patches is None else patches, horizontal=horizontal, gap=gap,
                             coords=self._coords, mu=mu, facets=facets, nodes=nodes)
@@ -235,6 +219,30 @@ class Frame3D(support_motion.SupportMotions, _Frame):
             self.mass(node, mass, Jx=Jx, Jy=Jy, Jz=Jz)
         self._foundations.append(fnd)
         self._names.add(name)
+
+    def _check_footing_nodes(self, where, node, nodes, patches, inertia) -> None:
+        """The nodes of a new footing are defined: a rigid one's ``node``, or a flexible one's grid
+        ``nodes`` (then no ``patches`` and no own ``inertia`` = (mass, Jx, Jy, Jz))."""
+        from .foundation3d import grid_nodes
+
+        if nodes is None:
+            if node is None:
+                raise ValueError(f"{where}: give node (a rigid footing's node) or nodes (a flexible footing's grid "
+                                 "of nodes)")
+            self._node(where, "node", node)
+        else:
+            for i, row in enumerate(grid_nodes(where, nodes)):
+                for j, other in enumerate(row):
+                    self._node(where, f"nodes[{i}][{j}]", other)
+            if node is not None:
+                self._node(where, "node", node)
+            if patches is not None:
+                raise ValueError(f"{where}: patches={patches!r}: a flexible footing has one patch per node of "
+                                 "nodes; remove patches")
+            if any(inertia):
+                mass, Jx, Jy, Jz = inertia
+                raise ValueError(f"{where}: mass={mass!r}, Jx={Jx!r}, Jy={Jy!r}, Jz={Jz!r} are for a rigid footing; "
+                                 "give a flexible footing's masses to its nodes with Frame3D.mass")
 
     def _check_on_soil(self, where, fnd) -> None:
         """Raise if a DOF a footing moves on the soil is supported (rigid: or follows another node)."""
