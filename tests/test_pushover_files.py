@@ -130,3 +130,27 @@ def test_transient_options_are_refused_for_a_pushover(tmp_path):
         run_model_file(EXAMPLE, tmp_path / "out", figures=(), dt=0.01)
     with pytest.raises(ValueError, match="--bilateral: not for a pushover"):
         run_model_file(EXAMPLE, tmp_path / "out", figures=(), bilateral=True)
+
+
+def test_a_frame_on_footings_that_lift_and_slide(tmp_path):
+    """examples/yielding_frame.toml (beam hinges, column-base springs, footings on tensionless soil
+    with Coulomb friction) pushed by its first mode: hinges yield, an edge lifts off, edges slip, and
+    the path is in equilibrium with the constraint laws at every point."""
+    text = (ROOT / "examples" / "yielding_frame.toml").read_text()
+    head, _, rest = text.partition("[[loads.ground_motion]]")
+    frame = head + "[analysis]\ntype = \"pushover\"\n\n[pushover]\npattern = \"mode\"\nnode = 31\ntarget = 0.3\n"
+    path = tmp_path / "frame.toml"
+    path.write_text(frame)
+    result = run_model_file(path, tmp_path / "out", figures=("png",))
+    assert result["success"], result["message"]
+    kinds = {e["kind"] for e in result["events"]}
+    assert kinds >= {"yield", "slip", "uplift", "unload"}
+    assert result["stats"]["max_residual"] < 1e-10 and result["stats"]["max_lcp_error"] < 1e-10
+    assert (tmp_path / "out" / "capacity_curve.png").stat().st_size > 10_000
+    with_record = tmp_path / "with_record.toml"
+    with_record.write_text(text.replace('file = "records/', f'file = "{ROOT}/examples/records/').split("[analysis]")[0]
+                           + "[analysis]\ntype = \"pushover\"\n\n[pushover]\npattern = \"mode\"\nnode = 31\n"
+                           "target = 0.05\n")
+    result = run_model_file(with_record, tmp_path / "out2", figures=())
+    assert result["not_applied"] == ["loads.ground_motion[0]"] and "not applied: loads.ground_motion[0]" in \
+        result["report"]

@@ -71,6 +71,7 @@ def run_file(spec, out, *, figures=("png",), bilateral=False, **overrides) -> di
     except (ValueError, TypeError) as exc:
         raise ModelFileError(spec.source, [f"pushover: {exc}"]) from None
     summary = summarise(result, spec, table)
+    summary["not_applied"] = not_applied(spec.document)
     folder = OutputFolder(out)
     folder.prepare()
     try:
@@ -151,6 +152,14 @@ def summarise(result, spec, table) -> dict:
             "events": [e._asdict() for e in result.events]}
 
 
+def not_applied(document) -> list[str]:
+    """The loads of a model file a pushover does not apply (it applies ``[loads.gravity]`` only)."""
+    loads = document.loads
+    return ([f"loads.nodal[{k}]" for k in range(len(loads.nodal))]
+            + [f"loads.distributed[{k}]" for k in range(len(loads.distributed))]
+            + [f"loads.ground_motion[{k}]" for k in range(len(loads.ground_motion))])
+
+
 def report(result, summary) -> str:
     """The terminal text of a pushover: the message, the capacity curve's table, the peak."""
     units = summary["units"]
@@ -161,6 +170,9 @@ def report(result, summary) -> str:
              f"{summary['peak_at']:.6g} {units['length']}; {len(result.events)} events, "
              f"max equilibrium error {result.stats['max_residual']:.1e}, max LCP error "
              f"{result.stats['max_lcp_error']:.1e}"]
+    if summary.get("not_applied"):
+        lines.append(f"note: a pushover applies [loads.gravity] and [pushover] pattern only; not applied: "
+                     f"{', '.join(summary['not_applied'])}")
     return "\n".join(lines)
 
 
