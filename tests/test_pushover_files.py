@@ -93,7 +93,9 @@ def test_a_target_beyond_the_mechanism_under_load_control_ends_the_path(tmp_path
     ('type = "pushover"', 'type = "transient"', ["analysis", "dt and t_end"]),
     ('type = "pushover"', 'type = "static"', ["analysis.type", "transient, pushover"]),
     ('type = "pushover"', 'type = "transient"\ndt = 0.01\nt_end = 1.0', ["[pushover] table needs", "type"]),
-    ("dof = \"ux\"", "dof = \"uz\"", ["pushover.dof", "uz"]),
+    ("dof = \"ux\"", "dof = \"uz\"", ["pushover.dof", "uz", "ux, uy, rz"]),
+    ("pattern = [{ node = 2, ux = 1.0 }]", "pattern = [{ node = 2, uz = 1.0 }]",
+     ["pushover.pattern[0].uz = 1.0", "ux, uy, rz only"]),
     ("target = 0.1 ", 'target = 0.1\np_delta = "string"\ngravity = false\n', ["pushover.p_delta", "gravity"]),
 ])
 def test_bad_pushover_tables_name_the_key(tmp_path, old, new, words):
@@ -154,3 +156,44 @@ def test_a_frame_on_footings_that_lift_and_slide(tmp_path):
     result = run_model_file(with_record, tmp_path / "out2", figures=())
     assert result["not_applied"] == ["loads.ground_motion[0]"] and "not applied: loads.ground_motion[0]" in \
         result["report"]
+
+
+PORTAL_3D = """
+units = { length = "m", force = "kN", time = "s", mass = "t" }
+frame = { dimensions = 3 }
+nodes = [{ id = 1, x = 0.0, y = 0.0, z = 0.0 }, { id = 2, x = 0.0, y = 0.0, z = 3.0 },
+         { id = 3, x = 4.0, y = 0.0, z = 3.0 }, { id = 4, x = 4.0, y = 0.0, z = 0.0 }]
+supports = [{ node = 1, rx = true, ry = true, rz = true }, { node = 4, rx = true, ry = true, rz = true }]
+elements = [
+    { type = "beam", name = "c1", node_i = 1, node_j = 2, E = 30e6, A = 0.09, Iy = 6.75e-4, Iz = 6.75e-4, G = 12.5e6, J = 1.35e-3 },
+    { type = "beam", name = "c2", node_i = 4, node_j = 3, E = 30e6, A = 0.09, Iy = 6.75e-4, Iz = 6.75e-4, G = 12.5e6, J = 1.35e-3 },
+    { type = "beam", name = "g", node_i = 2, node_j = 3, E = 30e6, A = 0.09, Iy = 1.35e-3, Iz = 1.35e-3, G = 12.5e6, J = 2.7e-3 },
+]
+unilateral = [
+    { type = "hinge", name = "hb1", beam = "c1", end = "i", My = 100.0, Mz = 100.0, shape = "box" },
+    { type = "hinge", name = "hb2", beam = "c2", end = "i", My = 100.0, Mz = 100.0, shape = "box" },
+    { type = "hinge", name = "hg1", beam = "g", end = "i", My = 80.0, Mz = 80.0, shape = "box" },
+    { type = "hinge", name = "hg2", beam = "g", end = "j", My = 80.0, Mz = 80.0, shape = "box" },
+]
+masses = [{ node = 2, m = 10.0 }, { node = 3, m = 10.0 }]
+loads.gravity = { g = 9.81, direction = [0.0, 0.0, -1.0] }
+analysis = { type = "pushover" }
+pushover = { pattern = [{ node = 2, ux = 1.0 }], node = 2, dof = "ux", target = 0.1 }
+"""
+
+
+def test_a_3d_frame_from_a_file(tmp_path):
+    path = tmp_path / "portal3d.toml"
+    path.write_text(PORTAL_3D)
+    result = run_model_file(path, tmp_path / "out", figures=())
+    assert result["success"], result["message"]
+    assert result["end"]["load_factor"] == pytest.approx(COLLAPSE, rel=1e-9)
+    assert [e["load_factor"] for e in result["events"]] == pytest.approx([P for _, P, _ in independent_events()],
+                                                                          rel=1e-9)
+    rows = _rows(tmp_path / "out" / "pushover.csv")
+    assert float(rows[-1]["roof_drift"]) == pytest.approx(0.1 / 3.0, rel=1e-9)     # the height along z
+    # controlled by node 2's uz (its column stretches as the frame sways): a target below its gravity value
+    # is of the wrong sign
+    path.write_text(PORTAL_3D.replace('dof = "ux", target = 0.1', 'dof = "uz", target = -0.01'))
+    with pytest.raises(ModelFileError, match=r"pushover: target=-0.01 is of the wrong sign.*2\.uz"):
+        run_model_file(path, tmp_path / "out2", figures=())

@@ -37,7 +37,15 @@ class PatternForce(_Table):
     node: int | str = Field(description="The node.")
     ux: float = Field(0.0, description="Force along x [force].")
     uy: float = Field(0.0, description="Force along y [force].")
-    rz: float = Field(0.0, description="Moment, counter-clockwise [force length].")
+    rz: float = Field(0.0, description="Moment about z [force length] (2-D: counter-clockwise).")
+    uz: float = Field(0.0, description="3-D frames: force along z [force].")
+    rx: float = Field(0.0, description="3-D frames: moment about x [force length].")
+    ry: float = Field(0.0, description="3-D frames: moment about y [force length].")
+
+    @property
+    def components(self) -> dict:
+        """The nonzero components ``{dof: value}``."""
+        return {dof: getattr(self, dof) for dof in ("ux", "uy", "uz", "rx", "ry", "rz") if getattr(self, dof)}
 
 
 class PushoverTable(_Table):
@@ -49,8 +57,9 @@ class PushoverTable(_Table):
         "mode times the masses), each scaled so that the load factor is the base shear per unit mass; or "
         "nodal forces [{ node, ux, uy, rz }] per unit load factor."))
     node: int | str = Field(description="The control node.")
-    dof: Literal["ux", "uy", "rz"] = Field("ux", description=(
-        "The control DOF of node, and the direction of a named pattern and of the base shear."))
+    dof: Literal["ux", "uy", "rz", "uz", "rx", "ry"] = Field("ux", description=(
+        "The control DOF of node (3-D frames also uz, rx, ry), and the direction of a named pattern and of the "
+        "base shear."))
     target: float | None = Field(None, description=(
         'The control DOF\'s displacement to reach [length] (control = "load": the load factor). Or give cycles.'))
     cycles: Annotated[list[float], Field(min_length=1)] | None = Field(None, description=(
@@ -110,7 +119,14 @@ def pushover_problems(document) -> list[str]:
         problems += [f"pushover.pattern[{k}].node = {json.dumps(f.node)}: no such node (nodes: {listed})"
                      for k, f in enumerate(table.pattern) if f.node not in known]
         problems += [f"pushover.pattern[{k}]: a zero force; give ux, uy or rz" for k, f in enumerate(table.pattern)
-                     if not (f.ux or f.uy or f.rz)]
+                     if not f.components]
+    plane = getattr(document, "DIMENSIONS", 2) == 2
+    if plane:
+        problems += [f"pushover.pattern[{k}].{dof} = {value!r}: a plane frame's nodes have ux, uy, rz only"
+                     for k, f in enumerate(table.pattern if not isinstance(table.pattern, str) else ())
+                     for dof, value in f.components.items() if dof not in ("ux", "uy", "rz")]
+        if table.dof not in ("ux", "uy", "rz"):
+            problems.append(f'pushover.dof = "{table.dof}": a plane frame\'s DOFs are ux, uy, rz')
     if table.gravity is False and table.p_delta in ("consistent", "string"):
         problems.append(f'pushover.p_delta = "{table.p_delta}": needs the gravity\'s axial forces (gravity = true '
                         "and [loads.gravity])")

@@ -90,7 +90,7 @@ def pushover(structure_or_model, pattern, *, node, dof="ux", target, gravity=Non
         outcome.message = f"history of {len(targets)} targets followed ({len(outcome.events)} events)"
     elif not outcome.success and len(targets) > 1:
         outcome.message = f"target {k} of {len(targets)} ({targets[k]:.6g}) not reached: {outcome.message}"
-    r = direction_vector(structure, model, dof) if dof in ("ux", "uy") else np.ones(model.n)
+    r = direction_vector(structure, model, dof) if dof in ("ux", "uy", "uz") else np.ones(model.n)
     return _result(problem, outcome, float(r @ p), label, start, control)
 
 

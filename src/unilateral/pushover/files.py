@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .api import pushover
+from .patterns import vertical_axis
 
 #: ``[pushover] p_delta`` -> the ``p_delta`` argument of :func:`pushover`.
 _P_DELTA = {None: None, "none": False, "consistent": "consistent", "string": "string"}
@@ -90,7 +91,7 @@ def _pattern(structure, table):
     """The pattern argument: a name, or the sum of the nodal forces of ``table.pattern``."""
     if isinstance(table.pattern, str):
         return table.pattern
-    return sum(structure.nodal_load(f.node, ux=f.ux, uy=f.uy, rz=f.rz) for f in table.pattern)
+    return sum(structure.nodal_load(f.node, **f.components) for f in table.pattern)
 
 
 def _gravity(spec, table):
@@ -100,11 +101,12 @@ def _gravity(spec, table):
 
 
 def height_of(structure, table) -> float:
-    """The control node's height above the lowest node (0 for ``dof`` other than ``ux``)."""
-    if table.dof != "ux":
+    """The control node's height above the lowest node (0 but for a horizontal ``dof``: ``ux``; in 3-D
+    also ``uy``)."""
+    if table.dof not in ("ux", "uy") or (table.dof == "uy" and len(structure.dofs.dof_names) == 3):
         return 0.0
-    ys = [float(xy[1]) for xy in structure.coords.values()]
-    return float(structure.coords[table.node][1]) - min(ys)
+    up = vertical_axis(structure)
+    return float(structure.coords[table.node][up]) - min(float(xy[up]) for xy in structure.coords.values())
 
 
 def write_tables(folder: Path, result, height: float) -> None:

@@ -45,13 +45,15 @@ def with_p_delta(structure, form, q_gravity):
     Raises
     ------
     ValueError
-        An unknown form, or a form without gravity (no axial forces).
+        An unknown form, a 3-D frame, or a form without gravity (no axial forces).
     """
     if form is False:
         return replace(structure, geometric=None, axial_forces=None)
     if form not in P_DELTA_FORMS:
         raise ValueError(f"p_delta={form!r} is not valid; use None (the structure as built), False (none), "
                          "'consistent' or 'string'")
+    if len(structure.dofs.dof_names) != 3:
+        raise ValueError(f"p_delta={form!r}: P-Delta is for plane frames (Frame2D) only, not yet for 3-D frames")
     if not np.any(q_gravity):
         raise ValueError(f"p_delta={form!r} needs the gravity's axial forces: give gravity (g or a load vector)")
     axial = structure.static_axial_forces(q_gravity)
