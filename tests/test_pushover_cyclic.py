@@ -151,3 +151,13 @@ def test_portal_sway_mechanism_under_cycles():
     again = [e for e in r.events if e.kind == "yield" and e.displacement < 0 and e.load_factor > 0]
     assert len(again) == 4 and again[0].load_factor == pytest.approx(2 * P1 - COLLAPSE, rel=1e-9)
     assert r.stats["max_residual"] < 1e-10 and r.stats["max_lcp_error"] < 1e-10
+
+
+def test_load_control_with_p_delta_stops_at_the_peak():
+    st = portal()
+    args = dict(node=2, dof="ux", gravity=9.81, p_delta="string")
+    peak = pushover(st, st.nodal_load(2, ux=1.0), target=0.1, **args).load_factor.max()
+    r = pushover(st, st.nodal_load(2, ux=1.0), target=200.0, control="load", **args)
+    assert not r.success and r.stats["mechanism"]
+    assert r.load_factor[-1] == pytest.approx(peak, rel=1e-12) and peak < COLLAPSE
+    assert f"mechanism at load factor {peak:.10g}" in r.message and "softening branch" in r.message

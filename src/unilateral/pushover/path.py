@@ -221,6 +221,6 @@ def _singular_message(problem, state, rates, control) -> str:
     if control == "load":
         return (f"mechanism at load factor {state.lam:.10g}: the tangent stiffness with the constraints on their "
                 f"surface ({listed}) is singular ({rates.failure}); the load cannot increase. Use "
-                "control='displacement' to follow the plateau")
+                "control='displacement' to follow the plateau or the softening branch")
     return (f"the tangent is singular at load factor {state.lam:.10g} with the constraints {listed} on their "
             f"surface ({rates.failure}): the control DOF does not move in the mechanism; control another DOF")
