@@ -128,8 +128,8 @@ def write_tables(folder: Path, result, height: float) -> None:
         w = csv.writer(f)
         w.writerow(["load_factor", result.control_dof, "base_shear", "constraint", "kind"])
         for e in result.events:
-            w.writerow([repr(float(e.load_factor)), repr(float(e.displacement)), repr(float(per * e.load_factor)), e.name,
-                        e.kind])
+            w.writerow([repr(float(e.load_factor)), repr(float(e.displacement)), repr(float(per * e.load_factor)),
+                        e.name, e.kind])
 
 
 def _per_unit(result) -> float:
@@ -143,8 +143,8 @@ def summarise(result, spec, table) -> dict:
     k = int(np.argmax(np.abs(result.base_shear)))
     first = result.events[0] if result.events else None
     stats = {key: value for key, value in result.stats.items() if key != "time"}
-    return {"analysis": "pushover", "model_file": str(spec.source), "units": spec.units, "success": bool(result.success),
-            "message": result.message, "control_dof": result.control_dof, "control": table.control,
+    return {"analysis": "pushover", "model_file": str(spec.source), "units": spec.units,
+            "success": bool(result.success), "message": result.message, "control_dof": result.control_dof, "control": table.control,
             "pattern": table.pattern if isinstance(table.pattern, str) else "nodal forces",
             "targets": table.targets, "stats": stats,
             "peak_base_shear": float(result.base_shear[k]), "peak_at": float(result.displacement[k]),
