@@ -3,7 +3,7 @@ pushover (closed-form hysteresis of a bilinear SDOF, the portal's sway mechanism
 
 import numpy as np
 import pytest
-from pushover_frames import A, E, I_COL, MP_BEAM, MP_COL, H, L, portal, sdof
+from pushover_frames import A, E, I_COL, MP_BEAM, MP_COL, H, L, portal, rocking_block, sdof
 
 from unilateral.pushover import pushover
 
@@ -161,3 +161,20 @@ def test_load_control_with_p_delta_stops_at_the_peak():
     assert not r.success and r.stats["mechanism"]
     assert r.load_factor[-1] == pytest.approx(peak, rel=1e-12) and peak < COLLAPSE
     assert f"mechanism at load factor {peak:.10g}" in r.message and "softening branch" in r.message
+
+
+def test_a_rocking_block_under_cycles_lifts_and_lands_on_either_side():
+    b, height, mass, g = 1.0, 2.0, 50.0, 9.81
+    st = rocking_block(b=b, height=height, mass=mass)
+    r = pushover(st, st.nodal_load("t", ux=1.0), node="t", dof="ux", target=[0.05, -0.05, 0.02], gravity=g)
+    assert r.success, r.message
+    assert [(e.kind, e.name) for e in r.events] == [("uplift", "sl"), ("contact", "sl"), ("uplift", "sr"),
+                                                     ("contact", "sr"), ("uplift", "sl")]
+    rocking = mass * g * b / height                                  # P h = W b on either edge
+    assert [e.load_factor for e in r.events] == pytest.approx([rocking, rocking, -rocking, -rocking, rocking],
+                                                              rel=1e-12)
+    d = r.events[0].displacement
+    assert [e.displacement for e in r.events] == pytest.approx([d, d, -d, -d, d], rel=1e-12)
+    assert [e.point for e in r.events] == [1, 3, 4, 6, 7]
+    assert r.table().count("uplift") == 3 and r.table().count("contact") == 2     # each at its own point
+    assert r.stats["max_lcp_error"] < 1e-12

@@ -172,7 +172,7 @@ def _result(problem, outcome, resultant, label, start, control) -> PushoverResul
     psi = np.array([problem.phi(uk, vk) for uk, vk in zip(u, v)])
     d = u @ problem.e
     names = problem.names
-    events = [Event(float(lam[k]), float(d[k]), names[i], kind) for k, i, kind in outcome.events]
+    events = [Event(float(lam[k]), float(d[k]), names[i], kind, int(k)) for k, i, kind in outcome.events]
     stats = {"events": len(events), "points": len(t), "rate_problems": outcome.rate_problems,
              "lcp_iterations": outcome.iterations + problem.gravity_iterations,
              "max_residual": max(problem.residual(lk, uk, vk) for lk, uk, vk in zip(lam, u, v)),

@@ -113,7 +113,7 @@ def write_tables(folder: Path, result, height: float) -> None:
     """``pushover.csv`` and ``events.csv`` of ``result`` into ``folder``."""
     at = {}
     for e in result.events:
-        at.setdefault((e.load_factor, e.displacement), []).append(f"{e.kind} {e.name}")
+        at.setdefault(e.point, []).append(f"{e.kind} {e.name}")
     drift = result.displacement / height if height > 0 else np.full_like(result.displacement, np.nan)
     with open(folder / "pushover.csv", "w", newline="") as f:
         w = csv.writer(f)
@@ -122,7 +122,7 @@ def write_tables(folder: Path, result, height: float) -> None:
         for k, (t, lam, d, r, V) in enumerate(zip(result.parameter, result.load_factor, result.displacement, drift,
                                                   result.base_shear)):
             w.writerow([k, repr(float(t)), repr(float(lam)), repr(float(d)), repr(float(r)), repr(float(V)),
-                        "; ".join(at.get((lam, d), []))])
+                        "; ".join(at.get(k, []))])
     per = result.base_shear[-1] / result.load_factor[-1] if result.load_factor[-1] else _per_unit(result)
     with open(folder / "events.csv", "w", newline="") as f:
         w = csv.writer(f)
