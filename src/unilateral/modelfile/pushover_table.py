@@ -1,7 +1,8 @@
 """The ``[pushover]`` table of a model file (``[analysis] type = "pushover"``) and its cross checks.
 
 Pydantic only (the command line checks a file before numpy loads). The analysis itself is
-:func:`unilateral.pushover.pushover`, run from a model file by :func:`unilateral.pushover.run_file`.
+:func:`unilateral.pushover.pushover`, run from a model file by
+:func:`unilateral.pushover.files.run_file`.
 
 .. code-block:: toml
 
