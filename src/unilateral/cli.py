@@ -331,7 +331,7 @@ def _run(call, out, overrides, *, figures):
             figure_process.close()
         if bar is not None:
             bar.close()
-    report = _analysis().report(result)
+    report = result["report"] if "report" in result else _analysis().report(result)   # a pushover's own
     click.echo(report)
     click.echo(f"results in {out}/ ({time.perf_counter() - started:.2f} s)")
     if not result.get("success_all", True):

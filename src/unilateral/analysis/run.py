@@ -57,6 +57,11 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
     path = Path(path)
     spec = load_model_file(path)
     a = spec.analysis
+    if a.get("type") == "pushover":                 # [pushover]: unilateral.pushover.files
+        from ..pushover.files import run_file
+
+        return run_file(spec, Path(out) if out is not None else Path(path.stem), figures=figures,
+                        bilateral=bilateral, **overrides)
     settings = settings_of(a, **overrides)
     if point is None and spec.document.output.overturning_about is not None:
         point = tuple(spec.document.output.overturning_about)
