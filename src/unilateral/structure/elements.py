@@ -317,8 +317,9 @@ def check_stick_stiffness(name, kind, k, kt) -> None:
 CLEARANCE_MAX_RATIO = 10.0
 
 
-def check_clearances(elements, coords) -> None:
-    """Refuse a contact clearance that double precision cannot carry beside the frame's size.
+def check_clearances(elements, coords):
+    """``elements``, checked: refuse a contact clearance that double precision cannot carry beside
+    the frame's size.
 
     Parameters
     ----------
@@ -348,6 +349,7 @@ def check_clearances(elements, coords) -> None:
                 f"({size:.6g}, {basis}): a clearance is an imposed strain that an open contact "
                 f"cancels (v = e + gap), and double precision carries the response only to about 2.2e-16 * gap; "
                 f"give |{what}| <= {bound:.6g}, or leave the element out if it never closes")
+    return elements
 
 
 #: The largest friction coefficient of a contact element (soil, gap). A friction row of the step
