@@ -88,8 +88,14 @@ def test_soil_and_3d_clearances_are_refused_beyond_the_bound():
     f3.node(1, 0.0, 0.0, 0.0)
     f3.mass(1, 1.0)
     f3.soil("s", 1, 1e4, gap=1e9)
-    with pytest.raises(ValueError, match=r"soil 's': gap = 1000000000.0 exceeds .*\(1, one length unit\)"):
-        f3.build()                                   # one node: the size is 1 length unit
+    with pytest.raises(ValueError, match=r"soil 's': gap = 1000000000.0 exceeds .*\(10000, a frame whose nodes"):
+        f3.build()                                   # one node at the origin: no size of its own
+    f3 = Frame3D()
+    f3.node(1, 0.0, 0.0, 0.0)
+    f3.mass(1, 1.0)
+    f3.support(1, ux=True, uy=True, uz=False, rx=True, ry=True, rz=True)
+    f3.soil("s", 1, 1e4, gap=2e4)                    # 20 m in mm: carried
+    assert f3.build().m == 1
 
 
 def test_a_gap_that_closes_carries_k_times_the_overlap():

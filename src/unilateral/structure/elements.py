@@ -315,6 +315,9 @@ def check_stick_stiffness(name, kind, k, kt) -> None:
 #: ``eps gap k / K`` (eps = 2.2e-16) whether or not the gap ever closes (measured on the pounding
 #: example: 5e-12 m at gap 1e3 m, 5e-9 m at 1e6 m, 1.5 m at 1e15 m, against 0.025 m of response).
 CLEARANCE_MAX_RATIO = 10.0
+#: The size given to a frame whose nodes are all at the origin (no length of its own), length: its
+#: clearances are refused above 1e5 length units (a round-off of 2.2e-11 units times k/K).
+POINT_FRAME_SIZE = 1e4
 
 
 def check_clearances(elements, coords):
@@ -330,14 +333,15 @@ def check_clearances(elements, coords):
     ------
     ValueError
         Naming the element, its ``gap``, the frame's size and the largest ``gap`` that is valid
-        (:data:`CLEARANCE_MAX_RATIO` times the span of the node coordinates, or times the largest
-        coordinate, or 1 length unit, whichever is the first that is not zero).
+        (:data:`CLEARANCE_MAX_RATIO` times the span of the node coordinates; for nodes that all
+        coincide, their largest coordinate, or at the origin :data:`POINT_FRAME_SIZE`).
     """
     points = np.array(list(coords.values()), dtype=float).reshape(len(coords), -1) if coords else np.zeros((1, 2))
     span = float(np.max(points.max(axis=0) - points.min(axis=0)))
     largest = float(np.abs(points).max())
     size, basis = ((span, "the span of its nodes") if span > 0 else
-                   (largest, "its node's largest coordinate") if largest > 0 else (1.0, "one length unit"))
+                   (largest, "its nodes' largest coordinate") if largest > 0 else
+                   (POINT_FRAME_SIZE, "a frame whose nodes are all at the origin"))
     bound = CLEARANCE_MAX_RATIO * size
     for e in elements:
         if e.kind not in ("soil", "gap", "cable"):
