@@ -165,3 +165,23 @@ def test_cq_warns_when_its_history_of_a_stiff_stick_spring_loses_the_friction_fo
     assert (estimate > 1e-6) is warns
     assert ("history of the slips" in cq.message) is warns
     assert "history of the slips" not in direct.message
+
+
+def test_the_pounding_file_refuses_a_clearance_and_a_friction_it_cannot_carry():
+    """The issue's runs: ``examples/pounding.toml`` with ``gap = 1e6`` (the response moved by 5e-9 m,
+    1.5 m at 1e15) or with ``mu = 1e4, kt = 1e5`` on the joint (2.7e-5 kN across the open joint)."""
+    import tomllib
+    from pathlib import Path
+
+    from unilateral.modelfile import build_model_spec
+    from unilateral.modelfile.errors import ModelFileError
+
+    source = Path(__file__).resolve().parents[1] / "examples" / "pounding.toml"
+    document = tomllib.loads(source.read_text())
+    for change, message in [({"gap": 1e6}, r"gap 'joint': gap = 1000000.0 exceeds 10 times .* <= 120.4"),
+                            ({"mu": 1e4, "kt": 1e5}, r"gap 'joint': mu = 10000.0 is above 10")]:
+        data = {**document, "unilateral": [{**document["unilateral"][0], **change}]}
+        with pytest.raises(ModelFileError, match=message):
+            build_model_spec(data, source)
+    data = {**document, "unilateral": [{**document["unilateral"][0], "gap": 120.0}]}
+    assert build_model_spec(data, source).model.m == 1
