@@ -195,7 +195,7 @@ class _Frame(ABC):
         """
         if dofs.n == 0:
             raise ValueError("every DOF is supported or linked: the frame has no free DOF")
-        elements = self._elements
+        elements = el.check_clearances(self._elements, self._coords)
         G = _compatibility(elements, dofs)
         stiffness = [e.E for e in elements]
         E = _block_diagonal(stiffness)
