@@ -10,6 +10,12 @@ from .refusals import NOT_NEEDED, refuse
 
 __all__ = ["Session"]
 
+_DOMAIN_COMMANDS = ("model", "node", "fix", "mass", "equalDOF", "geomTransf", "uniaxialMaterial", "element",
+                    "timeSeries", "pattern", "load", "rayleigh", "loadConst", "setTime", "getTime")
+_SESSION_COMMANDS = ("wipe", "integrator", "analyze", "wipeAnalysis", "nodeDisp", "nodeVel", "nodeAccel",
+                     "nodeCoord", "getNodeTags", "getEleTags", "eleForce", "eleResponse", "reactions",
+                     "nodeReaction")
+
 
 class Session:
     """The state of one OpenSees interpreter: the model and its analysis."""
@@ -19,6 +25,15 @@ class Session:
         self.analysis = Analysis(self.domain)
         self.reactions_ = {}
         self.settings = {}
+
+    # ------------------------------------------------------------------ the command table
+    def commands(self) -> dict:
+        """``{OpenSees command name: callable}`` of this session (the module's and Tcl's commands)."""
+        table = {name: getattr(self.domain, name) for name in _DOMAIN_COMMANDS}
+        table.update({name: getattr(self, name) for name in _SESSION_COMMANDS})
+        table.update({name: self.accepted(name) for name in NOT_NEEDED})
+        table["analysis"] = self.analysis_
+        return table
 
     # ------------------------------------------------------------------ whole session
     def wipe(self):
