@@ -79,7 +79,9 @@ REFUSED_CALLS = [
     (lambda: ops.eigen(2), "eigen()"),
     (lambda: ops.sp(3, 1, 0.01), "sp()"),
     (lambda: ops.eleLoad('-ele', 3, '-type', '-beamUniform', -10.0), "eleLoad()", "nodal loads"),
-    (lambda: ops.rigidLink('beam', 3, 4), "rigidLink()"),
+    (lambda: ops.rigidLink('joint', 3, 4), "rigidLink('joint', 3, 4)", "'beam' or 'bar'"),
+    (lambda: ops.rigidDiaphragm(3, 3, 4), "rigidDiaphragm(3, 3, ...)", "perpDirn 3", "2-D"),
+    (lambda: ops.geomTransf('Linear', 8, 0.0, 0.0, 1.0), "geomTransf('Linear', 8) 0.0", "joint offsets"),
     (lambda: ops.beamIntegration('Lobatto', 1, 1, 5), "beamIntegration()"),
     (lambda: ops.analyze(10, 0.01, 0.001, 0.02, 10), "variable time steps"),
 ]
@@ -94,10 +96,10 @@ def test_refused_at_once_with_reason_and_alternative(call_and_words):
     refused(call, *words)
 
 
-def test_model_3d_and_other_dofs_are_refused():
+def test_models_without_rotations_are_refused():
     ops.wipe()
-    refused(lambda: ops.model('basic', '-ndm', 3, '-ndf', 6), "3-D", "Frame3D")
-    refused(lambda: ops.model('basic', '-ndm', 2, '-ndf', 2), "three DOFs")
+    refused(lambda: ops.model('basic', '-ndm', 3, '-ndf', 3), "rotations", "'-ndf', 6")
+    refused(lambda: ops.model('basic', '-ndm', 2, '-ndf', 2), "rotations", "'-ndf', 3")
     refused(lambda: ops.node(1, 0.0, 0.0), "no model")
 
 

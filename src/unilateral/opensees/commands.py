@@ -10,7 +10,8 @@ from .refusals import NOT_NEEDED, refuse
 
 __all__ = ["Session"]
 
-_DOMAIN_COMMANDS = ("model", "node", "fix", "mass", "equalDOF", "geomTransf", "uniaxialMaterial", "element",
+_DOMAIN_COMMANDS = ("model", "node", "fix", "mass", "equalDOF", "rigidLink", "rigidDiaphragm",
+                    "geomTransf", "uniaxialMaterial", "element",
                     "timeSeries", "pattern", "load", "rayleigh", "loadConst", "setTime", "getTime")
 _SESSION_COMMANDS = ("wipe", "integrator", "analyze", "wipeAnalysis", "nodeDisp", "nodeVel", "nodeAccel",
                      "nodeCoord", "getNodeTags", "getEleTags", "eleForce", "eleResponse", "reactions",

@@ -17,13 +17,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..structure import Frame3D
 from ..structure import elements as el
 from .refusals import REFUSED_MATERIALS, refuse
 
 __all__ = ["Material", "parse_material", "DIRECTIONS"]
 
-#: The ``-dir`` of a 2-D zeroLength element and the DOF it acts on.
-DIRECTIONS = {1: "ux", 2: "uy", 3: "rz"}
+#: The ``-dir`` of a zeroLength element and the DOF it acts on, by the number of DOFs per node.
+DIRECTIONS = {3: {1: "ux", 2: "uy", 3: "rz"}, 6: {1: "ux", 2: "uy", 3: "uz", 4: "rx", 5: "ry", 6: "rz"}}
 
 
 @dataclass
@@ -49,7 +50,7 @@ class Material:
     eps0: float = 0.0
 
     # ------------------------------------------------------------------ into the frame
-    def add(self, fr, name, i, j, direction) -> int:
+    def add(self, fr, name, i, j, dof) -> int:
         """Add the element(s) of this material to a frame.
 
         Parameters
@@ -57,14 +58,13 @@ class Material:
         fr : Frame2D
         name : str, the element's name
         i, j : node tags (the zeroLength's nodes)
-        direction : int, 1, 2 or 3 (``ux``, ``uy``, ``rz``)
+        dof : str, the DOF name of the direction (``ux``, ``uy``, ``rz``, ...)
 
         Returns
         -------
         int
             The sign (+1 or -1) that makes the element's stress OpenSees's force.
         """
-        dof = DIRECTIONS[direction]
         if self.kind == "Elastic":
             fr.spring(name, i, self.E, j=j, direction=dof)
             if self.eta:
@@ -84,6 +84,9 @@ class Material:
             fr.yield_link(name, i, j, k=self.E, Fy_t=Fy_t, Fy_c=Fy_c, direction=dof)
             return 1
         # an imposed strain eps0: the element of yield_link with theta = eps0
+        if isinstance(fr, Frame3D):
+            refuse("uniaxialMaterial('ElasticPP') with eps0 in a 3-D model", "an imposed strain of a 3-D yield "
+                   "link is not in the subset", "eps0 = 0 (the default)")
         where = fr._label("yield_link", name)
         fr._two_nodes(where, i, j)
         terms = el.direction_terms(where, dof)

@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from .elements import BeamColumn
+from .elements3d import BeamColumn3D, beam_stiffness3d
 from .refusals import refuse
 
 __all__ = ["nodal", "element_force", "material_forces", "element_response", "nodal_reactions"]
@@ -61,7 +62,7 @@ def nodal(analysis, which, tag, dof=-1):
         refuse(what, f"node {tag} is not defined", "a defined node")
     b = _ready(analysis, what)
     U = b.nodal(getattr(analysis, which))
-    return _pick(U[b.row[tag]:b.row[tag] + 3], dof, what)
+    return _pick(U[b.row[tag]:b.row[tag] + b.ndf], dof, what)
 
 
 def _element(analysis, tag, what):
@@ -112,14 +113,34 @@ def element_force(analysis, tag, dof=-1):
 
 
 def _global_force(analysis, b, tag, e):
-    if isinstance(e, BeamColumn):
+    if isinstance(e, (BeamColumn, BeamColumn3D)):
         rows, Ke, _ = b.beams[tag]
         return Ke @ b.nodal(analysis.u)[rows]
-    out = np.zeros(6)
+    out = np.zeros(2 * b.ndf)
     for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):
         out[direction - 1] -= f
-        out[3 + direction - 1] += f
+        out[b.ndf + direction - 1] += f
     return out
+
+
+def _beam_response(analysis, b, tag, e, name):
+    """``'localForce'`` or ``'basicForce'`` of a beam (2-D: ``N, M_i, M_j``; 3-D: ``N, Mz_i, Mz_j, My_i,
+    My_j, T``), or None for another response."""
+    f = _global_force(analysis, b, tag, e)
+    if isinstance(e, BeamColumn3D):
+        local = beam_stiffness3d(analysis.domain, e)[1] @ f
+        basic = local[[6, 5, 11, 4, 10, 9]]
+    else:
+        xi, xj = np.array(analysis.domain.nodes[e.i]), np.array(analysis.domain.nodes[e.j])
+        c, s = (xj - xi) / np.hypot(*(xj - xi))
+        R = np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]])
+        local = np.r_[R @ f[:3], R @ f[3:]]
+        basic = local[[3, 2, 5]]
+    if name in ("localForce", "localForces"):
+        return [float(x) for x in local]
+    if name in ("basicForce", "basicForces"):
+        return [float(x) for x in basic]
+    return None
 
 
 def element_response(analysis, tag, *args):
@@ -139,19 +160,13 @@ def element_response(analysis, tag, *args):
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
     name = args[0] if args else None
-    if name in ("force", "forces", "globalForce", "globalForces") and (isinstance(e, BeamColumn)
-                                                                       or name in ("force", "forces")):
+    beam = isinstance(e, (BeamColumn, BeamColumn3D))
+    if name in ("force", "forces", "globalForce", "globalForces") and (beam or name in ("force", "forces")):
         return [float(x) for x in _global_force(analysis, b, tag, e)]
-    if isinstance(e, BeamColumn):
-        f = _global_force(analysis, b, tag, e)
-        xi, xj = np.array(analysis.domain.nodes[e.i]), np.array(analysis.domain.nodes[e.j])
-        c, s = (xj - xi) / np.hypot(*(xj - xi))
-        R = np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]])
-        local = np.r_[R @ f[:3], R @ f[3:]]
-        if name in ("localForce", "localForces"):
-            return [float(x) for x in local]
-        if name in ("basicForce", "basicForces"):
-            return [float(local[3]), float(local[2]), float(local[5])]
+    if beam:
+        values = _beam_response(analysis, b, tag, e, name)
+        if values is not None:
+            return values
     else:
         pairs = material_forces(analysis, tag)
         if name in ("deformation", "deformations", "basicDeformation", "basicDeformations"):
@@ -181,14 +196,15 @@ def nodal_reactions(analysis, *args):
     b = _ready(analysis, "reactions")
     d = analysis.domain
     R = np.zeros(b.mass.size)
+    nf = b.ndf
     for tag, e in d.elements.items():
         f = _global_force(analysis, b, tag, e)
-        R[b.row[e.i]:b.row[e.i] + 3] += f[:3]
-        R[b.row[e.j]:b.row[e.j] + 3] += f[3:]
+        R[b.row[e.i]:b.row[e.i] + nf] += f[:nf]
+        R[b.row[e.j]:b.row[e.j] + nf] += f[nf:]
     for p in d.patterns.values():
         if p.kind != "Plain":
             continue
         factor = p.frozen if p.frozen is not None else p.factor * float(d.series[p.series](np.array([d.time]))[0])
         for node, values in p.loads:
-            R[b.row[node]:b.row[node] + 3] -= factor * values
-    return {tag: R[b.row[tag]:b.row[tag] + 3] for tag in d.nodes}
+            R[b.row[node]:b.row[node] + nf] -= factor * values
+    return {tag: R[b.row[tag]:b.row[tag] + nf] for tag in d.nodes}

@@ -69,9 +69,6 @@ REFUSED_COMMANDS = {
     "eigen": ("eigenvalue analysis is not in this slice", "unilateral.structure.modes on the built model"),
     "sp": ("imposed displacements are not in this slice", "a load, or a stiff support spring in the model"),
     "eleLoad": ("element loads are not in this slice", "equivalent nodal loads (load(node, ...))"),
-    "rigidLink": ("rigid links are not in this slice of the OpenSees layer", "equalDOF, or "
-                  "unilateral.structure.Frame2D.rigid_link directly"),
-    "rigidDiaphragm": ("rigid diaphragms are 3-D and not in this slice", "equalDOF in the floor's direction"),
     "imposedMotion": ("multi-support excitation is not in this slice", "pattern('UniformExcitation', ...)"),
     "groundMotion": ("multi-support excitation is not in this slice", "pattern('UniformExcitation', ...)"),
     "nDMaterial": ("multi-dimensional materials are not in this slice", "uniaxial ENT, ElasticPP, ElasticPPGap"),

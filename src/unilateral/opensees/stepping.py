@@ -144,10 +144,10 @@ class Analysis:
             f = np.zeros(mass.size)
             if p.kind == "Plain":
                 for node, values in p.loads:
-                    f[b.row[node]:b.row[node] + 3] += values
+                    f[b.row[node]:b.row[node] + b.ndf] += values
                 _check_loaded(b, d, p, f)
             else:
-                f[p.direction - 1::3] = -mass[p.direction - 1::3]
+                f[p.direction - 1::b.ndf] = -mass[p.direction - 1::b.ndf]
             factor = np.full(times.size, p.frozen) if p.frozen is not None else p.factor * d.series[p.series](times)
             q += np.outer(factor, b.reduced(f))
         return q
@@ -289,8 +289,8 @@ def _check_loaded(b, d, p, f):
     """Refuse a nodal load on a DOF that is neither a DOF of the model nor fixed."""
     moved = np.asarray(abs(b.P).sum(axis=1)).ravel() > 0
     for node, values in p.loads:
-        for k in range(3):
-            fixed = d.fixes.get(node, (0, 0, 0))[k]
+        for k in range(b.ndf):
+            fixed = d.fixes.get(node, (0,) * b.ndf)[k]
             if values[k] and not moved[b.row[node] + k] and not fixed:
                 refuse(f"load({node})", f"DOF {k + 1} of node {node} is not a DOF of the model: nothing stiffens "
                        "it (a rotation without a beam or a rotational spring)", "a load on a DOF an element "
