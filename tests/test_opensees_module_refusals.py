@@ -44,7 +44,7 @@ REFUSED_CALLS = [
     (lambda: ops.uniaxialMaterial('Steel02', 9, 400.0, 2e5, 0.01), "Steel02", "smooth"),
     (lambda: ops.uniaxialMaterial('Concrete02', 9, -30.0, -0.002, -6.0, -0.006), "Concrete02", "softening"),
     (lambda: ops.uniaxialMaterial('Hysteretic', 9, 1.0, 0.1), "Hysteretic"),
-    (lambda: ops.uniaxialMaterial('Steel01', 9, 400.0, 2e5, 0.01), "Steel01"),
+    (lambda: ops.uniaxialMaterial('Steel01', 9, 400.0, 2e5, 0.01, 0.05, 1.0, 0.0, 1.0), "Steel01", "isotropic"),
     (lambda: ops.uniaxialMaterial('MinMax', 9, 1), "MinMax", "ElasticPP"),
     (lambda: ops.uniaxialMaterial('Elastic', 9, 100.0, 0.0, 50.0), "Eneg", "ENT"),
     (lambda: ops.uniaxialMaterial('ElasticPPGap', 9, 100.0, -5.0, -0.01, 0.1), "ElasticPPGap", "hardening"),

@@ -41,7 +41,8 @@ class Built:
     row : dict node tag -> ``3 p``, its first row of ``P``
     mass : (3 nodes,) the lumped masses of the nodal DOFs
     beams : dict tag -> (rows (6,), K_e (6, 6), stiffness damping factor)
-    springs : dict tag -> list of (material, direction, element name, sign, strain index, damping factor)
+    springs : dict tag -> list of (material, direction, [(strain index, sign) of the elements read],
+        damping factor)
     ties : (n_structure, n) csr, the structure's DOFs ``T u`` of the reduced ``u`` (the equalDOF ties)
     """
 
@@ -145,7 +146,7 @@ def _frame(domain):
 
 
 def _add_elements(fr, domain) -> dict:
-    """Add every element to ``fr``; ``{(tag, k): (name, sign)}`` of the zeroLength materials."""
+    """Add every element to ``fr``; ``{(tag, k): [(element name, sign), ...]}`` of the zeroLength materials."""
     names = {}
     dofs = DIRECTIONS[domain.ndf]
     for tag, e in domain.elements.items():
@@ -158,7 +159,7 @@ def _add_elements(fr, domain) -> dict:
             continue
         for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
             name = f"e{tag}.{k}"
-            names[(tag, k)] = (name, domain.materials[mat].add(fr, name, e.i, e.j, dofs[direction]))
+            names[(tag, k)] = domain.materials[mat].add(fr, name, e.i, e.j, dofs[direction])
     return names
 
 
@@ -245,10 +246,9 @@ def _element_tables(domain, st, row, names, beta):
             continue
         table = []
         for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
-            name, sign = names[(tag, k)]
             material = domain.materials[mat]
             damp = factor if e.rayleigh else 0.0
-            table.append((material, direction, name, sign, starts[name], damp))
+            table.append((material, direction, [(starts[name], sign) for name, sign in names[(tag, k)]], damp))
             if damp:
                 ri, rj = row[e.i] + direction - 1, row[e.j] + direction - 1
                 K[np.ix_([ri, rj], [ri, rj])] += damp * material.E * np.array([[1.0, -1.0], [-1.0, 1.0]])

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .composites import COMPOSITES, parse_composite
 from .elements import parse_element
 from .materials import parse_material
 from .refusals import refuse
@@ -183,7 +184,10 @@ class Domain:
         """``uniaxialMaterial(kind, tag, ...)``: Elastic, ENT, ElasticPP, ElasticPPGap."""
         what = f"uniaxialMaterial({kind!r}, {tag!r})"
         tag = _tag(what, tag)
-        self.materials[tag] = parse_material(kind, args)
+        if kind in COMPOSITES:
+            self.materials[tag] = parse_composite(kind, args, self.materials)
+        else:
+            self.materials[tag] = parse_material(kind, args)
 
     def element(self, kind, tag, *args):
         """``element(kind, tag, ...)``: elasticBeamColumn, zeroLength."""

@@ -81,10 +81,11 @@ def material_forces(analysis, tag):
     u_st = np.asarray(_structure_u(b, analysis.u)).ravel()
     sigma = st.natural.stresses(np.zeros(1), u_st[None, :], analysis.v[None, :])[0]
     out = []
-    for material, direction, _, sign, strain, damp in b.springs[tag]:
+    for material, direction, reads, damp in b.springs[tag]:
         ri, rj = b.row[e.i] + direction - 1, b.row[e.j] + direction - 1
         de, dv = U[rj] - U[ri], Ud[rj] - Ud[ri]
-        out.append((de, material.force(de, dv, sigma[strain], sign) + damp * material.E * dv))
+        forces = [sign * sigma[strain] for strain, sign in reads]
+        out.append((de, material.force(de, dv, forces) + damp * material.E * dv))
     return out
 
 

@@ -44,8 +44,8 @@ NOT_NEEDED = {
 
 #: The elements, materials and commands refused by name: (why, instead).
 REFUSED_MATERIALS = {
-    "Steel01": "a bilinear steel with isotropic hardening is not a piecewise-linear law with constant "
-               "yield forces",
+    "Series": "materials in series share one force: a composition of contacts and yield laws in series needs "
+              "an internal deformation, not in the subset (use two zeroLength elements through a node between)",
     "Steel02": "the Giuffre-Menegotto-Pinto law is smooth (curved), not piecewise linear",
     "Concrete01": "concrete softening and degrading unloading are not a convex piecewise-linear law",
     "Concrete02": "concrete softening and degrading unloading are not a convex piecewise-linear law",
