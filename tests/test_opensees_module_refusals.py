@@ -75,7 +75,7 @@ REFUSED_CALLS = [
     (lambda: ops.section('Fiber', 1), "section()", "fibre"),
     (lambda: ops.fiber(0.0, 0.0, 0.01, 1), "fiber()"),
     (lambda: ops.patch('rect', 1, 4, 4, 0, 0, 1, 1), "patch()"),
-    (lambda: ops.recorder('Node', '-file', 'x.out', '-node', 3, '-dof', 1, 'disp'), "recorder()", "nodeDisp"),
+    (lambda: ops.recorder('Drift', '-file', 'x.out', '-iNode', 1, '-jNode', 3), "recorder('Drift')", "Node"),
     (lambda: ops.eigen(2), "eigen()"),
     (lambda: ops.sp(3, 1, 0.01), "sp()"),
     (lambda: ops.eleLoad('-ele', 3, '-type', '-beamUniform', -10.0), "eleLoad()", "nodal loads"),

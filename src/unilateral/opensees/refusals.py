@@ -64,8 +64,6 @@ REFUSED_COMMANDS = {
     "layer": ("fibre sections integrate nonlinear stress-strain laws", "zeroLength ElasticPP hinges"),
     "beamIntegration": ("force- and displacement-based fibre elements are not in the subset",
                         "elasticBeamColumn"),
-    "recorder": ("recorders (files written during the analysis) are not in this slice",
-                 "read nodeDisp, eleForce ... after each analyze(1, dt)"),
     "eigen": ("eigenvalue analysis is not in this slice", "unilateral.structure.modes on the built model"),
     "sp": ("imposed displacements are not in this slice", "a load, or a stiff support spring in the model"),
     "eleLoad": ("element loads are not in this slice", "equivalent nodal loads (load(node, ...))"),

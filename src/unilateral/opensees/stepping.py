@@ -47,6 +47,7 @@ class Analysis:
 
     def __init__(self, domain):
         self.domain = domain
+        self.on_commit = None                        # called with the time after each step (recorders)
         self.wipe()
 
     def wipe(self):
@@ -205,6 +206,8 @@ class Analysis:
                        "then a transient analysis")
             self.u, self.v = state.u, state.v
             self._check_gaps()
+            if self.on_commit is not None:
+                self.on_commit(d.time)
         self.sim = None
         return 0
 
@@ -234,6 +237,8 @@ class Analysis:
                 self.u, self.ud, self.v = state.u, state.udot, state.v
                 d.time = sim["times"][s.n]
                 self._check_gaps()
+                if self.on_commit is not None:
+                    self.on_commit(d.time)
                 done += 1
         return 0
 
