@@ -67,7 +67,7 @@ REFUSED_CALLS = [
     (lambda: ops.pattern('UniformExcitation', 7, 3, '-accel', 1), "direction 3", "rotation"),
     (lambda: ops.integrator('HHT', 0.9), "HHT", "Newmark"),
     (lambda: ops.integrator('Newmark', 0.5, 0.1), "unconditionally stable"),
-    (lambda: ops.integrator('DisplacementControl', 3, 1, 0.01), "DisplacementControl"),
+    (lambda: ops.integrator('ArcLength', 1.0, 1.0), "ArcLength", "DisplacementControl"),
     (lambda: ops.integrator('LoadControl', 0.1, 1, 0.01, 0.2), "automatic load increment"),
     (lambda: ops.analysis('VariableTransient'), "VariableTransient"),
     (lambda: ops.reactions('-dynamic'), "-dynamic"),

@@ -31,6 +31,7 @@ from ..lcp import get_lcp_solver
 from ..rules import Newmark
 from ..solve import Simulation
 from .build import build
+from .control import DisplacementPath, parse_displacement_control
 from .queries import material_forces
 from .refusals import OpenSeesRefused, refuse
 
@@ -61,7 +62,7 @@ class Analysis:
     def wipe_analysis(self):
         """Forget the analysis settings (``wipeAnalysis``); the state is kept."""
         self.integrator, self.kind = None, None
-        self.sim = None
+        self.sim = self.path = None
 
     # ------------------------------------------------------------------ settings
     def set_integrator(self, kind, *args):
@@ -88,13 +89,17 @@ class Analysis:
                 refuse(what, "an automatic load increment (minLambda, maxLambda different from dLambda) is not in "
                        "the subset", "integrator('LoadControl', dLambda)")
             self.integrator = ("LoadControl", d)
+        elif kind == "DisplacementControl":
+            self.integrator = ("DisplacementControl", *parse_displacement_control(what, args))
         elif kind in ("HHT", "GeneralizedAlpha", "CentralDifference", "TRBDF2", "ExplicitDifference"):
             refuse(what, "the direct stepping here is Newmark's (with gamma, beta); this integrator is another "
                    "rule", "integrator('Newmark', 0.5, 0.25)")
         else:
-            refuse(what, "only Newmark (transient) and LoadControl (static) are in the subset",
+            refuse(what, "only Newmark (transient), LoadControl and DisplacementControl (static) are in the subset",
                    "integrator('Newmark', 0.5, 0.25) or integrator('LoadControl', 1.0)")
         self.sim = None
+        if kind != "DisplacementControl":            # a new increment goes on along the same path
+            self.path = None
 
     def set_analysis(self, kind, *args):
         """``analysis('Static')`` or ``analysis('Transient')``."""
@@ -173,8 +178,11 @@ class Analysis:
         if self.kind == "Static":
             if self.integrator is None:
                 self.integrator = ("LoadControl", 1.0)
+            if self.integrator[0] == "DisplacementControl":
+                return self._displacement_control(steps)
             if self.integrator[0] != "LoadControl":
-                refuse("analyze", "a Static analysis takes the LoadControl integrator", "integrator('LoadControl', 1.0)")
+                refuse("analyze", "a Static analysis takes the LoadControl or DisplacementControl integrator",
+                       "integrator('LoadControl', 1.0)")
             return self._static(steps)
         if self.integrator is None:
             self.integrator = ("Newmark", 0.5, 0.25)
@@ -205,6 +213,25 @@ class Analysis:
                        "static analysis is not that of one increment", "static loads that do not yield (gravity), "
                        "then a transient analysis")
             self.u, self.v = state.u, state.v
+            self._check_gaps()
+            if self.on_commit is not None:
+                self.on_commit(d.time)
+        self.sim = None
+        return 0
+
+    def _displacement_control(self, steps):
+        """Steps of ``DisplacementControl`` on the monotonic static path (:mod:`.control`)."""
+        self.current()
+        _, node, dof, incr = self.integrator
+        d = self.domain
+        path = self.path
+        if path is None or path.key != (self.built_version, d.load_version, node, dof):
+            self.path = path = DisplacementPath(self, node, dof, incr)
+        path.incr = incr                             # (a new increment on the same path)
+        for _ in range(steps):
+            state = path.step()
+            self.u, self.v, d.time = state["u"], state["v"], state["time"]
+            self.ud, self.udd = np.zeros_like(self.u), np.zeros_like(self.u)
             self._check_gaps()
             if self.on_commit is not None:
                 self.on_commit(d.time)
