@@ -55,6 +55,16 @@ class Built:
     springs: dict
     ties: sp.csr_matrix = None
     ndf: int = 3
+    stress: tuple = None
+
+    def stresses(self, u, v) -> np.ndarray:
+        """The element stresses (ne,) of the reduced ``u`` and ``v``, at the strains the queries read
+        (zero elsewhere)."""
+        rows, S_u, S_v, s0, ne = self.stress
+        sigma = np.zeros(ne)
+        if rows.size:
+            sigma[rows] = S_u @ u - S_v @ v - s0
+        return sigma
 
     def nodal(self, u) -> np.ndarray:
         """The nodal DOFs (3 nodes,) of the reduced ``u``."""
@@ -110,7 +120,20 @@ def build(domain) -> Built:
     model = Model.from_natural((T.T @ nat.G).tocsr(), nat.E, nat.B, M=M, A=A, r=nat.r, theta=nat.theta(0.0),
                                C=sp.csr_matrix(C) if C.nnz else None, E_v=nat.E_v, dof_names=reduced_names,
                                constraint_names=list(st.constraint_names), families=st.families())
-    return Built(st, model, P, row, mass, beams, springs, T, nf)
+    return Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs))
+
+
+def _stress_rows(st, T, springs):
+    """``(rows, S_u, S_v, s0, ne)``: ``sigma[rows] = S_u u - S_v v - s0`` (``E (G^T T u - B v - theta)``)
+    at the strains the queries of the zeroLength elements read."""
+    nat = st.natural
+    rows = np.array(sorted({strain for table in springs.values() for *_, reads, _ in table
+                            for strain, _ in reads}), dtype=np.int64)
+    E = sp.csr_matrix(nat.E)[rows]
+    theta = np.asarray(nat.theta(0.0), dtype=float)
+    S_u = (E @ sp.csr_matrix(nat.G).T @ T).tocsr()
+    S_v = sp.csr_matrix(E @ sp.csr_matrix(nat.B))
+    return rows, S_u, S_v, np.asarray(E @ theta).ravel(), sp.csr_matrix(nat.E).shape[0]
 
 
 def _frame(domain):

@@ -27,6 +27,9 @@ from .refusals import refuse
 __all__ = ["nodal", "element_force", "material_forces", "element_response", "nodal_reactions"]
 
 
+_NODAL = {"u": "nodeDisp", "ud": "nodeVel", "udd": "nodeAccel"}
+
+
 def _pick(values, dof, what):
     values = [float(x) for x in values]
     if dof is None or dof == -1:
@@ -56,30 +59,41 @@ def nodal(analysis, which, tag, dof=-1):
     -------
     float or list of 3 floats
     """
-    what = f"node{ {'u': 'Disp', 'ud': 'Vel', 'udd': 'Accel'}[which] }({tag})".replace(" ", "")
+    what = _Label(_NODAL[which], tag)
     tag = int(tag)
     if tag not in analysis.domain.nodes:
         refuse(what, f"node {tag} is not defined", "a defined node")
     b = _ready(analysis, what)
-    U = b.nodal(getattr(analysis, which))
+    U = _state(analysis)[which]
     return _pick(U[b.row[tag]:b.row[tag] + b.ndf], dof, what)
+
+
+class _Label:
+    """The name of a query in a refusal, formatted only if one is raised."""
+
+    def __init__(self, command, tag, args=()):
+        self.command, self.tag, self.args = command, tag, args
+
+    def __str__(self):
+        return f"{self.command}({', '.join(map(repr, (self.tag, *self.args)))})"
+
+    __format__ = lambda self, spec: format(str(self), spec)
 
 
 def _element(analysis, tag, what):
     tag = int(tag)
-    if tag not in analysis.domain.elements:
+    e = analysis.domain.elements.get(tag)
+    if e is None:
         refuse(what, f"element {tag} is not defined", "a defined element")
-    return tag, analysis.domain.elements[tag]
+    return tag, e
 
 
 def material_forces(analysis, tag):
     """``[(e, f), ...]``: deformation and force of each material of the zeroLength ``tag``."""
     b = analysis.built
     e = analysis.domain.elements[tag]
-    U, Ud = b.nodal(analysis.u), b.nodal(analysis.ud)
-    st = b.structure
-    u_st = np.asarray(_structure_u(b, analysis.u)).ravel()
-    sigma = st.natural.stresses(np.zeros(1), u_st[None, :], analysis.v[None, :])[0]
+    state = _state(analysis)
+    U, Ud, sigma = state["u"], state["ud"], state["sigma"]
     out = []
     for material, direction, reads, damp in b.springs[tag]:
         ri, rj = b.row[e.i] + direction - 1, b.row[e.j] + direction - 1
@@ -89,9 +103,21 @@ def material_forces(analysis, tag):
     return out
 
 
-def _structure_u(b, u):
-    """The DOFs of the built structure (before the ties) of the reduced ``u``."""
-    return b.ties @ u
+def _state(analysis) -> dict:
+    """The nodal ``u``, ``ud``, ``udd`` and the element stresses of the current state, computed once
+    per state (the queries of one step share them)."""
+    b = analysis.built
+    cache = getattr(analysis, "_query_cache", None)
+    if cache is not None:
+        key = cache[0]
+        if (key[0] is b and key[1] is analysis.u and key[2] is analysis.ud and key[3] is analysis.udd
+                and key[4] is analysis.v):
+            return cache[1]
+    key = (b, analysis.u, analysis.ud, analysis.udd, analysis.v)
+    sigma = b.stresses(analysis.u, analysis.v)
+    state = {"u": b.nodal(analysis.u), "ud": b.nodal(analysis.ud), "udd": b.nodal(analysis.udd), "sigma": sigma}
+    analysis._query_cache = (key, state)                  # (holding the arrays: their identity is the key)
+    return state
 
 
 def element_force(analysis, tag, dof=-1):
@@ -107,7 +133,7 @@ def element_force(analysis, tag, dof=-1):
     -------
     float or list of 6 floats (``i`` then ``j``, global axes)
     """
-    what = f"eleForce({tag})"
+    what = _Label("eleForce", tag)
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
     return _pick(_global_force(analysis, b, tag, e), dof, what)
@@ -116,7 +142,7 @@ def element_force(analysis, tag, dof=-1):
 def _global_force(analysis, b, tag, e):
     if isinstance(e, (BeamColumn, BeamColumn3D)):
         rows, Ke, _ = b.beams[tag]
-        return Ke @ b.nodal(analysis.u)[rows]
+        return Ke @ _state(analysis)["u"][rows]
     out = np.zeros(2 * b.ndf)
     for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):
         out[direction - 1] -= f
@@ -157,7 +183,7 @@ def element_response(analysis, tag, *args):
     -------
     list of floats
     """
-    what = f"eleResponse({tag}, {', '.join(map(repr, args))})"
+    what = _Label("eleResponse", tag, args)
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
     name = args[0] if args else None

@@ -30,7 +30,7 @@ class OpenSeesRefused(ValueError):
 
 def refuse(what, why, instead):
     """Raise :class:`OpenSeesRefused` for ``what`` with the reason ``why`` and the alternative ``instead``."""
-    raise OpenSeesRefused(what, why, instead)
+    raise OpenSeesRefused(str(what), why, instead)
 
 
 #: The commands accepted without effect, and why they are not needed.
