@@ -149,3 +149,16 @@ def test_python_script_runs_with_the_cli(tmp_path):
     code, out, err = run_tcl_cli(script, tmp_path)
     assert code == 0, err
     assert out.strip() == "2.0"
+
+
+@needs_opensees
+def test_tcl_recorders_write_the_files_of_openseespy(tmp_path):
+    theirs = run("recorders.py", "opensees")
+    code, _, err = run_tcl_cli(TCL / "recorders.tcl", tmp_path)
+    assert code == 0, err[-3000:]
+    for name in ("disp", "accel", "react", "hinges", "local"):
+        rows = [[float(x) for x in line.split()] for line in (tmp_path / f"{name}.out").read_text().splitlines()]
+        assert [len(rows), len(rows[0])] == list(theirs[name + ".shape"]), name
+        ours = np.array(rows).ravel()
+        tol = 1e-5 if name == "local" else 1e-8                      # 'local': 6 digits
+        assert np.abs(ours - theirs[name]).max() <= tol * np.abs(theirs[name]).max(), name

@@ -160,11 +160,12 @@ class Domain:
         what = f"geomTransf({kind!r}, {tag!r})"
         self._need_model(what)
         if kind == "PDelta":
-            refuse(what, "OpenSees's P-Delta geometric stiffness follows the current axial force of each "
-                   "element (it changes with the response, e.g. under overturning), while the model here is "
-                   "linear: its P-Delta (Frame2D.p_delta) is the consistent geometric stiffness of the constant "
-                   "axial forces of gravity, not the same equations", "geomTransf('Linear', tag), or build the "
-                   "frame with unilateral.structure.Frame2D and use Frame2D.p_delta")
+            refuse(what, "OpenSees's P-Delta adds to each element the string stiffness N/L of its current axial "
+                   "force N, which follows the response (overturning changes it; OpenSees iterates on it), while "
+                   "the structure here is linear: its P-Delta (Frame2D.p_delta) is the consistent geometric "
+                   "stiffness (6/5 N/L, N L/10, ...) of the constant axial forces of gravity, other equations even "
+                   "where N stays the gravity's", "geomTransf('Linear', tag), or build the frame with "
+                   "unilateral.structure.Frame2D and use Frame2D.p_delta")
         if kind == "Corotational":
             refuse(what, "large rotations (corotational kinematics) make the structure geometrically nonlinear; "
                    "the method needs a linear structure", "geomTransf('Linear', tag)")
