@@ -1,11 +1,12 @@
 """OpenSeesPy's commands on this library's model: ``import unilateral.opensees as ops``.
 
-A 2-D OpenSeesPy script of the supported subset runs unchanged but for its import: the commands
-record the model (:mod:`.domain`), ``analyze`` builds it (:mod:`.build`) and steps it with a
-:class:`unilateral.Simulation` (:mod:`.analysis`), and the queries answer in OpenSees's layout
-and signs (:mod:`.queries`). What is outside the subset raises :class:`OpenSeesRefused` at once
-(:mod:`.refusals`). See ``docs/opensees.md``.
-"""
+An OpenSeesPy script (2-D or 3-D) of the supported subset runs unchanged but for its import: the
+commands record the model (:mod:`.domain`), ``analyze`` builds it (:mod:`.build`) and steps it with
+a :class:`unilateral.Simulation` or follows its static path (:mod:`.stepping`, :mod:`.control`),
+and the queries and recorders answer in OpenSees's layout and signs (:mod:`.queries`,
+:mod:`.recorders`). What is outside the subset raises :class:`OpenSeesRefused` at once
+(:mod:`.refusals`). Tcl scripts run through Python's Tcl interpreter (:mod:`.tcl`,
+``unilateral opensees model.tcl``). See ``docs/opensees.md``."""
 
 from __future__ import annotations
 
