@@ -26,6 +26,9 @@ def test_recorder_files_equal_openseespy():
     hinges = theirs["hinges"].reshape(-1, 3)
     assert np.isclose(np.abs(hinges[:, 1:]).max(), 130.0)             # the hinges yield
     assert np.array_equal(hinges[:4, 0], [0.25, 0.5, 0.75, 1.0])      # the static steps' times
+    assert list(theirs["envnode.shape"]) == [3, 8] and list(theirs["envele.shape"]) == [3, 4]
+    env = theirs["envnode"].reshape(3, 8)                             # min, max, absmax; (time, value) pairs
+    assert np.allclose(env[2, 1::2], np.maximum(-env[0, 1::2], env[1, 1::2]))
 
 
 def test_recorder_writes_lines_and_closes_on_wipe(tmp_path):
@@ -50,7 +53,7 @@ def test_recorder_writes_lines_and_closes_on_wipe(tmp_path):
 
 
 @pytest.mark.parametrize("args, words", [
-    (('EnvelopeNode', '-file', 'x.out', '-node', 1, '-dof', 1, 'disp'), ("EnvelopeNode",)),
+    (('Drift', '-file', 'x.out', '-iNode', 1, '-jNode', 1), ("Drift",)),
     (('Node', '-xml', 'x.xml', '-node', 1, '-dof', 1, 'disp'), ("'-xml'", "text only")),
     (('Node', '-node', 1, '-dof', 1, 'disp'), ("to a file",)),
     (('Node', '-file', 'x.out', '-node', 7, '-dof', 1, 'disp'), ("[7] are not defined",)),

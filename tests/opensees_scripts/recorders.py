@@ -1,4 +1,5 @@
-"""(12) Recorders: Node (disp, accel with -dT, reaction) and Element (basicForce, localForce) files.
+"""(12) Recorders: Node (disp, accel with -dT, reaction), Element (basicForce, localForce) and
+EnvelopeNode, EnvelopeElement files.
 
 The portal of (6) with its hinges, gravity by LoadControl (recorded) then a ground motion; the
 recorders are defined before the gravity analysis. At the end ``wipe()`` closes the files, and the
@@ -16,7 +17,8 @@ ag = [0.0] + [5.0 * math.sin(2 * math.pi * k * dt / 0.5) * math.exp(-0.8 * k * d
 E, Ic, H = 30e6, 2.133e-3, 3.5
 k_hinge = 20 * 6 * E * Ic / H
 folder = tempfile.mkdtemp()
-files = {name: os.path.join(folder, name + '.out') for name in ('disp', 'accel', 'react', 'hinges', 'local')}
+files = {name: os.path.join(folder, name + '.out') for name in ('disp', 'accel', 'react', 'hinges', 'local', 'envnode',
+                                                              'envele')}
 
 ops.wipe()
 ops.model('basic', '-ndm', 2, '-ndf', 3)
@@ -42,6 +44,8 @@ ops.recorder('Node', '-file', files['accel'], '-time', '-dT', 0.02, '-precision'
 ops.recorder('Node', '-file', files['react'], '-precision', 16, '-node', 1, '-dof', 1, 2, 3, 'reaction')
 ops.recorder('Element', '-file', files['hinges'], '-time', '-precision', 16, '-ele', 101, 102, 'basicForce')
 ops.recorder('Element', '-file', files['local'], '-eleRange', 1, 3, 'localForce')
+ops.recorder('EnvelopeNode', '-file', files['envnode'], '-time', '-precision', 16, '-node', 3, 4, '-dof', 1, 3, 'disp')
+ops.recorder('EnvelopeElement', '-file', files['envele'], '-precision', 16, '-ele', 101, 1, 'basicForce')
 
 ops.timeSeries('Linear', 1)
 ops.pattern('Plain', 1, 1)

@@ -10,6 +10,10 @@ node in turn, the values of its ``-dof`` list (``disp``, ``vel``, ``accel``, ``r
 ``Element`` recorder, for each element, its ``eleResponse`` of the response named. Files are
 written relative to the current directory, created (emptied) when the recorder is defined and
 closed by ``wipe``, ``remove('recorders')`` or the end of the program.
+
+``EnvelopeNode`` and ``EnvelopeElement`` keep, for each value, its minimum, maximum and largest
+absolute value over the records (the first time each is reached) and write them when closed: three
+lines (min, max, absmax), each value preceded by its time with ``-time``, as OpenSees does.
 """
 
 from __future__ import annotations
@@ -38,6 +42,7 @@ class Recorder:
     precision: int = 6
     stream: object = None
     next_time: float = None
+    envelope: list = None
 
     def open(self):
         """Create (empty) the file."""
@@ -45,9 +50,28 @@ class Recorder:
         atexit.register(self.close)
 
     def close(self):
-        """Close the file (idempotent)."""
+        """Close the file (idempotent); an envelope recorder writes its three lines first."""
         if self.stream is not None and not self.stream.closed:
+            if self.envelope is not None:
+                p = self.precision
+                for row in self.envelope:
+                    items = [x for pair in row for x in (pair if self.time else pair[1:])]
+                    self.stream.write(" ".join(f"{float(x):.{p}g}" for x in items) + "\n")
             self.stream.close()
+
+    def _envelope(self, t, values):
+        """Update the minima, maxima and absolute maxima with the values at time ``t``."""
+        if self.envelope is None:
+            self.envelope = [[(t, x) for x in values], [(t, x) for x in values], [(t, abs(x)) for x in values]]
+            return
+        lo, hi, ab = self.envelope
+        for k, x in enumerate(values):
+            if x < lo[k][1]:
+                lo[k] = (t, x)
+            if x > hi[k][1]:
+                hi[k] = (t, x)
+            if abs(x) > ab[k][1]:
+                ab[k] = (t, abs(x))
 
     def record(self, session, t):
         """Write the line of the domain time ``t`` (if ``-dT`` lets it)."""
@@ -57,8 +81,8 @@ class Recorder:
             if self.next_time is not None and t - self.next_time < -self.dT * 1e-5:
                 return
             self.next_time = t + self.dT
-        values = [t] if self.time else []
-        if self.kind == "Node":
+        values = [t] if self.time and not self.kind.startswith("Envelope") else []
+        if self.kind in ("Node", "EnvelopeNode"):
             command = getattr(session, _NODE_RESPONSES[self.response[0]])
             if self.response[0] == "reaction":
                 session.reactions()
@@ -67,6 +91,9 @@ class Recorder:
         else:
             for tag in self.tags:
                 values.extend(session.eleResponse(tag, *self.response))
+        if self.kind.startswith("Envelope"):
+            self._envelope(t, [float(x) for x in values])
+            return
         p = self.precision
         self.stream.write(" ".join(f"{float(x):.{p}g}" for x in values) + "\n")
 
@@ -93,9 +120,10 @@ def parse_recorder(kind, args, domain) -> Recorder:
     Recorder, with its file created
     """
     what = f"recorder({kind!r})"
-    if kind not in ("Node", "Element"):
-        refuse(what, "only the Node and Element recorders are in the subset (EnvelopeNode, Drift, ... not yet)",
-               "recorder('Node', ...) or recorder('Element', ...), or the queries after each analyze")
+    if kind not in ("Node", "Element", "EnvelopeNode", "EnvelopeElement"):
+        refuse(what, "only the Node, Element, EnvelopeNode and EnvelopeElement recorders are in the subset "
+               "(Drift, ... not yet)", "recorder('Node', ...) or recorder('Element', ...), or the queries after "
+               "each analyze")
     rest, opts = list(args), {"tags": [], "dofs": [], "time": False, "dT": 0.0, "precision": 6, "path": None}
     response = []
     while rest:
@@ -129,12 +157,13 @@ def _checked(what, kind, opts, response, domain) -> Recorder:
         refuse(what, "only recorders to a file are in the subset", "'-file', name")
     if not response:
         refuse(what, "the response is missing", "e.g. 'disp' (Node) or 'force' (Element)")
-    pool = domain.nodes if kind == "Node" else domain.elements
+    node = kind in ("Node", "EnvelopeNode")
+    pool = domain.nodes if node else domain.elements
     missing = [t for t in opts["tags"] if t not in pool]
     if missing or not opts["tags"]:
         refuse(what, f"{'the ' + kind.lower() + 's ' + str(missing) + ' are not defined' if missing else 'no tags'}",
                "the tags of defined nodes or elements")
-    if kind == "Node":
+    if node:
         if response[0] not in _NODE_RESPONSES or len(response) > 1:
             refuse(f"{what} {response[0]!r}", "the response is not in the subset", "'disp', 'vel', 'accel', 'reaction'")
         if not opts["dofs"] or any(d not in range(1, domain.ndf + 1) for d in opts["dofs"]):
