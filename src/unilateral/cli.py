@@ -269,6 +269,25 @@ def _plot(results, target, formats):
     return paths, skipped, note
 
 
+@main.command()
+@click.argument("script", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+def opensees(script):
+    """Run an OpenSees script with this library's OpenSees commands (unilateral.opensees).
+
+    SCRIPT is a Tcl script (model.tcl, run by Python's Tcl interpreter) or an OpenSeesPy script
+    (model.py, its openseespy.opensees being unilateral.opensees). Files are read and written
+    relative to the current directory, as OpenSees does. A command outside the subset stops the
+    script with a message naming it, why and the nearest alternative (docs/opensees.md).
+    """
+    from .opensees import OpenSeesRefused
+    from .opensees.tcl import run_script
+
+    try:
+        run_script(script)
+    except (OpenSeesRefused, RuntimeError) as exc:
+        raise click.ClickException(str(exc)) from None
+
+
 @main.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True,
                                 "help_option_names": []})
 @click.pass_context
