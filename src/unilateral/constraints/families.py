@@ -123,7 +123,17 @@ class RigidContact(SoilContact):
     (:mod:`unilateral.structure.rigid`). ``K`` is then the stiffness of the structure *without* its
     rigid contacts, which may be singular or indefinite (a free block, the negative stiffness of
     rocking).
+
+    ``restitution`` (k,) holds Newton's coefficient ``e`` of each contact (0 <= e <= 1; a scalar
+    for all), used by the velocity-level impact law of ``method="moreau-jean"``.
     """
+
+    def __init__(self, indices, *, restitution=0.0, name=None):
+        super().__init__(indices, name=name)
+        e = np.broadcast_to(np.asarray(restitution, dtype=float), self.indices.shape).copy()
+        if not np.all((e >= 0) & (e <= 1)):
+            raise ValueError(f"restitution={restitution!r} must lie in [0, 1] (Newton's coefficient of restitution)")
+        self.restitution = e
 
 
 class SoilShear(ConstraintFamily):

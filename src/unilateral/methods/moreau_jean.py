@@ -1,0 +1,156 @@
+"""``method="moreau-jean"``: rigid contacts with Newton's impact law at the velocity level,
+impacts located within the step (:mod:`unilateral.march.impact`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import _validate as V
+from ..march.impact import MoreauJeanMarch, forces_at_rest, inertia_solve, system_of
+from .base import Method
+from .common import finish
+from .stepping import SolvedRun
+
+#: The rules of the theta-method: the rule's name -> theta.
+THETA = {"trapezoidal": 0.5, "bdf1": 1.0}
+
+
+class MoreauJean(Method):
+    """The Moreau-Jean time stepping of rigid contacts (``H = 0``, :mod:`unilateral.structure.rigid`)
+    with Newton's impact law, each impact located within its step by the root of the contact's
+    opening and applied there as a jump of the velocity (:mod:`unilateral.march.impact`).
+
+    For models whose every unknown is a rigid contact (``Frame2D.contact``, ``Frame2D.rigid_block``;
+    the family :class:`~unilateral.constraints.RigidContact`, whose ``restitution`` is Newton's
+    ``e`` of each contact). The rule is the theta-method's weight: ``rule="trapezoidal"``
+    (``theta = 1/2``: second order between impacts, no numerical dissipation: the energy balance
+    closes with the energy lost at impacts alone) or ``"bdf1"`` (``theta = 1``, first order,
+    dissipative). A rigid rocking block then follows Housner's law at every impact to round-off
+    (``docs/rocking.md``).
+
+    ``initial``: ``"rest"`` (``u = 0`` at rest), a dict of ``u0``, ``udot0`` (``v0`` is not needed:
+    the contact forces are outputs), or ``"static"``: the static state where ``K`` is definite,
+    else ``u = 0`` at rest if the rigid contacts hold it there (a block standing on its base).
+
+    The solution's ``v`` is the mean contact force of each step (impulse / dt, force; at step 0 the
+    forces of the acceleration-level LCP at the initial state), ``psi``
+    ``P psi = -opening``; ``stats`` has ``impulses`` (N+1, m), ``impacts`` (the located impacts:
+    time, contacts, impulses, normal velocities before and after, energy lost), ``unlocated_steps``
+    (steps whose impacts accumulated beyond ``max_events``, taken by the plain rule), ``theta``
+    and ``energy`` (cumulative ``external_work``, ``damping``, ``impact_loss``,
+    ``numerical_dissipation``, (N+1,) each; :func:`unilateral.analysis.rigid.energy_balance`).
+
+    Options
+    -------
+    locate : bool, locate the impacts within the step (default True; False: the plain
+        Moreau-Jean scheme, the impact at the end of the step in which it occurs)
+    max_events : int, the most impacts located in one step (default 16)
+    """
+
+    name = "moreau-jean"
+    options = ("locate", "max_events")
+    cq_rules_only = False
+
+    def applies(self, model, rule) -> str | None:
+        reason = super().applies(model, rule)
+        if reason is not None:
+            return reason
+        others = _not_rigid(model)
+        if others:
+            return (f"method='moreau-jean' solves models whose every unknown is a rigid contact (H = 0: "
+                    f"Frame2D.contact, rigid_block); {len(others)} are not ({', '.join(map(repr, others[:4]))}"
+                    f"{', ...' if len(others) > 4 else ''}): use method='direct'")
+        if rule.name not in THETA:
+            return (f"rule={rule.name!r}: method='moreau-jean' is the theta-method; valid rules: 'trapezoidal' "
+                    "(theta = 1/2) or 'bdf1' (theta = 1)")
+        return None
+
+    def solve(self, model, load, initial, disc, run):
+        locate = self.config.get("locate", True)
+        if not isinstance(locate, bool):
+            raise TypeError(f"{self.option_name}['locate'] must be True or False, got {V.describe(locate)}")
+        max_events = self.config.get("max_events", 16)
+        if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)) or max_events < 0:
+            raise ValueError(f"{self.option_name}['max_events'] must be an integer >= 0, got {V.describe(max_events)}")
+        system = system_of(model, load, disc.dt)
+        u0, udot0, message = start_state(model, system, initial)
+        run.stats.update(n=model.n, theta=THETA[disc.rule.name], locate=locate)
+        if message:
+            raise ValueError(f"initial={initial!r}: {message}")
+        run.timer.lap("initial")
+        march = MoreauJeanMarch(system, disc.dt, disc.N, u0, udot0, theta=THETA[disc.rule.name],
+                                solver=run.solver, locate=locate, max_events=max_events)
+        for k in range(disc.N):
+            if march.run(k + 1) < k + 1:
+                break
+            if run.callback is not None:
+                run.callback(k + 1, disc.N)
+        run.timer.lap("march")
+        return _solution(model, march, disc, run)
+
+    def start(self, model, load, initial, disc, run):
+        return SolvedRun(lambda: self.solve(model, load, initial, disc, run), disc.N)
+
+
+def _not_rigid(model) -> list:
+    """Names of the unknowns of ``model`` that are not rigid contacts."""
+    from ..constraints import RigidContact
+
+    rigid = np.zeros(model.m, dtype=bool)
+    for family in getattr(model, "families", ()):
+        if isinstance(family, RigidContact):
+            rigid[family.indices] = True
+    return [model.constraint_names[i] for i in np.flatnonzero(~rigid)]
+
+
+def start_state(model, system, initial):
+    """``(u0, udot0, message)`` of ``initial`` (see :class:`MoreauJean`); ``message`` says why a
+    static state was not found ("" otherwise)."""
+    from ..initial import static_state
+    from ..lcp import get_lcp_solver
+    from ..model import check_definite
+
+    n = model.n
+    if isinstance(initial, dict):
+        unknown = set(initial) - {"u0", "udot0", "v0"}
+        if unknown:
+            raise ValueError(f"initial has unknown keys {sorted(unknown)}; valid keys: 'u0', 'udot0', 'v0'")
+        return (V.as_vector("initial['u0']", initial.get("u0", 0.0), n),
+                V.as_vector("initial['udot0']", initial.get("udot0", 0.0), n), "")
+    if not isinstance(initial, str):
+        raise TypeError(f"initial must be 'static', 'rest' or a dict of u0, udot0; got {V.describe(initial)}")
+    if V.choice("initial", initial, ("static", "rest")) == "rest":
+        return np.zeros(n), np.zeros(n), ""
+    try:
+        check_definite("K", model.K, strict=True)
+        definite = True
+    except ValueError:
+        definite = False
+    if definite:
+        init = static_state(model, system.q(0.0), get_lcp_solver("bpp"))
+        return init.u, np.zeros(n), init.message
+    _, accel = forces_at_rest(system, np.zeros(n), np.zeros(n))
+    scale = 1.0 + float(np.abs(inertia_solve(system.M, system.K, system.q(0.0)[:, None])).max(initial=0.0))
+    if np.abs(accel).max(initial=0.0) <= 1e-9 * scale:
+        return np.zeros(n), np.zeros(n), ""
+    return None, None, (f"K is not definite (a free or rocking body) and u = 0 at rest is not an equilibrium (the "
+                        f"rigid contacts leave an acceleration of {accel:.3g}); give initial='rest' or "
+                        "{'u0': ..., 'udot0': ...}")
+
+
+def _solution(model, march, disc, run):
+    """The :class:`~unilateral.result.Solution` of the steps done."""
+    K = march.done
+    u, ud, P = march.u[:K + 1], march.udot[:K + 1], march.P[:K + 1]
+    t = disc.t[:K + 1]
+    opening = u @ march.s.N - np.array([march.s.g(tk) for tk in t])
+    names = list(model.constraint_names)
+    impacts = [{**{k: v for k, v in ev.items() if not k.startswith("udot")},
+                "contacts": [names[j] for j in ev["contacts"]]} for ev in march.events]
+    run.stats.update(impulses=P, impacts=impacts, unlocated_steps=march.unlocated_steps,
+                     energy={name: march.work[:K + 1, i].copy() for i, name in
+                             enumerate(("external_work", "damping", "impact_loss", "numerical_dissipation"))})
+    log = march.log
+    v = P / disc.dt
+    v[0] = forces_at_rest(march.s, u[0], ud[0])[0]
+    return finish(model, run, log, t=t, v=v, psi=-opening, psiL=np.zeros_like(v), u=u, udot=ud)
