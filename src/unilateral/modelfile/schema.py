@@ -27,6 +27,7 @@ from pydantic_core import PydanticCustomError
 from .. import _LCP_NAMES as LCP_SOLVERS
 from .. import _RULE_NAMES as RULES
 from .. import _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES
+from .rigid import rigid_tables
 
 LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
@@ -713,6 +714,9 @@ class FrameKind(Table):
         "uz, rx, ry, rz; z up): see \"3-D frames\" in docs/model-file.md."))
 
 
+Contact, RigidBlock = rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative)   # modelfile/rigid.py
+
+
 class ModelFile(Table):
     """A unilateral model file: a 2-D frame (nodes, elements, ...) or matrices, loads, analysis."""
 
@@ -725,6 +729,8 @@ class ModelFile(Table):
     elements: list[Element] = []
     unilateral: list[Unilateral] = []
     masses: list[Mass] = []
+    contacts: list[Contact] = []
+    rigid_blocks: list[RigidBlock] = []
     damping: Damping | None = None
     foundation: Foundation | None = None
     foundations: list[Foundation] = Field([], description=(
@@ -761,7 +767,7 @@ class ModelFile(Table):
 
 
 FRAME_SECTIONS = ("frame", "nodes", "supports", "rigid_links", "rigid_diaphragms", "elements", "unilateral", "masses",
-                  "damping", "foundation", "foundations")
+                  "contacts", "rigid_blocks", "damping", "foundation", "foundations")
 
 
 # ---------------------------------------------------------------------- 3-D frames ([frame] dimensions = 3)

@@ -60,12 +60,14 @@ from . import elements as el
 @dataclass(frozen=True)
 class RigidContact:
     """One rigid contact as given: ``name``, ``node``, the normal's ``terms`` ``((dof, d), ...)``
-    (unit, from the ground to the node) and the initial ``gap`` (opening at ``u = 0``, length)."""
+    (unit, from the ground to the node), the initial ``gap`` (opening at ``u = 0``, length) and
+    Newton's coefficient of ``restitution`` (used by ``method="moreau-jean"``)."""
 
     name: str
     node: object
     terms: tuple
     gap: float
+    restitution: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -199,7 +201,7 @@ def _parts(frame) -> dict:
 class RigidContacts:
     """The rigid contacts and blocks of :class:`~unilateral.structure.Frame2D` (a base of it)."""
 
-    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None) -> None:
+    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None, restitution=0.0) -> None:
         """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``).
 
         Parameters
@@ -211,6 +213,8 @@ class RigidContacts:
         gap : initial opening at ``u = 0``, length, >= 0
         mu : must be None (friction on a rigid contact is not available: see
             :mod:`unilateral.structure.rigid`)
+        restitution : Newton's coefficient ``e`` in [0, 1] of the velocity-level impact law of
+            ``method="moreau-jean"`` (0: perfectly plastic; the position-level ``direct`` ignores it)
 
         The contact's unknown ``v`` is the compressive force (force) and ``-psi`` of a solution the
         opening (``Solution.psi`` holds ``P psi = -opening``).
@@ -224,10 +228,15 @@ class RigidContacts:
         terms = el.direction_terms(where, direction)
         if any(dof == "rz" for dof, _ in terms):
             raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy' or a vector (dx, dy)")
-        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0")))
+        e = _number(where, "restitution", restitution, ">=0")
+        if e > 1.0:
+            raise ValueError(f"{where}: restitution={restitution!r} must lie in [0, 1] (Newton's coefficient: "
+                             "0 perfectly plastic, 1 elastic)")
+        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0"), e))
         self._names.add(name)
 
-    def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY) -> RigidBlock:
+    def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY,
+                    restitution=0.0, mu=None) -> RigidBlock:
         """A rigid rectangular block rocking on its base corners, its centre of mass at ``node``.
 
         Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
@@ -247,6 +256,9 @@ class RigidContacts:
         base : id of the base-centre node to create, or None
         g : gravity of the weight's geometric stiffness ``-W h`` on the base's ``rz``
             (length/time^2, >= 0; the load of the weight itself is ``Structure.gravity(g)``); 0: none
+        restitution : Newton's ``e`` of the corners' contacts, [0, 1] (default 0: Housner's impact,
+            the angular momentum about the new corner conserved)
+        mu : must be None: the base cannot slide (friction on rigid contacts is not available)
 
         Returns
         -------
@@ -254,6 +266,9 @@ class RigidContacts:
         """
         where = self._label("rigid_block", name)
         self._node(where, "node", node)
+        if mu is not None:
+            raise ValueError(f"{where}: mu={mu!r}: friction on rigid contacts is not available; the block's base "
+                             "is held horizontally (no slip); leave mu=None")
         b = _number(where, "width", width, ">0") / 2
         h = _number(where, "height", height, ">0") / 2
         m = _number(where, "mass", mass, ">0")
@@ -271,7 +286,7 @@ class RigidContacts:
         self.mass(node, m, J=J)
         self._names.add(name)
         for corner in corners:
-            self.contact(corner, corner, direction="uy")
+            self.contact(corner, corner, direction="uy", restitution=restitution, mu=mu)
         block = RigidBlock(name, node, base, corners, b, h, m, J, g)
         _parts(self)["blocks"][name] = block
         return block
@@ -370,7 +385,8 @@ def _model(structure, part):
         F_v = np.hstack([(GEv @ B).toarray(), np.zeros((n, mr))])
         H_v = np.zeros((m + mr, m + mr))
         H_v[:m, :m] = (B.T @ sp.csr_matrix(nat.E_v) @ B).toarray()
-    families = list(structure.families()) + [RigidFamily(np.arange(m, m + mr), name="rigid contact")]
+    families = list(structure.families()) + [RigidFamily(np.arange(m, m + mr), name="rigid contact",
+                                                         restitution=[c.restitution for c in part.contacts])]
     # K may be singular or indefinite (see the module): the Model is built on a placeholder and then
     # given K, as Structure.to_model does with P-Delta's geometric stiffness
     model = Model(M=structure.M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,
