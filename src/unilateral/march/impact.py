@@ -25,8 +25,10 @@ of the partial step of length ``tau`` (bracketed, then the Illinois method to ``
 length scale); the state is advanced to ``tau``, the impact is applied there as a jump of the
 velocity (the impact LCP ``v+ = v- + X P``, ``X = M^-1 N`` with massless DOFs condensed,
 ``U = N^T v+ + e N^T v- >= 0`` on every contact that touches), and the rest of the step is taken
-the same way, landing back on the grid. After ``max_events`` impacts in one step (an accumulation
-of impacts: chattering, Zeno) the rest of the step is taken by the plain rule. ``locate=False``
+the same way, landing back on the grid. An accumulation of impacts (Zeno: a ball bouncing to
+rest) is cut by holding a contact whose rebound would return within a step (``2 e |U-| < dt a``
+with ``a`` the normal acceleration that pulls it back: the impact is then plastic, ``e = 0``);
+after ``max_events`` impacts in one step the rest of the step is taken by the plain rule. ``locate=False``
 is the plain Moreau-Jean scheme: the active set is the contacts whose opening predicted at
 mid-step, ``N^T (u0 + h v0 / 2) - g``, is not positive, and an impact is applied at the end of the
 step in which the contact arrives (first order in the impact's effect).
@@ -193,13 +195,19 @@ class MoreauJeanMarch:
                          (th - 0.5) * (dv @ (s.M @ dv) + du @ (s.K @ du))])
         return u1, v1, P, work, message
 
-    def impact(self, v, t, touching):
+    def impact(self, u, v, t, touching):
         """``(v+, P (m,), loss, message)``: the jump of the velocity at an impact at ``t`` on the
-        contacts ``touching`` (indices), Newton's law on each."""
+        contacts ``touching`` (indices), Newton's law on each; a contact whose rebound would return
+        within a step (``2 e |U| < dt a``, ``a`` the normal acceleration pulling it back: an
+        accumulation of impacts) is held, ``e = 0`` (the Zeno rule)."""
         s = self.s
         NA = s.N[:, touching]
         U = NA.T @ v
-        p, message = self._lcp(NA.T @ s.X[:, touching], (1.0 + s.e[touching]) * U)
+        e = s.e[touching].copy()
+        if np.any(e > 0):
+            a = NA.T @ inertia_solve(s.M, s.K, (np.asarray(s.q(t), dtype=float) - s.K @ u - s.C @ v)[:, None])[:, 0]
+            e[(U < 0) & (a < 0) & (2.0 * e * np.abs(U) < -a * self.dt)] = 0.0
+        p, message = self._lcp(NA.T @ s.X[:, touching], (1.0 + e) * U)
         v1 = v + s.X[:, touching] @ p
         P = np.zeros(s.N.shape[1])
         P[touching] = p
@@ -236,7 +244,7 @@ class MoreauJeanMarch:
             vtol = VELOCITY_TOL * (1.0 + float(np.max(np.abs(v), initial=0.0)))
             U = s.N.T @ v
             if self.locate and np.any(touching & (U < -vtol)):
-                v, p, loss, message = self.impact(v, t, np.flatnonzero(touching))
+                v, p, loss, message = self.impact(u, v, t, np.flatnonzero(touching))
                 if message:
                     return f"the impact LCP at t = {t:.9g} failed: {message}"
                 P, work[2] = P + p, work[2] + loss

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _validate as V
-from ..march.impact import MoreauJeanMarch, forces_at_rest, inertia_solve, system_of
+from ..march.impact import MoreauJeanMarch, forces_at_rest, system_of
 from .base import Method
 from .common import finish
 from .stepping import SolvedRun
@@ -30,12 +30,14 @@ class MoreauJean(Method):
 
     ``initial``: ``"rest"`` (``u = 0`` at rest), a dict of ``u0``, ``udot0`` (``v0`` is not needed:
     the contact forces are outputs), or ``"static"``: the static state where ``K`` is definite,
-    else ``u = 0`` at rest if the rigid contacts hold it there (a block standing on its base).
+    else the static state with the rigid contacts that touch at ``u = 0`` held closed, if they hold
+    the structure and are compressed (a block standing on its base, a column on it).
 
     The solution's ``v`` is the mean contact force of each step (impulse / dt, force; at step 0 the
     forces of the acceleration-level LCP at the initial state), ``psi``
     ``P psi = -opening``; ``stats`` has ``impulses`` (N+1, m), ``impacts`` (the located impacts:
-    time, contacts, impulses, normal velocities before and after, energy lost), ``unlocated_steps``
+    time, contacts struck, impulses, normal velocities before and after, energy lost, the
+    velocities ``udot_before``, ``udot_after``), ``unlocated_steps``
     (steps whose impacts accumulated beyond ``max_events``, taken by the plain rule), ``theta``
     and ``energy`` (cumulative ``external_work``, ``damping``, ``impact_loss``,
     ``numerical_dissipation``, (N+1,) each; :func:`unilateral.analysis.rigid.energy_balance`).
@@ -129,13 +131,32 @@ def start_state(model, system, initial):
     if definite:
         init = static_state(model, system.q(0.0), get_lcp_solver("bpp"))
         return init.u, np.zeros(n), init.message
-    _, accel = forces_at_rest(system, np.zeros(n), np.zeros(n))
-    scale = 1.0 + float(np.abs(inertia_solve(system.M, system.K, system.q(0.0)[:, None])).max(initial=0.0))
-    if np.abs(accel).max(initial=0.0) <= 1e-9 * scale:
-        return np.zeros(n), np.zeros(n), ""
-    return None, None, (f"K is not definite (a free or rocking body) and u = 0 at rest is not an equilibrium (the "
-                        f"rigid contacts leave an acceleration of {accel:.3g}); give initial='rest' or "
-                        "{'u0': ..., 'udot0': ...}")
+    return _held_static(system, n)
+
+
+def _held_static(system, n):
+    """``(u, udot = 0, message)``: the static state with the rigid contacts that touch at ``u = 0``
+    held closed, ``K u = q(0) + N_A lam``, ``N_A^T u = g_A``, accepted where the held structure is
+    stable (``Z^T K Z`` positive definite on the motions ``Z`` the held contacts allow) and every
+    held contact is compressed (``lam >= 0``)."""
+    import scipy.linalg as sla
+
+    s = system
+    A = np.flatnonzero(s.opening(np.zeros(n), 0.0) <= 0.0)
+    NA = s.N[:, A]
+    Z = sla.null_space(NA.T) if A.size else np.eye(n)
+    if Z.shape[1] and np.linalg.eigvalsh(Z.T @ s.K @ Z).min() <= 0:
+        return None, None, ("K is not definite (a free or rocking body) and the rigid contacts that touch at u = 0 "
+                            f"({A.size} of them) do not hold it: no static state; give initial='rest' or "
+                            "{'u0': ..., 'udot0': ...}")
+    saddle = np.block([[s.K, -NA], [NA.T, np.zeros((A.size, A.size))]])
+    x = np.linalg.solve(saddle, np.concatenate([np.asarray(s.q(0.0), dtype=float), s.g(0.0)[A]]))
+    lam = x[n:]
+    if np.any(lam < -1e-9 * (1.0 + np.abs(lam).max(initial=0.0))):
+        bad = int(A[np.argmin(lam)])
+        return None, None, (f"the static state with the touching rigid contacts held pulls contact {bad} "
+                            f"(force {lam.min():.3g} < 0); give initial='rest' or {{'u0': ..., 'udot0': ...}}")
+    return x[:n], np.zeros(n), ""
 
 
 def _solution(model, march, disc, run):
@@ -145,8 +166,8 @@ def _solution(model, march, disc, run):
     t = disc.t[:K + 1]
     opening = u @ march.s.N - np.array([march.s.g(tk) for tk in t])
     names = list(model.constraint_names)
-    impacts = [{**{k: v for k, v in ev.items() if not k.startswith("udot")},
-                "contacts": [names[j] for j in ev["contacts"]]} for ev in march.events]
+    impacts = [{**ev, "contacts": [names[j] for j in ev["contacts"]], "udot_before": ev["udot_before"].tolist(),
+                "udot_after": ev["udot_after"].tolist()} for ev in march.events]
     run.stats.update(impulses=P, impacts=impacts, unlocated_steps=march.unlocated_steps,
                      energy={name: march.work[:K + 1, i].copy() for i, name in
                              enumerate(("external_work", "damping", "impact_loss", "numerical_dissipation"))})
