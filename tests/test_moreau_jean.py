@@ -236,3 +236,21 @@ def test_static_initial_of_a_block_and_of_a_column_on_it():
     with pytest.raises(ValueError, match="initial has unknown keys"):
         ul.solve(model2, None, dt=1e-3, t_end=0.01, method="moreau-jean", rule="trapezoidal",
                  initial={"u0": [0.0, 0.0], "bad": 1})
+
+
+def test_a_simulation_that_steps_gives_the_solve():
+    st, model, block = _block()
+    load = LoadHistory(st.gravity(block.g))
+    u0 = np.array([block.b * THETA0, -THETA0])
+    kw = dict(dt=1e-3, t_end=0.6, method="moreau-jean", rule="trapezoidal", initial={"u0": u0})
+    sim = ul.Simulation(model, load, **kw)
+    sim.advance(7)
+    assert sim.state.k == 7 and sim.stats["stepping"] == "step"
+    sim.advance_to(0.3)
+    part = sim.solution()
+    assert len(part.t) == 301 and part.success
+    sim.advance_to(0.6)
+    whole = ul.solve(model, load, **kw)
+    np.testing.assert_array_equal(sim.solution().u, whole.u)
+    np.testing.assert_array_equal(sim.solution().v, whole.v)
+    assert len(whole.stats["impacts"]) == len(sim.solution().stats["impacts"]) > len(part.stats["impacts"])

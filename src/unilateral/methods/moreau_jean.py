@@ -9,7 +9,6 @@ from .. import _validate as V
 from ..march.impact import MoreauJeanMarch, forces_at_rest, system_of
 from .base import Method
 from .common import finish
-from .stepping import SolvedRun
 
 #: The rules of the theta-method: the rule's name -> theta.
 THETA = {"trapezoidal": 0.5, "bdf1": 1.0}
@@ -68,6 +67,12 @@ class MoreauJean(Method):
         return None
 
     def solve(self, model, load, initial, disc, run):
+        march = self.start(model, load, initial, disc, run)
+        return march.solution(march.extend(disc.N))
+
+    def start(self, model, load, initial, disc, run):
+        """The march begun at the initial state; it steps as it is asked to (``stats["stepping"]``
+        ``"step"``)."""
         locate = self.config.get("locate", True)
         if not isinstance(locate, bool):
             raise TypeError(f"{self.option_name}['locate'] must be True or False, got {V.describe(locate)}")
@@ -76,22 +81,59 @@ class MoreauJean(Method):
             raise ValueError(f"{self.option_name}['max_events'] must be an integer >= 0, got {V.describe(max_events)}")
         system = system_of(model, load, disc.dt)
         u0, udot0, message = start_state(model, system, initial)
-        run.stats.update(n=model.n, theta=THETA[disc.rule.name], locate=locate)
+        run.stats.update(n=model.n, theta=THETA[disc.rule.name], locate=locate, stepping="step")
         if message:
             raise ValueError(f"initial={initial!r}: {message}")
         run.timer.lap("initial")
         march = MoreauJeanMarch(system, disc.dt, disc.N, u0, udot0, theta=THETA[disc.rule.name],
                                 solver=run.solver, locate=locate, max_events=max_events)
-        for k in range(disc.N):
-            if march.run(k + 1) < k + 1:
-                break
-            if run.callback is not None:
-                run.callback(k + 1, disc.N)
-        run.timer.lap("march")
-        return _solution(model, march, disc, run)
+        return MoreauJeanRun(model, march, disc, run)
 
-    def start(self, model, load, initial, disc, run):
-        return SolvedRun(lambda: self.solve(model, load, initial, disc, run), disc.N)
+
+class MoreauJeanRun:
+    """The run of a :class:`~unilateral.march.impact.MoreauJeanMarch` (the interface of
+    :mod:`unilateral.methods.stepping`): ``extend(k)``, ``state(k)``, ``solution(K)``."""
+
+    def __init__(self, model, march, disc, run):
+        self.model, self.march, self.disc, self.run, self.N = model, march, disc, run, disc.N
+
+    @property
+    def done(self) -> int:
+        return self.march.done
+
+    @property
+    def failure(self) -> str:
+        return self.march.log.failure
+
+    def extend(self, k: int) -> int:
+        march, callback = self.march, self.run.callback
+        while march.done < min(k, self.N) and not march.log.failure:
+            march.run(march.done + 1)
+            if callback is not None:
+                callback(march.done, self.N)
+        if march.done >= self.N or march.log.failure:
+            self.run.timer.lap("steps")
+        return march.done
+
+    def state(self, k: int):
+        from ..result import State
+
+        m = self.march
+        v = m.P[k] / self.disc.dt if k else forces_at_rest(m.s, m.u[0], m.udot[0])[0]
+        return State(t=float(self.disc.t[k]), k=k, u=m.u[k].copy(), udot=m.udot[k].copy(), v=v,
+                     psi=-m.s.opening(m.u[k], float(self.disc.t[k])))
+
+    def solution(self, K: int):
+        import copy
+
+        run = copy.copy(self.run)
+        run.stats = dict(self.run.stats)
+        if K < self.march.done:
+            log = copy.copy(self.march.log)
+            log.failure = ""
+        else:
+            log = self.march.log
+        return _solution(self.model, self.march, self.disc, run, K, log)
 
 
 def _not_rigid(model) -> list:
@@ -159,19 +201,17 @@ def _held_static(system, n):
     return x[:n], np.zeros(n), ""
 
 
-def _solution(model, march, disc, run):
-    """The :class:`~unilateral.result.Solution` of the steps done."""
-    K = march.done
+def _solution(model, march, disc, run, K, log):
+    """The :class:`~unilateral.result.Solution` of the steps ``0..K``."""
     u, ud, P = march.u[:K + 1], march.udot[:K + 1], march.P[:K + 1]
     t = disc.t[:K + 1]
     opening = u @ march.s.N - np.array([march.s.g(tk) for tk in t])
     names = list(model.constraint_names)
     impacts = [{**ev, "contacts": [names[j] for j in ev["contacts"]], "udot_before": ev["udot_before"].tolist(),
-                "udot_after": ev["udot_after"].tolist()} for ev in march.events]
+                "udot_after": ev["udot_after"].tolist()} for ev in march.events if ev["time"] <= t[-1]]
     run.stats.update(impulses=P, impacts=impacts, unlocated_steps=march.unlocated_steps,
                      energy={name: march.work[:K + 1, i].copy() for i, name in
                              enumerate(("external_work", "damping", "impact_loss", "numerical_dissipation"))})
-    log = march.log
     v = P / disc.dt
     v[0] = forces_at_rest(march.s, u[0], ud[0])[0]
     return finish(model, run, log, t=t, v=v, psi=-opening, psiL=np.zeros_like(v), u=u, udot=ud)
