@@ -95,17 +95,17 @@ def figure(result, frequencies, amplitudes, path):
     styles = {"rest": ("lightgray", "s", "no uplift"), "rocks": ("tab:blue", "o", "rocks, no overturning"),
               "mode 1": ("tab:red", "^", "overturns after impacts (mode 1)"),
               "mode 2": ("black", "v", "overturns without impact (mode 2)")}
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(7, 5.6))
     for kind, (colour, marker, label) in styles.items():
         pts = [(f, a) for (f, a), c in result.items() if c == kind]
         if pts:
             ax.scatter(*zip(*pts), c=colour, marker=marker, s=28, label=label)
     ax.axhline(1.0, color="gray", lw=1, ls="--")
-    ax.text(frequencies[0], 1.05, "uplift: a_p = g tan(alpha)", fontsize=8, color="gray")
+    ax.text(frequencies[-1], 0.75, "uplift: a_p = g tan(alpha)", fontsize=8, color="gray", ha="right")
     ax.set_xlabel("pulse frequency omega_p / p")
     ax.set_ylabel("pulse amplitude a_p / (g tan alpha)")
     ax.set_title("Rigid block (b/h = 0.2) under a one-sine pulse: overturning map (moreau-jean)")
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

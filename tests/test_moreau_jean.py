@@ -7,6 +7,7 @@ times of the linearised rocking from RigidBlock.impact_times.
 """
 
 import math
+import re
 import warnings
 
 import numpy as np
@@ -254,3 +255,99 @@ def test_a_simulation_that_steps_gives_the_solve():
     np.testing.assert_array_equal(sim.solution().u, whole.u)
     np.testing.assert_array_equal(sim.solution().v, whole.v)
     assert len(whole.stats["impacts"]) == len(sim.solution().stats["impacts"]) > len(part.stats["impacts"])
+
+
+# ---------------------------------------------------------------------- model files
+EXAMPLES = __import__("pathlib").Path(__file__).resolve().parents[1] / "examples"
+
+
+def test_the_model_file_of_a_rocking_block_runs_with_its_results(tmp_path):
+    """examples/rocking_block.toml ([[rigid_blocks]], moreau-jean) through unilateral.run: the
+    block's rotation, uplift and impacts in the summary, the energy balance closed to round-off."""
+    import json
+
+    from unilateral.analysis.run import run_model_file
+    from unilateral.modelfile import load_model_file
+
+    spec = load_model_file(EXAMPLES / "rocking_block.toml")
+    block = spec.structure.rigid.blocks["cabinet"]
+    assert (block.b, block.h, block.mass) == (0.3, 0.9, 2.0) and spec.model.constraint_names == [
+        "cabinet.left", "cabinet.right"]
+    run_model_file(EXAMPLES / "rocking_block.toml", tmp_path / "out", figures=(), t_end=2.5)
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert summary["method"] == "moreau-jean" and summary["success"]
+    results = summary["results"]["unilateral"]
+    rocking = results["rigid_contacts"]["blocks"]["cabinet"]
+    assert 0.05 < rocking["peak_rotation"] < block.b / block.h and not rocking["overturned"]
+    assert rocking["impacts"] > 2 and rocking["impact_loss"] > 0
+    assert rocking["peak_uplift"] == pytest.approx(2 * block.b * rocking["peak_rotation"], rel=1e-9)
+    assert results["energy"]["max_relative_error"] < 1e-10
+    assert results["energy"]["contact_dissipated"] == pytest.approx(rocking["impact_loss"], rel=1e-9)
+
+
+def _model_file(tmp_path, tables, analysis='method = "moreau-jean"\nrule = "trapezoidal"\n'):
+    text = ('[units]\nlength = "m"\nforce = "kN"\ntime = "s"\n\n[[nodes]]\nid = 1\nx = 0.0\ny = 0.0\n\n'
+            '[[supports]]\nnode = 1\nux = true\nuy = false\n\n[[masses]]\nnode = 1\nm = 1.0\n\n' + tables
+            + '\n[loads.gravity]\ng = 9.81\n\n[analysis]\ndt = 0.001\nt_end = 0.5\n'
+            + 'bilateral_reference = false\ninitial = "rest"\n' + analysis)
+    path = tmp_path / "m.toml"
+    path.write_text(text)
+    return path
+
+
+def test_a_model_file_contact_bounces_by_its_restitution(tmp_path):
+    from unilateral.modelfile import load_model_file
+
+    spec = load_model_file(_model_file(tmp_path, '[[contacts]]\nname = "floor"\nnode = 1\ngap = 0.2\n'
+                                                 'restitution = 0.5\n'))
+    sol = ul.solve(spec.model, spec.load, dt=1e-3, t_end=0.5, method="moreau-jean", rule="trapezoidal",
+                   initial="rest")
+    first = sol.stats["impacts"][0]
+    assert first["time"] == pytest.approx(math.sqrt(2 * 0.2 / 9.81), abs=1e-12)
+    assert first["after"][0] == pytest.approx(-0.5 * first["before"][0], rel=1e-12)
+
+
+@pytest.mark.parametrize("table, message", [
+    ('[[contacts]]\nname = "c"\nnode = 1\nrestitution = 1.5\n', "contacts[0].restitution"),
+    ('[[contacts]]\nname = "c"\nnode = 1\nmu = 0.3\n', "friction on rigid contacts is not available"),
+    ('[[nodes]]\nid = 2\nx = 0.0\ny = 1.0\n[[rigid_blocks]]\nname = "B"\nnode = 2\nwidth = 0.0\nheight = 1.0\n'
+     'mass = 1.0\n', "rigid_blocks[0].width"),
+    ('[[contacts]]\nname = "c"\nnode = 9\n', "no node 9"),
+])
+def test_model_file_bad_rigid_tables_are_named(tmp_path, table, message):
+    from unilateral.modelfile import ModelFileError, load_model_file
+
+    with pytest.raises(ModelFileError, match=re.escape(message)):
+        load_model_file(_model_file(tmp_path, table))
+
+
+def test_model_file_with_a_method_that_has_no_impact_law_is_refused(tmp_path):
+    from unilateral.modelfile import load_model_file
+
+    spec = load_model_file(_model_file(tmp_path, '[[contacts]]\nname = "floor"\nnode = 1\ngap = 0.2\n'))
+    with pytest.raises(ValueError, match="no impact law.*moreau-jean"):
+        ul.solve(spec.model, spec.load, dt=1e-3, t_end=0.1, method="event", initial="rest")
+
+
+@pytest.mark.slow
+def test_the_overturning_map_example_runs_quick():
+    """examples/overturning_map.py --quick: nothing lifts below g tan(alpha) (the closed form), a
+    long pulse overturns the block at a large amplitude, the short pulse only rocks it."""
+    import runpy
+
+    module = runpy.run_path(str(EXAMPLES / "overturning_map.py"))
+    result = module["main"](quick=True)
+    assert all(result[(f, 0.9)] == "rest" for f in (2.0, 4.0, 8.0))
+    assert result[(2.0, 8.0)].startswith("mode") and result[(8.0, 3.0)] == "rocks"
+
+
+def test_bilateral_holds_every_contact():
+    """bilateral=True (the "without uplift" reference): the contacts are held at their initial
+    opening; a block then does not rotate under a pulse that rocks it, and its contact forces take
+    either sign."""
+    st, model, block = _block()
+    a_g = one_sine_pulse(3.0 * block.uplift_acceleration, 4.0 * block.p)
+    load = LoadHistory(st.gravity(block.g), [rigid.ground_motion(st, a_g)])
+    sol = ul.solve(model, load, dt=1e-3, t_end=1.0, method="moreau-jean", rule="trapezoidal", bilateral=True)
+    assert sol.success and np.abs(sol.u).max() < 1e-15 and sol.v.min() < 0 < sol.v.max()
+    assert sol.stats["impacts"] == []

@@ -138,6 +138,8 @@ class MoreauJeanMarch:
     system : ImpactSystem;  dt : time step, s;  N : number of steps
     u0, udot0 : (n,) initial state;  theta : 1/2 .. 1;  solver : LCPSolver of the impulses
     locate : locate the impacts within the step;  max_events : most impacts located in one step
+    bilateral : hold every contact at its initial opening (impulses of either sign, no impact):
+        the "without uplift" reference
 
     Attributes (after :meth:`run`)
     ------------------------------
@@ -147,11 +149,13 @@ class MoreauJeanMarch:
     energy lost, ``udot_before``, ``udot_after`` (n,) the velocities);  log : StepLog
     """
 
-    def __init__(self, system, dt, N, u0, udot0, *, theta=0.5, solver=None, locate=True, max_events=16):
+    def __init__(self, system, dt, N, u0, udot0, *, theta=0.5, solver=None, locate=True, max_events=16,
+                 bilateral=False):
         from ..lcp import get_lcp_solver
 
         self.s, self.dt, self.N, self.theta = system, float(dt), int(N), float(theta)
         self.solver, self.locate, self.max_events = solver or get_lcp_solver("bpp"), locate, int(max_events)
+        self.bilateral = bool(bilateral)
         n, m = system.N.shape
         self.u, self.udot = np.zeros((N + 1, n)), np.zeros((N + 1, n))
         self.u[0], self.udot[0] = u0, udot0
@@ -219,6 +223,8 @@ class MoreauJeanMarch:
         return v1, P, loss, message
 
     def _lcp(self, A, b):
+        if self.bilateral:                          # every contact held: an impulse of either sign
+            return np.linalg.solve(A, -b), ""
         if b.size <= 2 and self.solver.name == "bpp":
             return _small_lcp(A, b), ""
         res = self.solver.solve(A, b)
@@ -237,40 +243,11 @@ class MoreauJeanMarch:
 
     def step(self, k) -> str:
         """Advance from step ``k`` to ``k + 1``; "" or why it failed."""
-        s, t, left = self.s, k * self.dt, self.dt
-        u, v, P, work, events = self.u[k], self.udot[k], np.zeros(s.N.shape[1]), np.zeros(len(WORK_TERMS)), 0
-        while True:
-            touching = self._touching(u, t)
-            vtol = VELOCITY_TOL * (1.0 + float(np.max(np.abs(v), initial=0.0)))
-            U = s.N.T @ v
-            if self.locate and np.any(touching & (U < -vtol)):
-                v, p, loss, message = self.impact(u, v, t, np.flatnonzero(touching))
-                if message:
-                    return f"the impact LCP at t = {t:.9g} failed: {message}"
-                P, work[2] = P + p, work[2] + loss
-                U = s.N.T @ v
-            held = touching & (U <= vtol)
-            if not self.locate or events >= self.max_events:
-                self.unlocated_steps += int(self.locate)
-                mid = s.opening(u + 0.5 * left * v, t + left) <= 0.0
-                u, v, p, w, message = self.substep(u, v, t, left, np.flatnonzero(held | mid))
-                P, work = P + p, work + w
-                break
-            u1, v1, p, w, message = self.substep(u, v, t, left, np.flatnonzero(held))
-            if message:
-                break
-            into = ~held & (s.opening(u1, t + left) < -OPEN_TOL * self.length)
-            if not into.any():
-                u, v, P, work = u1, v1, P + p, work + w
-                break
-            tau = self._event_time(u, v, t, left, held, into)
-            if tau >= left * (1.0 - 1e-12):        # at the end of the step: the next step's impact
-                u, v, P, work = u1, v1, P + p, work + w
-                break
-            u, v, p, w, message = self.substep(u, v, t, tau, np.flatnonzero(held))
-            P, work, t, left, events = P + p, work + w, t + tau, left - tau, events + 1
-            if message:
-                break
+        t = k * self.dt
+        if self.bilateral:
+            u, v, P, work, message = self.substep(self.u[k], self.udot[k], t, self.dt, np.arange(self.s.N.shape[1]))
+        else:
+            u, v, P, work, message = self._located(self.u[k], self.udot[k], t)
         if message:
             return f"the LCP of step {k + 1} (t = {t:.9g}) failed: {message}"
         self.u[k + 1], self.udot[k + 1], self.P[k + 1] = u, v, P
@@ -279,6 +256,39 @@ class MoreauJeanMarch:
         self.log.contact_changes += int(np.count_nonzero(closed != self.log.active))
         self.log.active = closed
         return ""
+
+    def _located(self, u, v, t):
+        """``(u, v, P, work, message)`` of the step from ``(u, v)`` at ``t``, its impacts located
+        (or at the end of the step, ``locate=False``)."""
+        s, left, events = self.s, self.dt, 0
+        P, work = np.zeros(s.N.shape[1]), np.zeros(len(WORK_TERMS))
+        while True:
+            touching = self._touching(u, t)
+            vtol = VELOCITY_TOL * (1.0 + float(np.max(np.abs(v), initial=0.0)))
+            U = s.N.T @ v
+            if self.locate and np.any(touching & (U < -vtol)):
+                v, p, loss, message = self.impact(u, v, t, np.flatnonzero(touching))
+                if message:
+                    return u, v, P, work, f"the impact LCP at t = {t:.9g}: {message}"
+                P, work[2] = P + p, work[2] + loss
+                U = s.N.T @ v
+            held = touching & (U <= vtol)
+            if not self.locate or events >= self.max_events:
+                self.unlocated_steps += int(self.locate)
+                mid = s.opening(u + 0.5 * left * v, t + left) <= 0.0
+                u, v, p, w, message = self.substep(u, v, t, left, np.flatnonzero(held | mid))
+                return u, v, P + p, work + w, message
+            u1, v1, p, w, message = self.substep(u, v, t, left, np.flatnonzero(held))
+            into = ~held & (s.opening(u1, t + left) < -OPEN_TOL * self.length)
+            if message or not into.any():
+                return u1, v1, P + p, work + w, message
+            tau = self._event_time(u, v, t, left, held, into)
+            if tau >= left * (1.0 - 1e-12):        # at the end of the step: the next step's impact
+                return u1, v1, P + p, work + w, message
+            u, v, p, w, message = self.substep(u, v, t, tau, np.flatnonzero(held))
+            P, work, t, left, events = P + p, work + w, t + tau, left - tau, events + 1
+            if message:
+                return u, v, P, work, message
 
     def _event_time(self, u, v, t, h, held, into) -> float:
         """The time ``tau`` in ``(0, h)`` at which the first of the contacts ``into`` (penetrating

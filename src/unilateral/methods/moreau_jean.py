@@ -41,6 +41,9 @@ class MoreauJean(Method):
     and ``energy`` (cumulative ``external_work``, ``damping``, ``impact_loss``,
     ``numerical_dissipation``, (N+1,) each; :func:`unilateral.analysis.rigid.energy_balance`).
 
+    ``bilateral=True`` holds every contact at its initial opening (impulses of either sign): the
+    "without uplift" reference of a model file.
+
     Options
     -------
     locate : bool, locate the impacts within the step (default True; False: the plain
@@ -86,7 +89,7 @@ class MoreauJean(Method):
             raise ValueError(f"initial={initial!r}: {message}")
         run.timer.lap("initial")
         march = MoreauJeanMarch(system, disc.dt, disc.N, u0, udot0, theta=THETA[disc.rule.name],
-                                solver=run.solver, locate=locate, max_events=max_events)
+                                solver=run.solver, locate=locate, max_events=max_events, bilateral=run.bilateral)
         return MoreauJeanRun(model, march, disc, run)
 
 

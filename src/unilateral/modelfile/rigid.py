@@ -4,7 +4,7 @@ rigid rocking blocks (:mod:`unilateral.structure.rigid`, ``docs/rocking.md``).
 The tables are made by :func:`rigid_tables` from the value types of
 :mod:`unilateral.modelfile.schema` (which calls it; this module imports no other module of the
 package), and built by :func:`add_rigid`. Run them with ``method = "moreau-jean"`` (Newton's
-impact law), ``rule = "trapezoidal"`` or ``"bdf1"``, and ``bilateral_reference = false``.
+impact law) and ``rule = "trapezoidal"`` or ``"bdf1"``.
 """
 
 from __future__ import annotations
