@@ -43,6 +43,7 @@ from ..linalg import dense as _dense
 from ..model import Model
 from ..structure import forces as F
 from .energy import energy_balance, unknown_kinds
+from .rigid import frame_solution, rigid_summary
 from .inelastic import Inelastic
 from ..structure.modes import modes
 
@@ -215,17 +216,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     for case, sol in cases.items():
         if sol.u is None or len(sol.t) < 2:
             continue
-        contact = None
-        if foundation is not None:          # the frame alone, loaded by q + T c (contact forces c = -psi)
-            from ..structure.foundation import structural_solution
-
-            contact = foundation.contact_load(structure, sol)
-            contact_sol, sol = sol, structural_solution(sol, foundation.first)
-        elif getattr(structure, "rigid", None) is not None:     # rigid contacts: the frame loaded by N v
-            from .rigid import frame_solution
-
-            contact_sol = sol
-            contact, sol = frame_solution(structure, sol)
+        contact, contact_sol, sol = _frame_part(structure, foundation, sol)
         q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
         h = F.Histories.from_solution(structure, sol, rule, load0=q0)
         t = h.t
@@ -298,9 +289,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             peaks[case]["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
                                      for label, b in per_frame.items()}
         peaks[case]["overturning_point"] = list(point)
-        if getattr(structure, "rigid", None) is not None:
-            from .rigid import rigid_summary
-
+        if getattr(structure, "rigid", None) is not None:           # analysis/rigid.py
             peaks[case]["rigid_contacts"] = rigid_summary(structure, contact_sol)
         note = _linear_drift_note(structure, peaks[case])
         if note:
@@ -383,6 +372,21 @@ def _frame_periods(structure, model, count=3) -> dict:
         if info["period"].size:
             out[f"frame of node {nodes[0]}"] = info["period"].tolist()
     return out
+
+
+def _frame_part(structure, foundation, sol):
+    """``(contact, full, frame)``: the load (N+1, n) of the contact forces of the footings on a soil
+    (``T c``, contact forces ``c = -psi``) or of the rigid contacts (``N v``) on the frame, or None;
+    the solution as solved; and the frame's own part of it, whose results are those of the frame
+    alone loaded by ``q + contact``."""
+    if foundation is not None:
+        from ..structure.foundation import structural_solution
+
+        return foundation.contact_load(structure, sol), sol, structural_solution(sol, foundation.first)
+    if getattr(structure, "rigid", None) is not None:
+        contact, frame = frame_solution(structure, sol)
+        return contact, sol, frame
+    return None, sol, sol
 
 
 def _energy_keys(structure) -> tuple:
