@@ -67,7 +67,8 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         weights of ``Lambda(s)``, one LCP per step. ``"modal"``: the same CLCP with the history
         evaluated recursively from the poles and residues of ``Lambda(s)``, O(r m) per step.
         ``"direct"``: the full model stepped with the same rule and one LCP per step (also
-        Newmark and HHT).
+        Newmark and HHT). ``"moreau-jean"``: rigid contacts with Newton's impact law, impacts
+        located within the step (``rule="trapezoidal"`` or ``"bdf1"``; ``docs/rocking.md``).
     rule : str or Rule
         ``"bdf1"``, ``"bdf2"`` (default), ``"trapezoidal"``; ``"newmark"`` is Newmark(1/2, 1/4),
         the trapezoidal rule, with every method (recorded as ``"trapezoidal"``, with the

@@ -60,6 +60,9 @@ class MoreauJean(Method):
         if reason is not None:
             return reason
         others = _not_rigid(model)
+        if not model.m:
+            return ("method='moreau-jean' is for rigid contacts (Frame2D.contact, rigid_block); this model has no "
+                    "unknowns: use method='direct'")
         if others:
             return (f"method='moreau-jean' solves models whose every unknown is a rigid contact (H = 0: "
                     f"Frame2D.contact, rigid_block); {len(others)} are not ({', '.join(map(repr, others[:4]))}"
