@@ -93,8 +93,8 @@ def test_bad_restitution_and_friction_are_refused():
     with pytest.raises(ValueError, match="restitution=-0.1"):
         fr.contact("c", 1, restitution=-0.1)
     fr.node("c", 0.0, 2.0)
-    with pytest.raises(ValueError, match="mu=0.5: friction on rigid contacts is not available"):
-        fr.rigid_block("B", "c", width=0.4, height=1.2, mass=1.0, mu=0.5)
+    with pytest.raises(ValueError, match="mu=-0.5 must be finite and >= 0"):
+        fr.rigid_block("B", "c", width=0.4, height=1.2, mass=1.0, mu=-0.5)
     with pytest.raises(ValueError, match="width=0"):
         fr.rigid_block("B", "c", width=0.0, height=1.2, mass=1.0)
 
@@ -309,7 +309,7 @@ def test_a_model_file_contact_bounces_by_its_restitution(tmp_path):
 
 @pytest.mark.parametrize("table, message", [
     ('[[contacts]]\nname = "c"\nnode = 1\nrestitution = 1.5\n', "contacts[0].restitution"),
-    ('[[contacts]]\nname = "c"\nnode = 1\nmu = 0.3\n', "friction on rigid contacts is not available"),
+    ('[[contacts]]\nname = "c"\nnode = 1\nmu = -0.3\n', "contacts[0].mu"),
     ('[[nodes]]\nid = 2\nx = 0.0\ny = 1.0\n[[rigid_blocks]]\nname = "B"\nnode = 2\nwidth = 0.0\nheight = 1.0\n'
      'mass = 1.0\n', "rigid_blocks[0].width"),
     ('[[contacts]]\nname = "c"\nnode = 9\n', "no node 9"),
@@ -351,3 +351,32 @@ def test_bilateral_holds_every_contact():
     sol = ul.solve(model, load, dt=1e-3, t_end=1.0, method="moreau-jean", rule="trapezoidal", bilateral=True)
     assert sol.success and np.abs(sol.u).max() < 1e-15 and sol.v.min() < 0 < sol.v.max()
     assert sol.stats["impacts"] == []
+
+
+# ---------------------------------------------------------------------- friction: sliding or rocking
+@pytest.mark.parametrize("mu, a, mode", [(0.15, 0.25, "slides"), (0.5, 0.45, "rocks")])
+def test_a_block_slides_when_mu_is_below_b_over_h_and_rocks_otherwise(mu, a, mode):
+    """A constant base acceleration a g (from rest): with mu < b/h = 1/3 and mu < a < b/h the block
+    slides without rocking, its slip the closed form (a - mu) g t^2 / 2; with mu > b/h and a > b/h
+    it rocks without sliding. The balance closes with the friction work."""
+    g = 9.81
+    fr = Frame2D()
+    fr.node("c", 0.0, 0.6)
+    block = fr.rigid_block("B", "c", width=0.4, height=1.2, mass=1.0, mu=mu, g=g)
+    st = fr.build()
+    model = st.to_model()
+    load = LoadHistory(st.gravity(g), [rigid.ground_motion(st, lambda t: a * g)])
+    sol = ul.solve(model, load, dt=1e-3, t_end=0.5, method="moreau-jean", rule="trapezoidal", initial="rest")
+    assert sol.success, sol.message
+    slip, theta = sol.dof("B.base.ux"), sol.dof("B.base.rz")
+    energy = energy_balance(model, sol)
+    assert energy["relative_error"] < 1e-12
+    if mode == "slides":
+        np.testing.assert_allclose(slip, -0.5 * (a - mu) * g * sol.t ** 2, rtol=1e-9, atol=1e-15)
+        assert np.abs(theta).max() < 1e-12
+        assert energy["friction_work"][-1] == pytest.approx(mu * g * abs(slip[-1]), rel=1e-9)
+    else:
+        assert np.abs(slip).max() < 1e-12 and np.abs(theta).max() > 0.1
+        assert np.abs(energy["friction_work"]).max() < 1e-12
+    with pytest.raises(ValueError, match="friction.*only method='moreau-jean'"):
+        ul.solve(model, load, dt=1e-3, t_end=0.01, method="direct", rule="bdf1", initial="rest")

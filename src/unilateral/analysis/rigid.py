@@ -37,7 +37,8 @@ def energy_balance(model, sol) -> dict:
     Returns
     -------
     dict of (N+1,) arrays (force length): ``kinetic``, ``potential``, ``input_work``,
-    ``damping_dissipated``, ``impact_loss``, ``numerical_dissipation``, ``balance_error``
+    ``damping_dissipated``, ``impact_loss``, ``numerical_dissipation``, ``friction_work`` (the work
+    dissipated by Coulomb friction on the rigid contacts while they slide), ``balance_error``
     (``W_in - dT - dV - D - L``), and the float ``relative_error`` (the largest ``|balance_error|``
     over the largest energy of the run)
     """
@@ -50,9 +51,10 @@ def energy_balance(model, sol) -> dict:
     V = 0.5 * np.einsum("ki,ij,kj->k", sol.u, K, sol.u)
     out = {"kinetic": T, "potential": V, "input_work": energy["external_work"],
            "damping_dissipated": energy["damping"], "impact_loss": energy["impact_loss"],
-           "numerical_dissipation": energy["numerical_dissipation"]}
+           "numerical_dissipation": energy["numerical_dissipation"],
+           "friction_work": energy.get("friction_work", np.zeros_like(T))}
     out["balance_error"] = (out["input_work"] - (T - T[0]) - (V - V[0]) - out["damping_dissipated"]
-                            - out["impact_loss"] - out["numerical_dissipation"])
+                            - out["impact_loss"] - out["numerical_dissipation"] - out["friction_work"])
     scale = max(float(np.max(np.abs(x), initial=0.0)) for x in
                 (T, V - V[0], out["input_work"], out["impact_loss"], out["damping_dissipated"]))
     out["relative_error"] = float(np.max(np.abs(out["balance_error"]))) / (scale or 1.0)
@@ -155,6 +157,7 @@ def add_rigid_energy(energy: dict, structure, u, udot, stats) -> dict:
         out["damping_dissipated"] = march["damping"]
         out["contact_dissipated"] = march["impact_loss"]       # moreau-jean: every unknown a rigid contact
         out["impact_loss"] = march["impact_loss"]
+        out["friction_work"] = march.get("friction_work", np.zeros_like(out["kinetic"]))
     dissipated = out["damping_dissipated"] + out["contact_dissipated"] + sum(
         out[k] for k in ("plastic_work", "friction_work") if k in out)
     elastic = out["elastic_structure"] + out["elastic_unilateral"]

@@ -55,7 +55,7 @@ from ..linalg import dense
 from .step_log import StepLog
 
 #: The energy terms the march accumulates, in the order of :attr:`MoreauJeanMarch.work`.
-WORK_TERMS = ("external_work", "damping", "impact_loss", "numerical_dissipation")
+WORK_TERMS = ("external_work", "damping", "impact_loss", "numerical_dissipation", "friction_work")
 #: Relative tolerance of "touching" (opening) and "at rest" (normal velocity).
 OPEN_TOL, VELOCITY_TOL = 1e-11, 1e-10
 
@@ -71,6 +71,8 @@ class ImpactSystem:
     g : callable ``g(t) -> (m,)`` (opening ``N^T u - g``);  q : callable ``q(t) -> (n,)`` load
     X : (n, m) the velocity jump of a unit impulse on each contact (``M^-1 N``, massless DOFs
         condensed statically)
+    T : (n, m) the tangents of the contacts with friction (zero columns without), or None
+    mu : (m,) Coulomb's coefficients (0: no friction)
     """
 
     M: np.ndarray
@@ -81,10 +83,15 @@ class ImpactSystem:
     g: object
     q: object
     X: np.ndarray = None
+    T: np.ndarray = None
+    mu: np.ndarray = None
 
     def __post_init__(self):
         if self.X is None:
             self.X = inertia_solve(self.M, self.K, self.N)
+        if self.mu is None or not np.any(self.mu > 0):
+            self.mu, self.T = np.zeros(self.N.shape[1]), np.zeros_like(self.N)
+        self.XT = inertia_solve(self.M, self.K, self.T) if self.mu.any() else np.zeros_like(self.N)
 
     def opening(self, u, t) -> np.ndarray:
         return self.N.T @ u - self.g(t)
@@ -175,7 +182,7 @@ class MoreauJeanMarch:
         if lu is None:
             s, th = self.s, self.theta
             W = np.linalg.inv(s.M + th * h * s.C + th * th * h * h * s.K)     # n is small: one product a step
-            lu = (W, W @ s.N)
+            lu = (W, W @ s.N, W @ s.T)
             if h == self.dt:
                 self._lu[h] = lu
         return lu
@@ -184,20 +191,46 @@ class MoreauJeanMarch:
         """``(u1, v1, P (m,), work (4,), message)`` of a theta step of length ``h`` from ``(u, v)``
         at ``t`` with Newton's law on the contacts ``active`` (indices)."""
         s, th = self.s, self.theta
-        W, WN = self._factor(h)
+        W, WN, WT = self._factor(h)
         q = np.asarray(s.q(t + th * h), dtype=float)
         v1 = W @ (s.M @ v - h * (1 - th) * (s.C @ v) - h * (s.K @ (u + th * (1 - th) * h * v)) + h * q)
-        P, message = np.zeros(s.N.shape[1]), ""
+        P, Pt, message = np.zeros(s.N.shape[1]), np.zeros(s.N.shape[1]), ""
         if active.size:
-            NA = s.N[:, active]
-            p, message = self._lcp(NA.T @ WN[:, active], NA.T @ v1 + s.e[active] * (NA.T @ v))
-            P[active] = p
-            v1 = v1 + WN[:, active] @ p
+            v1, P, Pt, message = self._contacts(v1, WN, WT, active, s.e[active] * (s.N[:, active].T @ v))
         u1 = u + h * ((1 - th) * v + th * v1)
         vth, du, dv = (1 - th) * v + th * v1, u1 - u, v1 - v
         work = np.array([h * q @ vth, h * vth @ (s.C @ vth), -P @ (s.N.T @ vth),
-                         (th - 0.5) * (dv @ (s.M @ dv) + du @ (s.K @ du))])
+                         (th - 0.5) * (dv @ (s.M @ dv) + du @ (s.K @ du)), -Pt @ (s.T.T @ vth)])
         return u1, v1, P, work, message
+
+    def _contacts(self, v, GN, GT, active, shift):
+        """``(v1, P (m,), Pt (m,), message)``: the impulses of the contacts ``active`` from the free
+        velocity ``v``, ``GN``, ``GT`` (n, m) the velocity responses of unit normal and tangential
+        impulses: Newton's law ``U = N^T v1 + shift >= 0`` complementary to ``P >= 0``, and on the
+        contacts with friction Coulomb's law, ``|Pt| <= mu P``, slip opposite to ``Pt`` (the
+        velocity-level LCP with ``Pt = Pt+ - Pt-`` and the slip rate ``lam``; Lemke's method)."""
+        s, m = self.s, self.s.N.shape[1]
+        P, Pt = np.zeros(m), np.zeros(m)
+        NA = s.N[:, active]
+        F = active[s.mu[active] > 0]
+        if F.size == 0:
+            p, message = self._lcp(NA.T @ GN[:, active], NA.T @ v + shift)
+            P[active] = p
+            return v + GN[:, active] @ p, P, Pt, message
+        from ..lcp import get_lcp_solver
+
+        TF, k, f = s.T[:, F], active.size, F.size
+        Ann, Ant = NA.T @ GN[:, active], NA.T @ GT[:, F]
+        Atn, Att = TF.T @ GN[:, active], TF.T @ GT[:, F]
+        E = (active[None, :] == F[:, None]).astype(float) * s.mu[F][:, None]       # mu P_n of F
+        I, Z = np.eye(f), np.zeros((f, f))
+        A = np.block([[Ann, Ant, -Ant, np.zeros((k, f))], [Atn, Att, -Att, I], [-Atn, -Att, Att, I], [E, -I, -I, Z]])
+        bt = TF.T @ v
+        res = get_lcp_solver("lemke").solve(A, np.concatenate([NA.T @ v + shift, bt, -bt, np.zeros(f)]))
+        self.log.iterations += res.iterations
+        self.log.max_error = max(self.log.max_error, res.error)
+        P[active], Pt[F] = res.v[:k], res.v[k:k + f] - res.v[k + f:k + 2 * f]
+        return v + GN[:, active] @ P[active] + GT[:, F] @ Pt[F], P, Pt, "" if res.success else res.message
 
     def impact(self, u, v, t, touching):
         """``(v+, P (m,), loss, message)``: the jump of the velocity at an impact at ``t`` on the
@@ -211,11 +244,9 @@ class MoreauJeanMarch:
         if np.any(e > 0):
             a = NA.T @ inertia_solve(s.M, s.K, (np.asarray(s.q(t), dtype=float) - s.K @ u - s.C @ v)[:, None])[:, 0]
             e[(U < 0) & (a < 0) & (2.0 * e * np.abs(U) < -a * self.dt)] = 0.0
-        p, message = self._lcp(NA.T @ s.X[:, touching], (1.0 + e) * U)
-        v1 = v + s.X[:, touching] @ p
-        P = np.zeros(s.N.shape[1])
-        P[touching] = p
-        loss = -0.5 * p @ (U + NA.T @ v1)
+        v1, P, Pt, message = self._contacts(v, s.X, s.XT, touching, e * U)
+        p = P[touching]
+        loss = -0.5 * (P @ (s.N.T @ (v + v1)) + Pt @ (s.T.T @ (v + v1)))
         self.events.append({"time": float(t), "contacts": [int(j) for j in touching[p > 0]],
                             "impulses": p[p > 0].tolist(), "before": U[p > 0].tolist(),
                             "after": (NA.T @ v1)[p > 0].tolist(), "loss": float(loss),
@@ -354,10 +385,12 @@ def system_of(model, load, dt) -> ImpactSystem:
     interpolated linearly); the imposed-strain load ``model.q_imposed(t)`` is added."""
     from ..constraints import RigidContact
 
-    e = np.zeros(model.m)
+    e, mu, T = np.zeros(model.m), np.zeros(model.m), np.zeros((model.n, model.m))
     for family in model.families:
         if isinstance(family, RigidContact):
-            e[family.indices] = family.restitution
+            e[family.indices], mu[family.indices] = family.restitution, family.mu
+            if family.tangent is not None:
+                T[:, family.indices] = family.tangent
     if load is None:
         q = model.q_imposed
     elif callable(load):
@@ -367,7 +400,7 @@ def system_of(model, load, dt) -> ImpactSystem:
         times = np.arange(table.shape[0]) * dt
         q = lambda t: np.array([np.interp(t, times, c) for c in table.T]) + model.q_imposed(t)
     M, K = dense(model.M), dense(model.K)
-    return ImpactSystem(M=M, K=K, C=dense(model.damping()), N=dense(model.F), e=e, g=model.g, q=q)
+    return ImpactSystem(M=M, K=K, C=dense(model.damping()), N=dense(model.F), e=e, g=model.g, q=q, T=T, mu=mu)
 
 
 def moreau_jean(model, load, *, dt, t_end, u0, udot0=None, e=None, theta=0.5, locate=True):

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import _validate as V
-from ..march.impact import MoreauJeanMarch, forces_at_rest, system_of
+from ..march.impact import WORK_TERMS, MoreauJeanMarch, forces_at_rest, system_of
 from .base import Method
 from .common import finish
 
@@ -191,15 +191,24 @@ def _held_static(system, n):
 
     s = system
     A = np.flatnonzero(s.opening(np.zeros(n), 0.0) <= 0.0)
-    NA = s.N[:, A]
+    F = A[s.mu[A] > 0]                              # with friction: held tangentially too (sticking)
+    NA = np.hstack([s.N[:, A], s.T[:, F]])
     Z = sla.null_space(NA.T) if A.size else np.eye(n)
     if Z.shape[1] and np.linalg.eigvalsh(Z.T @ s.K @ Z).min() <= 0:
         return None, None, ("K is not definite (a free or rocking body) and the rigid contacts that touch at u = 0 "
                             f"({A.size} of them) do not hold it: no static state; give initial='rest' or "
                             "{'u0': ..., 'udot0': ...}")
-    saddle = np.block([[s.K, -NA], [NA.T, np.zeros((A.size, A.size))]])
-    x = np.linalg.solve(saddle, np.concatenate([np.asarray(s.q(0.0), dtype=float), s.g(0.0)[A]]))
-    lam = x[n:]
+    k = NA.shape[1]
+    saddle = np.block([[s.K, -NA], [NA.T, np.zeros((k, k))]])
+    rhs = np.concatenate([np.asarray(s.q(0.0), dtype=float), s.g(0.0)[A], np.zeros(F.size)])
+    try:
+        x = np.linalg.solve(saddle, rhs)
+    except np.linalg.LinAlgError:                      # redundant held rows (two corners' tangents): least norm
+        x = np.linalg.lstsq(saddle, rhs, rcond=None)[0]
+    lam, shear = x[n:n + A.size], x[n + A.size:]
+    if np.any(np.abs(shear) > s.mu[F] * lam[np.searchsorted(A, F)] * (1 + 1e-9)):
+        return None, None, ("the static state with the touching rigid contacts held needs more friction than mu "
+                            "gives (it slides at once); give initial='rest' or {'u0': ..., 'udot0': ...}")
     if np.any(lam < -1e-9 * (1.0 + np.abs(lam).max(initial=0.0))):
         bad = int(A[np.argmin(lam)])
         return None, None, (f"the static state with the touching rigid contacts held pulls contact {bad} "
@@ -216,8 +225,7 @@ def _solution(model, march, disc, run, K, log):
     impacts = [{**ev, "contacts": [names[j] for j in ev["contacts"]], "udot_before": ev["udot_before"].tolist(),
                 "udot_after": ev["udot_after"].tolist()} for ev in march.events if ev["time"] <= t[-1]]
     run.stats.update(impulses=P, impacts=impacts, unlocated_steps=march.unlocated_steps,
-                     energy={name: march.work[:K + 1, i].copy() for i, name in
-                             enumerate(("external_work", "damping", "impact_loss", "numerical_dissipation"))})
+                     energy={name: march.work[:K + 1, i].copy() for i, name in enumerate(WORK_TERMS)})
     v = P / disc.dt
     v[0] = forces_at_rest(march.s, u[0], ud[0])[0]
     return finish(model, run, log, t=t, v=v, psi=-opening, psiL=np.zeros_like(v), u=u, udot=ud)

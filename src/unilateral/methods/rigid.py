@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..constraints import SoilContact
+from ..constraints import RigidContact, SoilContact
 from ..model import check_definite, remembered
 
 
@@ -23,7 +23,7 @@ def rigid_contacts(model) -> list:
     """Names of the rigid contacts of a matrix ``model``: unknowns of a dual-form contact family
     (:class:`~unilateral.constraints.RigidContact`, :class:`~unilateral.constraints.SoilContact`)
     whose ``H(s)`` has a zero diagonal (no compliance). Empty for other problems."""
-    if getattr(model, "kind", None) != "matrices":
+    if getattr(model, "kind", None) != "matrices" or not any(isinstance(f, SoilContact) for f in model.families):
         return []
     H, H_v = np.asarray(model.H), None if model.H_v is None else np.asarray(model.H_v)
     out = []
@@ -34,12 +34,19 @@ def rigid_contacts(model) -> list:
 
 
 def refusal(model, method) -> str | None:
-    """None if ``method`` (``"cq"``, ``"modal"`` or ``"event"``) solves ``model``'s rigid contacts,
-    else why not."""
+    """None if ``method`` (``"cq"``, ``"modal"``, ``"event"`` or ``"direct"``) solves ``model``'s rigid
+    contacts, else why not (friction on rigid contacts: ``moreau-jean`` only)."""
     names = rigid_contacts(model)
     if not names:
         return None
     listed = ", ".join(map(repr, names[:5])) + (", ..." if len(names) > 5 else "")
+    rubbing = [model.constraint_names[int(i)] for f in model.families if isinstance(f, RigidContact)
+               for i, mu in zip(f.indices, f.mu) if mu > 0]
+    if rubbing:
+        return (f"method={method!r}: the rigid contact(s) {', '.join(map(repr, rubbing[:5]))} have friction (mu > 0), "
+                "which only method='moreau-jean' takes (Coulomb's law on the tangential impulses)")
+    if method == "direct":
+        return None
     if method == "event":
         return (f"method='event' integrates the motion between contact changes exactly and has no impact law: "
                 f"the rigid contact(s) {listed} (H = 0) close with a velocity, which needs a jump of the velocity; "

@@ -11,19 +11,12 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-from pydantic import Field, model_validator
-from pydantic_core import PydanticCustomError
+from pydantic import Field
 
 
 def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative):
     """The pydantic tables ``(Contact, RigidBlock)`` of ``[[contacts]]`` and ``[[rigid_blocks]]``,
     built on the schema's base ``Table`` and value types."""
-
-    def _no_friction(table):
-        if table.mu is not None:
-            raise PydanticCustomError("rigid_mu", "mu = {mu}: friction on rigid contacts is not available (the "
-                                      "block's base is held horizontally, no slip): remove mu", {"mu": table.mu})
-        return table
 
     class Contact(Table):
         """[[contacts]]: a rigid unilateral contact of a node with the fixed ground (no compliance)."""
@@ -36,11 +29,8 @@ def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative):
         gap: NonNegative = Field(0.0, description="Opening at u = 0 [length].")
         restitution: float = Field(0.0, ge=0.0, le=1.0, description=(
             "Newton's coefficient of restitution e (method = \"moreau-jean\"): 0 perfectly plastic, 1 elastic."))
-        mu: NonNegative | None = Field(None, description="Friction: not available on rigid contacts (leave out).")
-
-        @model_validator(mode="after")
-        def _friction(self):
-            return _no_friction(self)
+        mu: NonNegative | None = Field(None, description=(
+            "Coulomb friction along the tangent (the normal turned by -90 degrees); method = \"moreau-jean\" only."))
 
     class RigidBlock(Table):
         """[[rigid_blocks]]: a rigid rectangular block rocking on its two base corners (Housner)."""
@@ -55,11 +45,9 @@ def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative):
             "Rotary inertia about the centre [mass length^2]; none: the uniform rectangle's m (b^2 + h^2) / 3."))
         restitution: float = Field(0.0, ge=0.0, le=1.0, description=(
             "Newton's e of the corners (0: Housner's impact, the angular momentum about the new corner kept)."))
-        mu: NonNegative | None = Field(None, description="Friction: not available (the base does not slide).")
-
-        @model_validator(mode="after")
-        def _friction(self):
-            return _no_friction(self)
+        mu: NonNegative | None = Field(None, description=(
+            "None: the base does not slide (held); a number: Coulomb friction at the corners, the base free "
+            "(it slides where mu < b/h and the base acceleration exceeds mu g; method = \"moreau-jean\" only)."))
 
     return Contact, RigidBlock
 
@@ -77,10 +65,10 @@ def add_rigid(fr, document, to_mass, each, g=None) -> None:
         section = "contacts" if document.contacts else "rigid_blocks"
         each(document, section, lambda table: _refuse_3d(section))
     each(document, "contacts", lambda c: fr.contact(c.name, c.node, direction=c.direction, gap=c.gap,
-                                                    restitution=c.restitution))
+                                                    restitution=c.restitution, mu=c.mu))
     each(document, "rigid_blocks", lambda b: fr.rigid_block(
         b.name, b.node, width=b.width, height=b.height, mass=b.mass * to_mass,
-        J=None if b.J is None else b.J * to_mass, restitution=b.restitution, g=0.0 if g is None else g))
+        J=None if b.J is None else b.J * to_mass, restitution=b.restitution, mu=b.mu, g=0.0 if g is None else g))
 
 
 def _refuse_3d(section):
