@@ -32,9 +32,9 @@ What the methods do with them:
 * ``event``: refused: it integrates the smooth motion between contact changes and has no impact
   law (a rigid contact closing with a velocity needs a jump of the velocity).
 
-Friction (``mu``) on a rigid contact is refused for now: the Coulomb law of the library acts on an
-elastic stick ``kt`` and reads the normal force from a primal contact's row; hold the tangential
-motion by a support (no slip) or use ``Frame2D.soil(..., mu=, kt=)``.
+Friction (``mu``) on a rigid contact: Coulomb's law on the tangential impulses at the velocity level,
+taken by ``method="moreau-jean"`` only (the other methods refuse it; the tangent columns ride on the
+family :class:`~unilateral.constraints.RigidContact`, not among the model's unknowns).
 
 **Rigid block** (``Frame2D.rigid_block``, :meth:`RigidContacts.rigid_block`): a rectangle of width ``2 b`` and
 height ``2 h`` with its centre of mass at a node, standing on its two base corners; see
