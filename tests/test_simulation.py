@@ -270,8 +270,9 @@ def test_a_method_that_does_not_apply_names_those_that_do():
         Simulation(model, load, dt=1e-3, t_end=0.01, method="modal", rule="hht")
     auto = Simulation(model, load, dt=1e-3, t_end=0.01)
     others = auto.stats["method_alternatives"]
-    assert auto.method.name == "direct" and set(others) == {"cq", "modal", "time-kernel", "event"}
+    assert auto.method.name == "direct" and set(others) == {"cq", "modal", "time-kernel", "event", "moreau-jean"}
     assert others["time-kernel"].startswith("method='time-kernel' solves a KernelModel of a TimeKernel")
+    assert others["moreau-jean"].startswith("method='moreau-jean' solves models whose every unknown is a rigid")
     assert others["cq"].startswith("applies")
 
 

@@ -27,7 +27,7 @@ __version__ = "0.1.0"
 #: check a name without importing the solvers (numpy, scipy): ``unilateral.methods.MATRIX_METHOD_NAMES``,
 #: ``unilateral.rules.RULES`` (in its order) and ``unilateral.lcp.LCP_SOLVERS`` (sorted).
 #: ``tests/test_prompt.py`` checks them against the registries.
-_MATRIX_METHOD_NAMES = ("auto", "cq", "modal", "direct", "event")
+_MATRIX_METHOD_NAMES = ("auto", "cq", "modal", "direct", "event", "moreau-jean")
 _RULE_NAMES = ("bdf1", "bdf2", "trapezoidal", "newmark", "hht")
 _LCP_NAMES = ("bpp", "enumerate", "lemke", "newton", "pgs")
 

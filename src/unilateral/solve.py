@@ -15,6 +15,7 @@ import dataclasses
 import functools
 import math
 import os
+import warnings
 
 import numpy as np
 
@@ -23,6 +24,7 @@ from .discretization import Discretization
 from .kernels import KernelModel
 from .march.policy import SizePolicy, current_policy, size_policy
 from .methods import METHODS, choose_method, get_method
+from .methods.rigid import rule_warning
 from .model.stiff import StiffCoordinates
 from .model import Model
 from .result import Solution, State
@@ -65,7 +67,8 @@ def solve(model, load=None, *, dt, t_end, method="auto", rule="bdf2", initial="s
         weights of ``Lambda(s)``, one LCP per step. ``"modal"``: the same CLCP with the history
         evaluated recursively from the poles and residues of ``Lambda(s)``, O(r m) per step.
         ``"direct"``: the full model stepped with the same rule and one LCP per step (also
-        Newmark and HHT).
+        Newmark and HHT). ``"moreau-jean"``: rigid contacts with Newton's impact law, impacts
+        located within the step (``rule="trapezoidal"`` or ``"bdf1"``; ``docs/rocking.md``).
     rule : str or Rule
         ``"bdf1"``, ``"bdf2"`` (default), ``"trapezoidal"``; ``"newmark"`` is Newmark(1/2, 1/4),
         the trapezoidal rule, with every method (recorded as ``"trapezoidal"``, with the
@@ -186,6 +189,9 @@ class Simulation:
             raise ValueError(f"{why_not}; the methods that apply to this problem: "
                              + (", ".join(map(repr, _applicable(model, disc.rule))) or "none"))
         _check_memory(chosen, model, disc)
+        if (note := rule_warning(model, chosen.name, disc.rule)) is not None:   # rigid contacts, position level
+            warnings.warn(note, stacklevel=4)
+            run.stats["rigid_contact_warning"] = note
         run.stats.update(method=chosen.name, rule=disc.rule.name, lcp_solver=run.solver.name, steps=disc.N,
                          dt=disc.dt, m=model.m)
         if reason is not None:                  # method="auto": the choice, and what the others say

@@ -43,6 +43,7 @@ from ..linalg import dense as _dense
 from ..model import Model
 from ..structure import forces as F
 from .energy import energy_balance, unknown_kinds
+from .rigid import frame_solution, rigid_summary
 from .inelastic import Inelastic
 from ..structure.modes import modes
 
@@ -215,18 +216,13 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     for case, sol in cases.items():
         if sol.u is None or len(sol.t) < 2:
             continue
-        contact = None
-        if foundation is not None:          # the frame alone, loaded by q + T c (contact forces c = -psi)
-            from ..structure.foundation import structural_solution
-
-            contact = foundation.contact_load(structure, sol)
-            contact_sol, sol = sol, structural_solution(sol, foundation.first)
+        contact, contact_sol, sol = _frame_part(structure, foundation, sol)
         q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
         h = F.Histories.from_solution(structure, sol, rule, load0=q0)
         t = h.t
         acceleration_results(variables, coords, structure, h, ground_motions, case=case, unit=acc_unit)
         ends = F.end_forces(structure, h)
-        end = element_end_forces(coords, structure, ends, F.END_COMPONENTS)
+        end = element_end_forces(coords, structure, ends, F.END_COMPONENTS, steps=len(t))
         put("end_force", ("time", "element", "end_component"), case, end,
             "end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
             f"{Fu} (N, V); {moment_unit} (M)".strip())
@@ -286,13 +282,15 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         energy = None
         if load_samples is not None:
             energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
-                                    keys=energy_keys, unit=moment_unit)
+                                    keys=energy_keys, unit=moment_unit, stats=sol.stats)
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
         if per_frame:
             peaks[case]["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
                                      for label, b in per_frame.items()}
         peaks[case]["overturning_point"] = list(point)
+        if getattr(structure, "rigid", None) is not None:           # analysis/rigid.py
+            peaks[case]["rigid_contacts"] = rigid_summary(structure, contact_sol)
         note = _linear_drift_note(structure, peaks[case])
         if note:
             peaks[case]["linear_members_note"] = note
@@ -376,13 +374,28 @@ def _frame_periods(structure, model, count=3) -> dict:
     return out
 
 
+def _frame_part(structure, foundation, sol):
+    """``(contact, full, frame)``: the load (N+1, n) of the contact forces of the footings on a soil
+    (``T c``, contact forces ``c = -psi``) or of the rigid contacts (``N v``) on the frame, or None;
+    the solution as solved; and the frame's own part of it, whose results are those of the frame
+    alone loaded by ``q + contact``."""
+    if foundation is not None:
+        from ..structure.foundation import structural_solution
+
+        return foundation.contact_load(structure, sol), sol, structural_solution(sol, foundation.first)
+    if getattr(structure, "rigid", None) is not None:
+        contact, frame = frame_solution(structure, sol)
+        return contact, sol, frame
+    return None, sol, sol
+
+
 def _energy_keys(structure) -> tuple:
     """:data:`ENERGY_KEYS` without the plastic and friction work of families the structure lacks."""
     kinds = set(unknown_kinds(structure).tolist()) if structure.m else set()
     return tuple(key for key in ENERGY_KEYS if key not in FAMILY_ENERGY or FAMILY_ENERGY[key] in kinds)
 
 
-def element_end_forces(coords, structure, ends, components) -> np.ndarray:
+def element_end_forces(coords, structure, ends, components, steps=0) -> np.ndarray:
     """The end forces ``ends`` (element name -> (N+1, c)) as one array (N+1, elements, c), with the
     coordinates ``element``, ``element_kind`` and ``end_component`` (``components``) set in ``coords``
     (2-D and 3-D frames alike)."""
@@ -390,6 +403,8 @@ def element_end_forces(coords, structure, ends, components) -> np.ndarray:
     coords["element"] = names
     coords["element_kind"] = ("element", [_kind(structure, name) for name in names])
     coords["end_component"] = list(components)
+    if not names:                       # a frame of rigid blocks only: no element
+        return np.zeros((steps, 0, len(components)))
     return np.stack([ends[name] for name in names], axis=1)
 
 
@@ -479,7 +494,8 @@ def acceleration_peaks(structure, h, ground_motions, directions=("ux", "uy")) ->
             if names[k].endswith(directions) and structure.M[k, k] > 0}
 
 
-def energy_results(variables, structure, h, load_samples, *, case, contact=None, keys=ENERGY_KEYS, unit=""):
+def energy_results(variables, structure, h, load_samples, *, case, contact=None, keys=ENERGY_KEYS, unit="",
+                   stats=None):
     """The energy balance of a case (:func:`unilateral.analysis.energy.energy_balance`, 2-D or 3-D), its
     terms ``keys`` added to ``variables`` as ``energy_<key>`` (time); returns the energies.
 
@@ -490,6 +506,10 @@ def energy_results(variables, structure, h, load_samples, *, case, contact=None,
         from ..structure.foundation import add_soil_energy
 
         energy = add_soil_energy(energy, contact, h.u)
+    if getattr(structure, "rigid", None) is not None:       # rigid contacts: analysis/rigid.py
+        from .rigid import add_rigid_energy
+
+        energy = add_rigid_energy(energy, structure, h.u, h.udot, stats or {})
     for key in keys:
         _put(variables, f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
              "1" if key == "relative_error" else unit)

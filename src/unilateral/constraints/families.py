@@ -123,7 +123,24 @@ class RigidContact(SoilContact):
     (:mod:`unilateral.structure.rigid`). ``K`` is then the stiffness of the structure *without* its
     rigid contacts, which may be singular or indefinite (a free block, the negative stiffness of
     rocking).
+
+    ``restitution`` (k,) holds Newton's coefficient ``e`` of each contact (0 <= e <= 1; a scalar
+    for all), used by the velocity-level impact law of ``method="moreau-jean"``; ``mu`` (k,) the
+    Coulomb coefficients (0: no friction) and ``tangent`` (n, k) the contacts' tangential
+    directions on the DOFs, for the friction of ``method="moreau-jean"`` (the only method that
+    takes it).
     """
+
+    def __init__(self, indices, *, restitution=0.0, mu=0.0, tangent=None, name=None):
+        super().__init__(indices, name=name)
+        e = np.broadcast_to(np.asarray(restitution, dtype=float), self.indices.shape).copy()
+        if not np.all((e >= 0) & (e <= 1)):
+            raise ValueError(f"restitution={restitution!r} must lie in [0, 1] (Newton's coefficient of restitution)")
+        self.restitution = e
+        self.mu = np.broadcast_to(np.asarray(mu, dtype=float), self.indices.shape).copy()
+        if not np.all(self.mu >= 0) or (self.mu.any() and tangent is None):
+            raise ValueError(f"mu={mu!r} must be >= 0, and friction needs the contacts' tangent directions")
+        self.tangent = tangent
 
 
 class SoilShear(ConstraintFamily):

@@ -1,114 +1,429 @@
-"""A velocity-level impact law for rigid contacts: the Moreau-Jean time stepping with Newton's law.
+"""A velocity-level impact law for rigid contacts: the Moreau-Jean time stepping with Newton's law,
+and impacts located within the step.
 
 The position-level LCP of ``method="direct"`` holds the opening of a rigid contact at zero at the
 end of a step, and what that does to the velocity depends on the rule (BDF1: a plastic impact,
 the trapezoidal rule: a bounce; ``docs/rocking.md``). Here the contacts act on the *velocity*
-(Moreau 1988, Jean 1999): with the theta-method on ``M u'' + C u' + K u = q + N lambda``,
+(Moreau 1988, Jean 1999). A step of length ``h`` is the theta-method on
+``M u'' + C u' + K u = q + N lambda`` with the impulses ``P = h lambda`` of the step:
 
-    W v_{k+1} = M v_k - dt C (1 - th) v_k - dt K (u_k + th (1 - th) dt v_k) + dt q(t_k + th dt) + N P
-    W = M + th dt C + th^2 dt^2 K,        u_{k+1} = u_k + dt ((1 - th) v_k + th v_{k+1})
+    M (v1 - v0) = h (q_th - C v_th - K u_th) + N P,     u1 = u0 + h v_th,
+    x_th = (1 - th) x0 + th x1,
 
-(``P = dt lambda`` the impulses of the step), and every contact ``j`` whose opening predicted at
-mid-step, ``N_j^T (u_k + dt v_k / 2) - g_j``, is not positive obeys Newton's impact law in
-complementarity with its impulse:
+and every contact ``j`` of the step's active set obeys Newton's impact law in complementarity
+with its impulse:
 
-    U_j = N_j^T v_{k+1} + e N_j^T v_k >= 0,   P_j >= 0,   U_j P_j = 0
+    U_j = N_j^T v1 + e_j N_j^T v0 >= 0,   P_j >= 0,   U_j P_j = 0
 
-(``e`` the coefficient of restitution, 0 for Housner's rocking). A persistent contact keeps
-``N^T v = 0``, so its opening does not drift (linear constraints); an impact maps the velocity by
-the LCP's projection exactly, whatever the step. For models whose every unknown is a rigid contact
-(:class:`~unilateral.constraints.RigidContact`); not a registered method: call
-:func:`moreau_jean`.
+(``e`` the coefficients of restitution). A persistent contact keeps ``N^T v = 0``, so its opening
+does not drift (linear constraints).
+
+**Impacts located within the step** (``locate=True``, the default). The active set of a step is
+the contacts that touch at its start and do not separate. If the step so taken ends with another
+contact penetrating, the time ``tau`` at which its opening reaches zero is the root of the opening
+of the partial step of length ``tau`` (bracketed, then the Illinois method to ``1e-14`` of the
+length scale); the state is advanced to ``tau``, the impact is applied there as a jump of the
+velocity (the impact LCP ``v+ = v- + X P``, ``X = M^-1 N`` with massless DOFs condensed,
+``U = N^T v+ + e N^T v- >= 0`` on every contact that touches), and the rest of the step is taken
+the same way, landing back on the grid. An accumulation of impacts (Zeno: a ball bouncing to
+rest) is cut by holding a contact whose rebound would return within a step (``2 e |U-| < dt a``
+with ``a`` the normal acceleration that pulls it back: the impact is then plastic, ``e = 0``);
+after ``max_events`` impacts in one step the rest of the step is taken by the plain rule. ``locate=False``
+is the plain Moreau-Jean scheme: the active set is the contacts whose opening predicted at
+mid-step, ``N^T (u0 + h v0 / 2) - g``, is not positive, and an impact is applied at the end of the
+step in which the contact arrives (first order in the impact's effect).
+
+**Energy.** With ``x_th`` as above, every step satisfies exactly
+
+    Delta (v^T M v / 2 + u^T K u / 2) = h q_th^T v_th - h v_th^T C v_th + P^T N^T v_th
+                                         - (th - 1/2) (Delta v^T M Delta v + Delta u^T K Delta u)
+
+and a located impact ``Delta (v^T M v / 2) = P^T N^T (v+ + v-) / 2``. The march accumulates the
+terms: the external work, the damping, the energy lost at impacts ``-P^T N^T v_bar`` (zero for a
+persistent contact; ``(1 - e^2)`` times the normal kinetic energy ``(N^T v-)^2 / (2 N^T X)`` at a
+located impact on one contact) and the numerical dissipation (zero for ``th = 1/2``), so that the
+balance closes to round-off (:mod:`unilateral.analysis.rigid`).
 """
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
-import scipy.linalg as sla
 
 from ..linalg import dense
-from ..result import Solution
+from .step_log import StepLog
+
+#: The energy terms the march accumulates, in the order of :attr:`MoreauJeanMarch.work`.
+WORK_TERMS = ("external_work", "damping", "impact_loss", "numerical_dissipation", "friction_work")
+#: Relative tolerance of "touching" (opening) and "at rest" (normal velocity).
+OPEN_TOL, VELOCITY_TOL = 1e-11, 1e-10
 
 
-def moreau_jean(model, load, *, dt, t_end, u0, udot0=None, e=0.0, theta=0.5) -> Solution:
-    """March ``model`` with rigid contacts by the Moreau-Jean scheme with Newton's impact law.
+@dataclasses.dataclass
+class ImpactSystem:
+    """The matrices of a model with rigid contacts only, as the march uses them.
+
+    Attributes
+    ----------
+    M, K, C : (n, n) mass, stiffness (of the structure without its rigid contacts), damping
+    N : (n, m) the contacts' normals (``F``);  e : (m,) coefficients of restitution
+    g : callable ``g(t) -> (m,)`` (opening ``N^T u - g``);  q : callable ``q(t) -> (n,)`` load
+    X : (n, m) the velocity jump of a unit impulse on each contact (``M^-1 N``, massless DOFs
+        condensed statically)
+    T : (n, m) the tangents of the contacts with friction (zero columns without), or None
+    mu : (m,) Coulomb's coefficients (0: no friction)
+    """
+
+    M: np.ndarray
+    K: np.ndarray
+    C: np.ndarray
+    N: np.ndarray
+    e: np.ndarray
+    g: object
+    q: object
+    X: np.ndarray = None
+    T: np.ndarray = None
+    mu: np.ndarray = None
+
+    def __post_init__(self):
+        if self.X is None:
+            self.X = inertia_solve(self.M, self.K, self.N)
+        if self.mu is None or not np.any(self.mu > 0):
+            self.mu, self.T = np.zeros(self.N.shape[1]), np.zeros_like(self.N)
+        self.XT = inertia_solve(self.M, self.K, self.T) if self.mu.any() else np.zeros_like(self.N)
+
+    def opening(self, u, t) -> np.ndarray:
+        return self.N.T @ u - self.g(t)
+
+
+def inertia_solve(M, K, R) -> np.ndarray:
+    """``M^-1 R`` (n, k) on the DOFs with mass; the DOFs without (a massless rotation of a beam's
+    end) follow by the static condensation ``x_0 = -K00^-1 K0m x_m``, the forces on them carried
+    onto the others, ``R_m - K_m0 K00^-1 R_0``."""
+    R = np.asarray(R, dtype=float)
+    mass = np.diag(M) > 0
+    if mass.all():
+        return np.linalg.solve(M, R)
+    K00 = K[np.ix_(~mass, ~mass)]
+    out = np.zeros_like(R)
+    out[mass] = np.linalg.solve(M[np.ix_(mass, mass)], R[mass] - K[np.ix_(mass, ~mass)] @ np.linalg.solve(K00, R[~mass]))
+    out[~mass] = -np.linalg.solve(K00, K[np.ix_(~mass, mass)] @ out[mass])
+    return out
+
+
+def forces_at_rest(system, u, udot, t=0.0) -> tuple[np.ndarray, np.ndarray]:
+    """``(lam (m,), accel (n,))``: the contact forces of the touching rigid contacts at rest
+    (opening and normal velocity zero to the tolerances) that the acceleration-level LCP gives,
+    ``w = N_A^T u'' >= 0``, ``lam_A >= 0``, ``w^T lam_A = 0``, with
+    ``M u'' = q(t) - K u - C u' + N lam``, and the acceleration ``u''`` (massless DOFs condensed)."""
+    from ..lcp import get_lcp_solver
+
+    s = system
+    f = np.asarray(s.q(t), dtype=float) - s.K @ u - s.C @ udot
+    length = 1.0 + float(np.max(np.abs(u), initial=0.0)) + float(np.max(np.abs(s.g(t)), initial=0.0))
+    speed = 1.0 + float(np.max(np.abs(udot), initial=0.0))
+    touching = np.flatnonzero((s.opening(u, t) <= OPEN_TOL * length) & (np.abs(s.N.T @ udot) <= VELOCITY_TOL * speed))
+    lam = np.zeros(s.N.shape[1])
+    X = inertia_solve(s.M, s.K, np.column_stack([f, s.N[:, touching]]))
+    if touching.size:
+        NA = s.N[:, touching]
+        res = get_lcp_solver("bpp").solve(NA.T @ X[:, 1:], NA.T @ X[:, 0])
+        if not res.success:
+            raise ValueError("no contact forces hold the initial state: " + res.message)
+        lam_A = res.v
+        lam[touching] = lam_A
+        return lam, X[:, 0] + X[:, 1:] @ lam_A
+    return lam, X[:, 0]
+
+
+class MoreauJeanMarch:
+    """The Moreau-Jean march of an :class:`ImpactSystem` (see the module).
 
     Parameters
     ----------
-    model : Model whose unknowns are all rigid contacts (the family
-        :class:`~unilateral.constraints.RigidContact`, ``H = 0``)
-    load : callable ``q(t) -> (n,)`` (a :class:`~unilateral.loads.LoadHistory`), force
-    dt, t_end : time step and duration, s
-    u0, udot0 : (n,) initial displacements (length) and velocities (length/s; default 0)
-    e : coefficient of restitution, 0 <= e <= 1
-    theta : the theta-method's weight, 1/2 <= theta <= 1 (1/2: second order between impacts)
+    system : ImpactSystem;  dt : time step, s;  N : number of steps
+    u0, udot0 : (n,) initial state;  theta : 1/2 .. 1;  solver : LCPSolver of the impulses
+    locate : locate the impacts within the step;  max_events : most impacts located in one step
+    bilateral : hold every contact at its initial opening (impulses of either sign, no impact):
+        the "without uplift" reference
+
+    Attributes (after :meth:`run`)
+    ------------------------------
+    u, udot : (N+1, n);  P : (N+1, m) the impulses of each step (force time);
+    work : (N+1, 4) cumulative :data:`WORK_TERMS`;  events : list of dict (``time``, ``contacts``,
+    ``impulses``, ``before``, ``after`` normal velocities of the contacts struck, ``loss`` the
+    energy lost, ``udot_before``, ``udot_after`` (n,) the velocities);  log : StepLog
+    """
+
+    def __init__(self, system, dt, N, u0, udot0, *, theta=0.5, solver=None, locate=True, max_events=16,
+                 bilateral=False):
+        from ..lcp import get_lcp_solver
+
+        self.s, self.dt, self.N, self.theta = system, float(dt), int(N), float(theta)
+        self.solver, self.locate, self.max_events = solver or get_lcp_solver("bpp"), locate, int(max_events)
+        self.bilateral = bool(bilateral)
+        n, m = system.N.shape
+        self.u, self.udot = np.zeros((N + 1, n)), np.zeros((N + 1, n))
+        self.u[0], self.udot[0] = u0, udot0
+        self.P, self.work = np.zeros((N + 1, m)), np.zeros((N + 1, len(WORK_TERMS)))
+        self.events, self.unlocated_steps, self.done = [], 0, 0
+        try:
+            closed = forces_at_rest(system, self.u[0], self.udot[0])[0] > 0
+        except ValueError:
+            closed = np.zeros(m, dtype=bool)
+        self.log = StepLog(m, closed)
+        self.length = 1.0 + float(np.max(np.abs(u0), initial=0.0)) + float(np.max(np.abs(system.g(0.0)), initial=0.0))
+        self._lu = {}
+
+    # ------------------------------------------------------------------ one sub-step
+    def _factor(self, h):
+        lu = self._lu.get(h)
+        if lu is None:
+            s, th = self.s, self.theta
+            W = np.linalg.inv(s.M + th * h * s.C + th * th * h * h * s.K)     # n is small: one product a step
+            lu = (W, W @ s.N, W @ s.T)
+            if h == self.dt:
+                self._lu[h] = lu
+        return lu
+
+    def substep(self, u, v, t, h, active):
+        """``(u1, v1, P (m,), work (4,), message)`` of a theta step of length ``h`` from ``(u, v)``
+        at ``t`` with Newton's law on the contacts ``active`` (indices)."""
+        s, th = self.s, self.theta
+        W, WN, WT = self._factor(h)
+        q = np.asarray(s.q(t + th * h), dtype=float)
+        v1 = W @ (s.M @ v - h * (1 - th) * (s.C @ v) - h * (s.K @ (u + th * (1 - th) * h * v)) + h * q)
+        P, Pt, message = np.zeros(s.N.shape[1]), np.zeros(s.N.shape[1]), ""
+        if active.size:
+            v1, P, Pt, message = self._contacts(v1, WN, WT, active, s.e[active] * (s.N[:, active].T @ v))
+        u1 = u + h * ((1 - th) * v + th * v1)
+        vth, du, dv = (1 - th) * v + th * v1, u1 - u, v1 - v
+        work = np.array([h * q @ vth, h * vth @ (s.C @ vth), -P @ (s.N.T @ vth),
+                         (th - 0.5) * (dv @ (s.M @ dv) + du @ (s.K @ du)), -Pt @ (s.T.T @ vth)])
+        return u1, v1, P, work, message
+
+    def _contacts(self, v, GN, GT, active, shift):
+        """``(v1, P (m,), Pt (m,), message)``: the impulses of the contacts ``active`` from the free
+        velocity ``v``, ``GN``, ``GT`` (n, m) the velocity responses of unit normal and tangential
+        impulses: Newton's law ``U = N^T v1 + shift >= 0`` complementary to ``P >= 0``, and on the
+        contacts with friction Coulomb's law, ``|Pt| <= mu P``, slip opposite to ``Pt`` (the
+        velocity-level LCP with ``Pt = Pt+ - Pt-`` and the slip rate ``lam``; Lemke's method)."""
+        s, m = self.s, self.s.N.shape[1]
+        P, Pt = np.zeros(m), np.zeros(m)
+        NA = s.N[:, active]
+        F = active[s.mu[active] > 0]
+        if F.size == 0:
+            p, message = self._lcp(NA.T @ GN[:, active], NA.T @ v + shift)
+            P[active] = p
+            return v + GN[:, active] @ p, P, Pt, message
+        from ..lcp import get_lcp_solver
+
+        TF, k, f = s.T[:, F], active.size, F.size
+        Ann, Ant = NA.T @ GN[:, active], NA.T @ GT[:, F]
+        Atn, Att = TF.T @ GN[:, active], TF.T @ GT[:, F]
+        E = (active[None, :] == F[:, None]).astype(float) * s.mu[F][:, None]       # mu P_n of F
+        I, Z = np.eye(f), np.zeros((f, f))
+        A = np.block([[Ann, Ant, -Ant, np.zeros((k, f))], [Atn, Att, -Att, I], [-Atn, -Att, Att, I], [E, -I, -I, Z]])
+        bt = TF.T @ v
+        res = get_lcp_solver("lemke").solve(A, np.concatenate([NA.T @ v + shift, bt, -bt, np.zeros(f)]))
+        self.log.iterations += res.iterations
+        self.log.max_error = max(self.log.max_error, res.error)
+        P[active], Pt[F] = res.v[:k], res.v[k:k + f] - res.v[k + f:k + 2 * f]
+        return v + GN[:, active] @ P[active] + GT[:, F] @ Pt[F], P, Pt, "" if res.success else res.message
+
+    def impact(self, u, v, t, touching):
+        """``(v+, P (m,), loss, message)``: the jump of the velocity at an impact at ``t`` on the
+        contacts ``touching`` (indices), Newton's law on each; a contact whose rebound would return
+        within a step (``2 e |U| < dt a``, ``a`` the normal acceleration pulling it back: an
+        accumulation of impacts) is held, ``e = 0`` (the Zeno rule)."""
+        s = self.s
+        NA = s.N[:, touching]
+        U = NA.T @ v
+        e = s.e[touching].copy()
+        if np.any(e > 0):
+            a = NA.T @ inertia_solve(s.M, s.K, (np.asarray(s.q(t), dtype=float) - s.K @ u - s.C @ v)[:, None])[:, 0]
+            e[(U < 0) & (a < 0) & (2.0 * e * np.abs(U) < -a * self.dt)] = 0.0
+        v1, P, Pt, message = self._contacts(v, s.X, s.XT, touching, e * U)
+        p = P[touching]
+        loss = -0.5 * (P @ (s.N.T @ (v + v1)) + Pt @ (s.T.T @ (v + v1)))
+        self.events.append({"time": float(t), "contacts": [int(j) for j in touching[p > 0]],
+                            "impulses": p[p > 0].tolist(), "before": U[p > 0].tolist(),
+                            "after": (NA.T @ v1)[p > 0].tolist(), "loss": float(loss),
+                            "udot_before": v.copy(), "udot_after": v1.copy()})
+        return v1, P, loss, message
+
+    def _lcp(self, A, b):
+        if self.bilateral:                          # every contact held: an impulse of either sign
+            return np.linalg.solve(A, -b), ""
+        if b.size <= 2 and self.solver.name == "bpp":
+            return _small_lcp(A, b), ""
+        res = self.solver.solve(A, b)
+        if not res.success:
+            from ..lcp import get_lcp_solver
+
+            res = get_lcp_solver("lemke").solve(A, b)
+        self.log.iterations += res.iterations
+        self.log.max_iterations = max(self.log.max_iterations, res.iterations)
+        self.log.max_error = max(self.log.max_error, res.error)
+        return res.v, "" if res.success else res.message
+
+    # ------------------------------------------------------------------ the step
+    def _touching(self, u, t) -> np.ndarray:
+        return self.s.opening(u, t) <= OPEN_TOL * self.length
+
+    def step(self, k) -> str:
+        """Advance from step ``k`` to ``k + 1``; "" or why it failed."""
+        t = k * self.dt
+        if self.bilateral:
+            u, v, P, work, message = self.substep(self.u[k], self.udot[k], t, self.dt, np.arange(self.s.N.shape[1]))
+        else:
+            u, v, P, work, message = self._located(self.u[k], self.udot[k], t)
+        if message:
+            return f"the LCP of step {k + 1} (t = {t:.9g}) failed: {message}"
+        self.u[k + 1], self.udot[k + 1], self.P[k + 1] = u, v, P
+        self.work[k + 1] = self.work[k] + work
+        closed = P > 0
+        self.log.contact_changes += int(np.count_nonzero(closed != self.log.active))
+        self.log.active = closed
+        return ""
+
+    def _located(self, u, v, t):
+        """``(u, v, P, work, message)`` of the step from ``(u, v)`` at ``t``, its impacts located
+        (or at the end of the step, ``locate=False``)."""
+        s, left, events = self.s, self.dt, 0
+        P, work = np.zeros(s.N.shape[1]), np.zeros(len(WORK_TERMS))
+        while True:
+            touching = self._touching(u, t)
+            vtol = VELOCITY_TOL * (1.0 + float(np.max(np.abs(v), initial=0.0)))
+            U = s.N.T @ v
+            if self.locate and np.any(touching & (U < -vtol)):
+                v, p, loss, message = self.impact(u, v, t, np.flatnonzero(touching))
+                if message:
+                    return u, v, P, work, f"the impact LCP at t = {t:.9g}: {message}"
+                P, work[2] = P + p, work[2] + loss
+                U = s.N.T @ v
+            held = touching & (U <= vtol)
+            if not self.locate or events >= self.max_events:
+                self.unlocated_steps += int(self.locate)
+                mid = s.opening(u + 0.5 * left * v, t + left) <= 0.0
+                u, v, p, w, message = self.substep(u, v, t, left, np.flatnonzero(held | mid))
+                return u, v, P + p, work + w, message
+            u1, v1, p, w, message = self.substep(u, v, t, left, np.flatnonzero(held))
+            into = ~held & (s.opening(u1, t + left) < -OPEN_TOL * self.length)
+            if message or not into.any():
+                return u1, v1, P + p, work + w, message
+            tau = self._event_time(u, v, t, left, held, into)
+            if tau >= left * (1.0 - 1e-12):        # at the end of the step: the next step's impact
+                return u1, v1, P + p, work + w, message
+            u, v, p, w, message = self.substep(u, v, t, tau, np.flatnonzero(held))
+            P, work, t, left, events = P + p, work + w, t + tau, left - tau, events + 1
+            if message:
+                return u, v, P, work, message
+
+    def _event_time(self, u, v, t, h, held, into) -> float:
+        """The time ``tau`` in ``(0, h)`` at which the first of the contacts ``into`` (penetrating
+        at ``h``) reaches zero opening, on the partial steps of length ``tau``."""
+        active = np.flatnonzero(held)
+        f = lambda tau: float(np.min(self.s.opening(self.substep(u, v, t, tau, active)[0], t + tau)[into]))
+        lo, hi = 0.0, h
+        f_lo, f_hi = float(np.min(self.s.opening(u, t)[into])), f(h)
+        tol = 1e-14 * self.length
+        while f_lo <= tol:                         # a contact that just separated: bracket off zero
+            mid = 0.5 * (lo + hi)
+            f_mid = f(mid)
+            if f_mid > tol:
+                lo, f_lo = mid, f_mid
+            else:
+                hi, f_hi = mid, f_mid
+            if hi - lo <= 1e-15 * h:
+                return hi
+        side = 0
+        for _ in range(100):                       # Illinois
+            tau = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+            f_tau = f(tau)
+            if abs(f_tau) <= tol or hi - lo <= 1e-15 * h:
+                return tau
+            if f_tau > 0:
+                lo, f_lo = tau, f_tau
+                f_hi, side = (0.5 * f_hi, 1) if side == 1 else (f_hi, 1)
+            else:
+                hi, f_hi = tau, f_tau
+                f_lo, side = (0.5 * f_lo, -1) if side == -1 else (f_lo, -1)
+        return tau
+
+    def run(self, K=None) -> int:
+        """March to step ``K`` (default ``N``) or to the step that fails; the last step done."""
+        for k in range(self.done, self.N if K is None else K):
+            message = self.step(k)
+            if message:
+                self.log.failure = message
+                break
+            self.done = k + 1
+        return self.done
+
+
+def _small_lcp(A, b) -> np.ndarray:
+    """The solution of ``w = A p + b >= 0, p >= 0, w^T p = 0`` for one or two unknowns and a
+    positive definite ``A``, by enumeration of the active sets (exact)."""
+    if b.size == 1:
+        return np.array([max(0.0, -b[0] / A[0, 0])])
+    if b[0] >= 0 and b[1] >= 0:
+        return np.zeros(2)
+    for i, j in ((0, 1), (1, 0)):
+        p = -b[i] / A[i, i]
+        if p > 0 and A[j, i] * p + b[j] >= 0:
+            out = np.zeros(2)
+            out[i] = p
+            return out
+    return np.linalg.solve(A, -b)
+
+
+def system_of(model, load, dt) -> ImpactSystem:
+    """The :class:`ImpactSystem` of a matrix ``model`` with rigid contacts only and a ``load``
+    (None, a callable ``q(t)`` such as a LoadHistory, or an array (N+1, n) at ``t_k = k dt``,
+    interpolated linearly); the imposed-strain load ``model.q_imposed(t)`` is added."""
+    from ..constraints import RigidContact
+
+    e, mu, T = np.zeros(model.m), np.zeros(model.m), np.zeros((model.n, model.m))
+    for family in model.families:
+        if isinstance(family, RigidContact):
+            e[family.indices], mu[family.indices] = family.restitution, family.mu
+            if family.tangent is not None:
+                T[:, family.indices] = family.tangent
+    if load is None:
+        q = model.q_imposed
+    elif callable(load):
+        q = lambda t: np.asarray(load(t), dtype=float) + model.q_imposed(t)
+    else:
+        table = np.asarray(load, dtype=float)
+        times = np.arange(table.shape[0]) * dt
+        q = lambda t: np.array([np.interp(t, times, c) for c in table.T]) + model.q_imposed(t)
+    M, K = dense(model.M), dense(model.K)
+    return ImpactSystem(M=M, K=K, C=dense(model.damping()), N=dense(model.F), e=e, g=model.g, q=q, T=T, mu=mu)
+
+
+def moreau_jean(model, load, *, dt, t_end, u0, udot0=None, e=None, theta=0.5, locate=True):
+    """March ``model`` with rigid contacts by the Moreau-Jean scheme (see the module): the march
+    behind ``method="moreau-jean"`` (:class:`~unilateral.methods.MoreauJean`), without its checks.
+
+    Parameters
+    ----------
+    model : Model whose unknowns are all rigid contacts
+    load : None, callable ``q(t) -> (n,)`` (a LoadHistory) or array (N+1, n), force
+    dt, t_end : s;  u0, udot0 : (n,) (length, length/s)
+    e : coefficient of restitution of every contact, or None (the contacts' own)
+    theta : 1/2 .. 1;  locate : locate the impacts within the step
 
     Returns
     -------
-    Solution
-        ``v`` (N+1, m): the mean contact force of each step ``P / dt`` (force), ``psi`` ``P psi``
-        ``= -opening`` (length), ``psiL`` zeros; ``stats["impulses"]`` (N+1, m) the impulses ``P``
-        (force s).
+    MoreauJeanMarch, marched to the end (or to the step that failed)
     """
-    from ..constraints import RigidContact
-
-    rigid = np.zeros(model.m, dtype=bool)
-    for family in model.families:
-        rigid[family.indices] |= isinstance(family, RigidContact)
-    if not rigid.all():
-        raise ValueError("moreau_jean: every unknown of the model must be a rigid contact (RigidContact family); "
-                         f"{int((~rigid).sum())} are not")
-    if not (0.0 <= e <= 1.0 and 0.5 <= theta <= 1.0):
-        raise ValueError(f"moreau_jean: e={e!r} must lie in [0, 1] and theta={theta!r} in [1/2, 1]")
-    N_steps = int(round(t_end / dt))
-    M, K, C, N = (dense(A) for A in (model.M, model.K, model.damping(), model.F))
-    n, m = N.shape
-    W = sla.lu_factor(M + theta * dt * C + theta ** 2 * dt * dt * K)
-    WN = sla.lu_solve(W, N)
-    u = np.zeros((N_steps + 1, n))
-    ud = np.zeros((N_steps + 1, n))
-    P = np.zeros((N_steps + 1, m))
-    u[0] = u0
-    ud[0] = 0.0 if udot0 is None else udot0
-    g = lambda t: model.g(t)
-    for k in range(N_steps):
-        t = k * dt
-        u_k, v_k = u[k], ud[k]
-        rhs = (M @ v_k - dt * (1 - theta) * (C @ v_k) - dt * (K @ (u_k + theta * (1 - theta) * dt * v_k))
-               + dt * np.asarray(load(t + theta * dt), dtype=float))
-        v_free = sla.lu_solve(W, rhs)
-        active = np.flatnonzero(N.T @ (u_k + 0.5 * dt * v_k) - g(t + dt) <= 0.0)
-        v_new = v_free
-        if active.size:
-            NA = N[:, active]
-            impulse, message = _impulses(NA.T @ WN[:, active], NA.T @ v_free + e * (NA.T @ v_k))
-            if message:
-                return _solution(model, dt, k, u, ud, P, f"the impact LCP of step {k + 1} failed: {message}")
-            P[k + 1, active] = impulse
-            v_new = v_free + WN[:, active] @ impulse
-        ud[k + 1] = v_new
-        u[k + 1] = u_k + dt * ((1 - theta) * v_k + theta * v_new)
-    return _solution(model, dt, N_steps, u, ud, P, "")
-
-
-def _impulses(A, b):
-    """``(P, message)`` of the LCP ``U = A P + b >= 0, P >= 0, U^T P = 0`` (block principal pivoting,
-    Lemke's method where it fails; ``message`` empty on success)."""
-    from ..lcp import get_lcp_solver
-
-    res = get_lcp_solver("bpp").solve(A, b)
-    if not res.success:
-        res = get_lcp_solver("lemke").solve(A, b)
-    return res.v, "" if res.success else res.message
-
-
-def _solution(model, dt, K, u, ud, P, failure) -> Solution:
-    """The Solution of steps ``0 .. K``."""
-    t = np.arange(K + 1) * dt
-    u, ud, P = u[:K + 1], ud[:K + 1], P[:K + 1]
-    opening = u @ dense(model.F) - np.array([model.g(tk) for tk in t])
-    N = u.shape[0] - 1
-    message = f"stopped after {K} steps: {failure}" if failure else f"{N} steps (Moreau-Jean, Newton's impact law)"
-    return Solution(t=t, v=P / dt, psi=-opening, psiL=np.zeros_like(P), u=u, udot=ud, success=not failure,
-                    message=message, stats={"method": "moreau-jean", "impulses": P, "dt": dt},
-                    dof_names=list(model.dof_names), constraint_names=list(model.constraint_names))
+    system = system_of(model, load, dt)
+    if e is not None:
+        system.e = np.full(model.m, float(e))
+    N = int(round(t_end / dt))
+    udot0 = np.zeros(model.n) if udot0 is None else np.asarray(udot0, dtype=float)
+    march = MoreauJeanMarch(system, dt, N, np.asarray(u0, dtype=float), udot0, theta=theta, locate=locate)
+    march.run()
+    return march

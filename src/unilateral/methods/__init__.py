@@ -10,6 +10,8 @@ name               method
 ``"direct"``       :class:`Direct`: the full model stepped with the rule, one LCP per step
 ``"time-kernel"``  :class:`TimeKernelMethod`: product integration of a time-domain kernel
 ``"event"``        :class:`Event`: exact integration from contact change to contact change
+``"moreau-jean"``  :class:`MoreauJean`: rigid contacts with Newton's impact law at the velocity
+                   level, impacts located within the step
 ``"auto"``         not a class: :func:`choose_method` picks one of the above and says why
 =================  ==========================================================================
 
@@ -27,10 +29,12 @@ from .cq import CQ
 from .direct import Direct
 from .event import Event
 from .modal import Modal
+from .moreau_jean import MoreauJean
 from .time_kernel import TimeKernelMethod, solve_time_kernel
 
 #: The registry: name -> Method subclass.
-METHODS = {"cq": CQ, "modal": Modal, "direct": Direct, "time-kernel": TimeKernelMethod, "event": Event}
+METHODS = {"cq": CQ, "modal": Modal, "direct": Direct, "time-kernel": TimeKernelMethod, "event": Event,
+           "moreau-jean": MoreauJean}
 #: Every name ``method=`` accepts.
 METHOD_NAMES = ("auto", *METHODS)
 #: The names that solve a matrix :class:`~unilateral.model.Model` (model files, the command line).
@@ -61,5 +65,5 @@ def get_method(method, options=None):
                     f"or a Method instance; got {V.describe(method)}")
 
 
-__all__ = ["CQ", "Direct", "Event", "MATRIX_METHOD_NAMES", "METHODS", "METHOD_NAMES", "Method", "Modal", "TimeKernelMethod", "choose_method",
+__all__ = ["CQ", "Direct", "Event", "MATRIX_METHOD_NAMES", "METHODS", "METHOD_NAMES", "Method", "Modal", "MoreauJean", "TimeKernelMethod", "choose_method",
            "get_method", "solve_time_kernel"]

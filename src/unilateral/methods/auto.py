@@ -7,6 +7,7 @@ from ..march.policy import current_policy
 from .cq import CQ
 from .direct import Direct
 from .modal import Modal
+from .moreau_jean import MoreauJean
 from .time_kernel import TimeKernelMethod
 
 
@@ -45,6 +46,8 @@ def _matrices(model, rule, solver, options):
         return _modal_or(Modal(**options["modal"]), "modal_options were given", model, Direct(), "direct")
     if "direct" in options:
         return Direct(**options["direct"]), "direct_options were given"
+    if model.m and MoreauJean().applies(model, rule) is None:
+        return MoreauJean(), "every unknown is a rigid contact: Newton's impact law, impacts located in the step"
     policy = current_policy()
     small = model.n <= policy.dense_stepping_max_n and model.m <= policy.full_space_min_m
     bpp = isinstance(solver, BlockPrincipalPivoting)

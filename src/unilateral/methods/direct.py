@@ -13,6 +13,7 @@ from ..march.policy import current_policy
 from .base import Method
 from .clcp_march import ENGINES
 from .common import BaseState, failed_at_start
+from .rigid import refusal as rigid_refusal
 from .stepping import MarchRun, SolvedRun, WholeMarch
 
 
@@ -45,6 +46,10 @@ class Direct(Method):
     name = "direct"
     options = ("engine",)
     cq_rules_only = False
+
+    def refusal(self, model) -> str | None:
+        """None, or why not: friction on rigid contacts (:mod:`.rigid`)."""
+        return rigid_refusal(model, self.name)
 
     def solve(self, model, load, initial, disc, run):
         march = self.start(model, load, initial, disc, run)

@@ -26,6 +26,7 @@ from .checks import check_document, consistent_mass_factor, is_3d, read_document
 from .checks import read_toml  # noqa: F401 (the reader of study files too)
 from .errors import ModelFileError, Problems, key_path
 from .matrices import dof_index, read_matrix_model, read_vector
+from .rigid import add_rigid, ground_inertia
 from .schema import (TIME_UNITS, Bar, Beam, Beam3D, Cable, ConstantLoad, Dashpot, Dashpot3D, Gap, Gap3D,
                      HalfSinePulse, Hinge, Hinge3D, ModelFile, RampLoad, RectangularPulse, Slider, Slider3D, Soil,
                      Soil3D, Spring, Spring3D, TableLoad, TriangularPulse, YieldLink, YieldLink3D)
@@ -160,6 +161,7 @@ def _build_structure(document: ModelFile) -> Structure:
     for section in ("elements", "unilateral"):
         _each(document, section, lambda element: _add_element(fr, element, to_mass))
     _each(document, "masses", lambda mass: fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass))
+    add_rigid(fr, document, to_mass, _each, _gravity_value(document) if document.loads.gravity else None)
     for at, f in document.footings:
         with _at(key_path(at)):
             fr.foundation(f.name, f.node, width=f.width, length=f.length, soil=_footing_soil(f, to_mass),
@@ -209,6 +211,7 @@ def _build_structure_3d(document: ModelFile) -> Structure:
                                                                             ("ux", "uy", "uz", "rx", "ry", "rz")}))
     _each(document, "rigid_links", lambda link: fr.rigid_link(link.master, link.slave))
     _each(document, "rigid_diaphragms", lambda diaphragm: fr.rigid_diaphragm(diaphragm.master, diaphragm.slaves))
+    add_rigid(fr, document, to_mass, _each)                     # refused in 3-D
     for section in ("elements", "unilateral"):
         _each(document, section, lambda element: _add_element_3d(fr, element, to_mass))
     _each(document, "masses", lambda mass: fr.mass(mass.node, mass.m * to_mass, Jx=mass.Jx * to_mass,
@@ -324,7 +327,9 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
                 acceleration = free_field(acceleration, record.dt / seconds, layers, base, at=motion.at,
                                           depth=motion.depth, wave=wave)
         a_g = Tabulated(record.time / seconds, acceleration * (motion.scale * to_model))
-        terms.append((-np.asarray(model.M @ r).ravel(), a_g))
+        with _at(key_path((*parts, "direction"))):
+            inertia = ground_inertia(structure, motion.direction)          # rigid blocks: every node's
+        terms.append((-np.asarray(model.M @ r).ravel() if inertia is None else inertia, a_g))
     return LoadHistory(constant, tuple(terms))
 
 

@@ -16,18 +16,18 @@ file :data:`FILE_REF`; :func:`iter_fields` walks a validated document for such c
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal, Union
+from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchema, model_validator
-from pydantic.fields import FieldInfo
 from pydantic_core import PydanticCustomError
 
 from .. import _LCP_NAMES as LCP_SOLVERS
 from .. import _RULE_NAMES as RULES
 from .. import _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES
 from .pushover_table import PushoverTable, needs_time_step
+from .rigid import rigid_tables
+from .walk import iter_fields  # noqa: F401 (the walk of a validated document, re-exported)
 
 LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
@@ -713,6 +713,9 @@ class FrameKind(Table):
         "uz, rx, ry, rz; z up): see \"3-D frames\" in docs/model-file.md."))
 
 
+Contact, RigidBlock = rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative)   # modelfile/rigid.py
+
+
 class ModelFile(Table):
     """A unilateral model file: a 2-D frame (nodes, elements, ...) or matrices, loads, analysis."""
 
@@ -725,6 +728,8 @@ class ModelFile(Table):
     elements: list[Element] = []
     unilateral: list[Unilateral] = []
     masses: list[Mass] = []
+    contacts: list[Contact] = []
+    rigid_blocks: list[RigidBlock] = []
     damping: Damping | None = None
     foundation: Foundation | None = None
     foundations: list[Foundation] = Field([], description=(
@@ -761,7 +766,7 @@ class ModelFile(Table):
 
 
 FRAME_SECTIONS = ("frame", "nodes", "supports", "rigid_links", "rigid_diaphragms", "elements", "unilateral", "masses",
-                  "damping", "foundation", "foundations")
+                  "contacts", "rigid_blocks", "damping", "foundation", "foundations")
 
 
 # ---------------------------------------------------------------------- 3-D frames ([frame] dimensions = 3)
@@ -1096,28 +1101,6 @@ def dimension_hint(table, key: str) -> str | None:
     if table in THREE_D_TABLES:
         return f"a key of 2-D frames only (this file declares [frame] dimensions = 3; valid keys here: {valid})"
     return f"a key of 3-D frames only (declare [frame] dimensions = 3; valid keys of a 2-D frame here: {valid})"
-
-
-# ---------------------------------------------------------------------- helpers
-def iter_fields(table: BaseModel, parts: tuple = ()) -> Iterator[tuple[tuple, Any, FieldInfo]]:
-    """Every field of a validated document, depth first.
-
-    Yields
-    ------
-    parts : tuple of str and int
-        The key path, e.g. ``("elements", 3, "node_j")``.
-    value : the field's value
-    info : FieldInfo
-        Its metadata holds :data:`NODE_REF` or :data:`FILE_REF` for references.
-    """
-    for name, info in type(table).model_fields.items():
-        value = getattr(table, name)
-        here = (*parts, name)
-        yield here, value, info
-        items = enumerate(value) if isinstance(value, list) else [(None, value)]
-        for index, item in items:
-            if isinstance(item, BaseModel):
-                yield from iter_fields(item, here if index is None else (*here, index))
 
 
 def model_file_schema() -> dict:

@@ -32,9 +32,9 @@ What the methods do with them:
 * ``event``: refused: it integrates the smooth motion between contact changes and has no impact
   law (a rigid contact closing with a velocity needs a jump of the velocity).
 
-Friction (``mu``) on a rigid contact is refused for now: the Coulomb law of the library acts on an
-elastic stick ``kt`` and reads the normal force from a primal contact's row; hold the tangential
-motion by a support (no slip) or use ``Frame2D.soil(..., mu=, kt=)``.
+Friction (``mu``) on a rigid contact: Coulomb's law on the tangential impulses at the velocity level,
+taken by ``method="moreau-jean"`` only (the other methods refuse it; the tangent columns ride on the
+family :class:`~unilateral.constraints.RigidContact`, not among the model's unknowns).
 
 **Rigid block** (``Frame2D.rigid_block``, :meth:`RigidContacts.rigid_block`): a rectangle of width ``2 b`` and
 height ``2 h`` with its centre of mass at a node, standing on its two base corners; see
@@ -60,12 +60,21 @@ from . import elements as el
 @dataclass(frozen=True)
 class RigidContact:
     """One rigid contact as given: ``name``, ``node``, the normal's ``terms`` ``((dof, d), ...)``
-    (unit, from the ground to the node) and the initial ``gap`` (opening at ``u = 0``, length)."""
+    (unit, from the ground to the node), the initial ``gap`` (opening at ``u = 0``, length) and
+    Newton's coefficient of ``restitution`` (used by ``method="moreau-jean"``)."""
 
     name: str
     node: object
     terms: tuple
     gap: float
+    restitution: float = 0.0
+    mu: float = 0.0
+
+    @property
+    def tangent_terms(self) -> tuple:
+        """The tangent ``(dof, t)`` terms: the normal turned by -90 degrees (``uy`` -> ``ux``)."""
+        d = dict(self.terms)
+        return tuple((dof, c) for dof, c in (("ux", d.get("uy", 0.0)), ("uy", -d.get("ux", 0.0))) if c)
 
 
 @dataclass(frozen=True)
@@ -170,6 +179,7 @@ class RigidPart:
     geometric : (n, n) csr, the blocks' second-order gravity terms (``-W h`` on each block's
         ``rz``), added to ``K``
     blocks : dict name -> RigidBlock
+    tangent : (n, mr) csr, the tangent columns of the contacts with friction (zero columns without)
     """
 
     contacts: tuple
@@ -177,6 +187,7 @@ class RigidPart:
     gap: np.ndarray
     geometric: sp.csr_matrix
     blocks: dict
+    tangent: sp.csr_matrix = None
 
     @property
     def names(self) -> tuple:
@@ -199,7 +210,7 @@ def _parts(frame) -> dict:
 class RigidContacts:
     """The rigid contacts and blocks of :class:`~unilateral.structure.Frame2D` (a base of it)."""
 
-    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None) -> None:
+    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None, restitution=0.0) -> None:
         """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``).
 
         Parameters
@@ -209,25 +220,30 @@ class RigidContacts:
         direction : ``"ux"``, ``"uy"`` or a vector ``(dx, dy)``: the normal, from the ground to the
             node (the direction in which the node separates); default ``"uy"``
         gap : initial opening at ``u = 0``, length, >= 0
-        mu : must be None (friction on a rigid contact is not available: see
-            :mod:`unilateral.structure.rigid`)
+        mu : Coulomb's coefficient of friction (>= 0) along the tangent (the normal turned by -90
+            degrees), or None (no friction; the tangential motion then free or held by supports);
+            friction is taken by ``method="moreau-jean"`` only
+        restitution : Newton's coefficient ``e`` in [0, 1] of the velocity-level impact law of
+            ``method="moreau-jean"`` (0: perfectly plastic; the position-level ``direct`` ignores it)
 
         The contact's unknown ``v`` is the compressive force (force) and ``-psi`` of a solution the
         opening (``Solution.psi`` holds ``P psi = -opening``).
         """
         where = self._label("contact", name)
         self._node(where, "node", node)
-        if mu is not None:
-            raise ValueError(f"{where}: mu={mu!r}: friction on a rigid contact is not available (the Coulomb law "
-                             "acts on an elastic stick kt and on the normal force of a compliant contact); hold "
-                             "the tangential motion by a support (no slip), or use soil(..., mu=, kt=)")
+        mu = 0.0 if mu is None else _number(where, "mu", mu, ">=0")
         terms = el.direction_terms(where, direction)
         if any(dof == "rz" for dof, _ in terms):
             raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy' or a vector (dx, dy)")
-        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0")))
+        e = _number(where, "restitution", restitution, ">=0")
+        if e > 1.0:
+            raise ValueError(f"{where}: restitution={restitution!r} must lie in [0, 1] (Newton's coefficient: "
+                             "0 perfectly plastic, 1 elastic)")
+        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0"), e, mu))
         self._names.add(name)
 
-    def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY) -> RigidBlock:
+    def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY,
+                    restitution=0.0, mu=None) -> RigidBlock:
         """A rigid rectangular block rocking on its base corners, its centre of mass at ``node``.
 
         Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
@@ -247,6 +263,12 @@ class RigidContacts:
         base : id of the base-centre node to create, or None
         g : gravity of the weight's geometric stiffness ``-W h`` on the base's ``rz``
             (length/time^2, >= 0; the load of the weight itself is ``Structure.gravity(g)``); 0: none
+        restitution : Newton's ``e`` of the corners' contacts, [0, 1] (default 0: Housner's impact,
+            the angular momentum about the new corner conserved)
+        mu : None (default): the base cannot slide (its ``ux`` supported); a number >= 0: the base is
+            free and each corner has Coulomb friction ``mu`` (``method="moreau-jean"`` only): the block
+            slides, rocks or both (a block with ``mu < b/h`` under a base acceleration above ``mu g``
+            slides before it can rock)
 
         Returns
         -------
@@ -254,6 +276,8 @@ class RigidContacts:
         """
         where = self._label("rigid_block", name)
         self._node(where, "node", node)
+        if mu is not None:
+            mu = _number(where, "mu", mu, ">=0")
         b = _number(where, "width", width, ">0") / 2
         h = _number(where, "height", height, ">0") / 2
         m = _number(where, "mass", mass, ">0")
@@ -265,13 +289,14 @@ class RigidContacts:
         self.node(base, x, y - h)
         self.node(corners[0], x - b, y - h)
         self.node(corners[1], x + b, y - h)
-        self.support(base, ux=True, uy=False, rz=False)
+        if mu is None:
+            self.support(base, ux=True, uy=False, rz=False)
         for slave in (node, *corners):
             self.rigid_link(base, slave)
         self.mass(node, m, J=J)
         self._names.add(name)
         for corner in corners:
-            self.contact(corner, corner, direction="uy")
+            self.contact(corner, corner, direction="uy", restitution=restitution, mu=mu)
         block = RigidBlock(name, node, base, corners, b, h, m, J, g)
         _parts(self)["blocks"][name] = block
         return block
@@ -294,6 +319,8 @@ def exempt_dofs(frame, dofs) -> set:
     out = set()
     for contact in contacts:
         out |= {dofs.free[i] for i in _column(contact, dofs).indices}
+        if contact.mu:
+            out |= {dofs.free[i] for i in _column(contact, dofs, contact.tangent_terms).indices}
     return out
 
 
@@ -314,7 +341,9 @@ def attach(frame, structure):
     rows = [dofs.index(block.base, "rz") for block in parts["blocks"].values() if block.g]
     vals = [-block.W * block.h for block in parts["blocks"].values() if block.g]
     geometric = sp.csr_matrix((vals, (rows, rows)), shape=(dofs.n, dofs.n))
-    part = RigidPart(contacts, N, np.array([c.gap for c in contacts]), geometric, dict(parts["blocks"]))
+    Tt = sp.hstack([_column(c, dofs, c.tangent_terms).T if c.mu else sp.csr_matrix((dofs.n, 1)) for c in contacts],
+                   format="csr")
+    part = RigidPart(contacts, N, np.array([c.gap for c in contacts]), geometric, dict(parts["blocks"]), Tt)
     values = {f.name: getattr(structure, f.name) for f in dataclasses.fields(structure)}
     return _with_rigid(type(structure))(**values, rigid=part)
 
@@ -337,12 +366,11 @@ def _with_rigid(base):
     return cls
 
 
-def _column(contact, dofs) -> sp.csr_matrix:
-    """``(T^T e_d)^T`` (1, n) of a contact: its normal on the free DOFs."""
-    row = None
-    for dof, d in contact.terms:
-        r = d * dofs.T[dofs.full_index(contact.node, dof)]
-        row = r if row is None else row + r
+def _column(contact, dofs, terms=None) -> sp.csr_matrix:
+    """``(T^T e_d)^T`` (1, n) of a contact: its normal (or the direction ``terms``) on the free DOFs."""
+    row = sp.csr_matrix((1, dofs.n))
+    for dof, d in contact.terms if terms is None else terms:
+        row = row + d * dofs.T[dofs.full_index(contact.node, dof)]
     row = sp.csr_matrix(row)
     row.eliminate_zeros()
     return row
@@ -370,7 +398,10 @@ def _model(structure, part):
         F_v = np.hstack([(GEv @ B).toarray(), np.zeros((n, mr))])
         H_v = np.zeros((m + mr, m + mr))
         H_v[:m, :m] = (B.T @ sp.csr_matrix(nat.E_v) @ B).toarray()
-    families = list(structure.families()) + [RigidFamily(np.arange(m, m + mr), name="rigid contact")]
+    mu = [c.mu for c in part.contacts]
+    families = list(structure.families()) + [RigidFamily(
+        np.arange(m, m + mr), name="rigid contact", restitution=[c.restitution for c in part.contacts], mu=mu,
+        tangent=part.tangent.toarray() if any(mu) else None)]
     # K may be singular or indefinite (see the module): the Model is built on a placeholder and then
     # given K, as Structure.to_model does with P-Delta's geometric stiffness
     model = Model(M=structure.M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,
