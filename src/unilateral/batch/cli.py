@@ -43,7 +43,8 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
     out = out if out is not None else Path(study.stem)
     try:
         check_workers(workers)
-        spec = load_study(study)
+        spec = load_study(study, announce=None if quiet else lambda size: click.echo(
+            f"{study}: {size.describe()}", err=True))
     except ClusterError as exc:
         raise click.BadParameter(str(exc), param_hint="--workers") from None
     except ModelFileError as exc:
@@ -51,7 +52,7 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
     if not quiet:
         click.echo(f"{study}: {len(spec.analyses)} analyses ({len(spec.variants)} model variant(s) x "
                    f"{max(len(spec.records), 1)} record(s) x "
-                   f"{len(spec.document.scaling.values) if spec.document.scaling else 1} level(s)); "
+                   f"{len(spec.document.scaling.values) if spec.document.scaling else 1} level(s)) read; "
                    f"results in {out}/", err=True)
     try:
         result = run_study(spec, out, scheduler=scheduler, workers=workers, synchronous=synchronous,
