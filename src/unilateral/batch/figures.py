@@ -127,7 +127,7 @@ def _ida_panel(ax, ds, quantity, rows_of, plt) -> None:
     values, intensity = ds[quantity].values, ds["intensity"].values
     good = mine & (status == "ok") & ~collapsed
     edge = float(np.nanmax(np.where(good, values, np.nan))) if np.any(good & np.isfinite(values)) else 1.0
-    edge *= 1.05
+    edge = 1.05 * (edge if edge > 0 else 1.0)                    # every peak 0 (nothing lifted): an edge at 1
     records = list(dict.fromkeys(ds["record"].values[mine]))
     cmap = plt.get_cmap("tab10" if len(records) <= 10 else "viridis")
     marks = {"collapse": False, "failed": False}
