@@ -68,6 +68,10 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
     click.echo(result.summary(), err=quiet is False)
     for path in result.figures:
         click.echo(f"figure: {path}", err=True)
+    collapsed = int((result.table["collapse"].values == 1).sum()) if "collapse" in result.table else 0
+    if collapsed:                                       # a result, not a failure: the exit status stays 0
+        click.echo(f"{collapsed} of {len(spec.analyses)} analyses: the structure collapsed (columns collapse and "
+                   f"collapse_reason of {out / 'study.csv'})", err=True)
     failures = sum(result.counts.get(s, 0) for s in ("failed", "error", "timeout"))
     if failures:
         click.echo(f"{failures} of {len(spec.analyses)} analyses failed: see the status and message columns "
