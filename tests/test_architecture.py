@@ -113,7 +113,7 @@ PACKAGE_CYCLES = {
 #: that grew, fails; a listed one that got short enough fails until it is taken off the list.
 LONG_MODULES = {
     "structure/frame.py": 1487, "modelfile/schema.py": 1137,
-    "batch/study.py": 875,
+    "batch/study.py": 867,
     "soil/layered.py": 840,
 }
 LONG_FUNCTIONS = {

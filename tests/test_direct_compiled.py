@@ -156,14 +156,31 @@ def test_engine_choice_and_bad_engine():
         Direct(history="fft")
 
 
-def test_speed_of_the_compiled_march():
-    """The paper's example (n = 5, m = 3): the compiled march is far below the Python loop's
-    100+ us per step (about 1 us on a quiet 2-core machine); a loose bound for a busy machine."""
-    p = build("paper", steps=20_000)
-    kw = dict(dt=p.dt, t_end=p.N * p.dt, method="direct")
-    ul.solve(p.model, p.load, **{**kw, "t_end": 20 * p.dt})
-    times = [ul.solve(p.model, p.load, **kw).stats["time"]["steps"] for _ in range(3)]
-    assert np.median(times) / p.N < 20e-6
+def test_the_paper_example_steps_in_the_compiled_march():
+    """The paper's example (n = 5, m = 3) is stepped by the compiled condensed march, in chunks, every
+    step in compiled code; its time per step against the Python loop is a benchmark row
+    (``benchmarks/compiled_march.py``), not a verdict: it depends on the machine and its load."""
+    p = build("paper", steps=2_000)
+    sol = ul.solve(p.model, p.load, dt=p.dt, t_end=p.N * p.dt, method="direct")
+    s = sol.stats
+    assert (s["engine"], s["march"], s["stepping"]) == ("compiled", "compiled condensed", "chunk")
+    assert sol.success and s["steps_done"] == p.N and s["lcp_fallbacks"] == 0
+
+
+def test_the_compiled_march_benchmark_writes_its_row(tmp_path):
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    out = tmp_path / "compiled_march.json"
+    script = Path(__file__).resolve().parents[1] / "benchmarks" / "compiled_march.py"
+    done = subprocess.run([sys.executable, str(script), "--steps", "300", "--repeats", "1", "--out", str(out)],
+                          capture_output=True, text=True, timeout=600)         # a hang guard, not a verdict
+    assert done.returncode == 0, done.stderr[-2000:]
+    data = json.loads(out.read_text())
+    assert [r["engine"] for r in data["rows"]] == ["compiled", "python"] and data["max_difference"] < 1e-12
+    assert all(r["steps"] == 300 and r["per_step_us"] > 0 for r in data["rows"])
 
 
 # ---------------------------------------------------------------------- CQ weights of large models

@@ -160,7 +160,9 @@ def run_footings_example(out, *, figures=("png",), progress=None, figure_process
                          method=None, rule=None, lcp=None, initial=None) -> dict:
     """Run the example and write its outputs to ``out``; return the summary dict (as ``run_example``).
 
-    The output folder is checked before anything is solved; the run files are written into its
+    The output folder and the estimated time (at most an hour:
+    :func:`~unilateral.analysis.example_cost.check_example_cost`) are checked before anything is
+    solved; the run files are written into its
     staging folder first, then the outputs of the footings on one soil
     (:func:`unilateral.analysis.outputs.write_outputs`, which lists them all in ``manifest.json``).
     """
@@ -173,6 +175,9 @@ def run_footings_example(out, *, figures=("png",), progress=None, figure_process
         raise ValueError(f"initial={initial!r}: the footings example starts from the static state only")
     settings = dict(dt=dt or DEFAULTS["dt"], t_end=t_end or DEFAULTS["t_end"], method=method or "cq",
                     rule=rule or "bdf2", lcp=lcp or "bpp")
+    from .example_cost import check_example_cost
+
+    check_example_cost("footings", [round(settings["t_end"] / settings["dt"])] * 4, dt, t_end)   # before solving
     folder = OutputFolder(out)
     staging = folder.prepare()
     try:

@@ -318,15 +318,20 @@ def run_halfspace_example(out, *, figures=("png",), progress=None, figure_proces
                           method=None, rule=None, lcp=None, initial=None) -> dict:
     """Run the example and write its outputs to ``out``; return the summary dict (as ``run_example``).
 
-    The output folder is checked before anything is solved. The run files are written into its
+    The output folder and the estimated time (:func:`~unilateral.analysis.example_cost.check_example_cost`:
+    at most an hour) are checked before anything is solved. The run files are written into its
     staging folder first, then the outputs of the half-space under the earthquake by
     :func:`unilateral.analysis.outputs.write_outputs`, which lists them all in ``manifest.json``.
     """
     from ..io.folder import OutputFolder
+    from ..structure.examples import HALFSPACE_SOILS
+    from .example_cost import check_example_cost
     from .outputs import write_outputs
 
     if initial not in (None, "static"):
         raise ValueError(f"initial={initial!r}: the halfspace example starts from the static state only")
+    steps = [round((t_end or DEFAULTS[name]["t_end"]) / (dt or DEFAULTS[name]["dt"])) for name in LOADS]
+    check_example_cost("halfspace", steps * 2 * len(HALFSPACE_SOILS), dt, t_end)     # before anything is solved
     rule = rule or "bdf2"
     folder = OutputFolder(out)
     staging = folder.prepare()

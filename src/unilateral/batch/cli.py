@@ -43,7 +43,8 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
     out = out if out is not None else Path(study.stem)
     try:
         check_workers(workers)
-        spec = load_study(study)
+        spec = load_study(study, announce=None if quiet else lambda size: click.echo(
+            f"{study}: {size.describe()}", err=True))
     except ClusterError as exc:
         raise click.BadParameter(str(exc), param_hint="--workers") from None
     except ModelFileError as exc:
@@ -51,7 +52,7 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
     if not quiet:
         click.echo(f"{study}: {len(spec.analyses)} analyses ({len(spec.variants)} model variant(s) x "
                    f"{max(len(spec.records), 1)} record(s) x "
-                   f"{len(spec.document.scaling.values) if spec.document.scaling else 1} level(s)); "
+                   f"{len(spec.document.scaling.values) if spec.document.scaling else 1} level(s)) read; "
                    f"results in {out}/", err=True)
     try:
         result = run_study(spec, out, scheduler=scheduler, workers=workers, synchronous=synchronous,
@@ -67,6 +68,10 @@ def batch(study, out, scheduler, workers, synchronous, retry_failed, no_figures,
     click.echo(result.summary(), err=quiet is False)
     for path in result.figures:
         click.echo(f"figure: {path}", err=True)
+    collapsed = int((result.table["collapse"].values == 1).sum()) if "collapse" in result.table else 0
+    if collapsed:                                       # a result, not a failure: the exit status stays 0
+        click.echo(f"{collapsed} of {len(spec.analyses)} analyses: the structure collapsed (columns collapse and "
+                   f"collapse_reason of {out / 'study.csv'})", err=True)
     failures = sum(result.counts.get(s, 0) for s in ("failed", "error", "timeout"))
     if failures:
         click.echo(f"{failures} of {len(spec.analyses)} analyses failed: see the status and message columns "

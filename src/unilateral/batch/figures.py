@@ -2,10 +2,11 @@
 
 * :func:`ida_figure`: intensity against a peak quantity, one line per record, with the median and
   the 16 % and 84 % fractiles over the records at each intensity level; one panel per model
-  variant. Analyses that failed are marked at the right edge.
+  variant. A curve goes flat at a collapse; analyses that failed without one are marked apart.
 * :func:`fragility_figure`: for each limit state, the fraction of analyses exceeding it at each
   level (with the number of analyses behind each point) and the lognormal fragility fitted by
   maximum likelihood (:func:`~unilateral.batch.fragility.fit_fragility`); one curve per variant.
+  A collapse exceeds every limit state; a failure is left out (:mod:`unilateral.batch.collapse`).
 """
 
 from __future__ import annotations
@@ -83,42 +84,26 @@ def _save(fig, path: Path, formats, dpi) -> list[Path]:
     return written
 
 
+def _collapsed(ds) -> np.ndarray:
+    """Boolean (analyses,): the rows whose structure collapsed (a table without the column: none)."""
+    return ds["collapse"].values == 1 if "collapse" in ds else np.zeros(ds.sizes["analysis"], dtype=bool)
+
+
 def ida_figure(ds, quantity: str, path, *, formats=("png",), dpi=150, title: str = "") -> list[Path]:
-    """IDA curves of ``quantity`` (a column of the table) against the intensity; returns the files."""
+    """IDA curves of ``quantity`` (a column of the table) against the intensity; returns the files.
+
+    A record's curve stops at its last level before a collapse and goes flat from there to the
+    right edge (the collapse intensities marked ``>`` at the edge); analyses that failed without a
+    collapse are red crosses at the edge, apart. The median and fractiles count a collapse as an
+    infinite quantity (beyond the edge)."""
     plt = _pyplot()
     labels = variant_labels(ds)
     fig, axes = _grid(plt, len(labels))
-    status = ds["status"].values
+    status, collapsed = ds["status"].values, _collapsed(ds)
     im_label = ds.attrs.get("intensity", "intensity")
     for ax, (v, label) in zip(axes, labels.items()):
         mine = ds["variant"].values == v
-        records = list(dict.fromkeys(ds["record"].values[mine]))
-        cmap = plt.get_cmap("tab10" if len(records) <= 10 else "viridis")
-        edge = np.nanmax(np.where(mine & (status == "ok"), ds[quantity].values, np.nan)) if np.any(
-            mine & (status == "ok")) else 1.0
-        for j, record in enumerate(records):
-            rows = np.flatnonzero(mine & (ds["record"].values == record))
-            rows = rows[np.argsort(ds["intensity"].values[rows])]
-            ok = status[rows] == "ok"
-            color = cmap(j / max(len(records) - 1, 1)) if len(records) > 10 else cmap(j % 10)
-            ax.plot(ds[quantity].values[rows][ok], ds["intensity"].values[rows][ok], "-o", color=color, lw=0.9,
-                    ms=2.5, alpha=0.75, label=record if len(records) <= 12 else None)
-            bad = rows[~ok & (status[rows] != "pending")]
-            if bad.size:
-                ax.plot(np.full(bad.size, edge * 1.05), ds["intensity"].values[bad], "x", color="red", ms=6,
-                        label="failed" if j == 0 else None)
-        levels = np.unique(ds["intensity"].values[mine])
-        stats = []
-        for level in levels:
-            rows = mine & (ds["intensity"].values == level) & (status == "ok")
-            values = ds[quantity].values[rows]
-            values = values[np.isfinite(values)]
-            stats.append(np.percentile(values, [16, 50, 84]) if values.size else [np.nan] * 3)
-        stats = np.array(stats)
-        if stats.size:
-            ax.plot(stats[:, 1], levels, "-", color="black", lw=2.4, label="median")
-            ax.plot(stats[:, 0], levels, "--", color="black", lw=1.4, label="16% / 84%")
-            ax.plot(stats[:, 2], levels, "--", color="black", lw=1.4)
+        _ida_panel(ax, ds, quantity, (mine, status, collapsed), plt)
         unit = ds[quantity].attrs.get("units", "")
         ax.set_xlabel(f"peak {quantity} [{pretty_unit(unit)}]" if unit else f"peak {quantity}")
         ax.set_ylabel(pretty_unit(im_label))
@@ -136,26 +121,77 @@ def ida_figure(ds, quantity: str, path, *, formats=("png",), dpi=150, title: str
     return written
 
 
+def _ida_panel(ax, ds, quantity, rows_of, plt) -> None:
+    """One variant's IDA curves (``rows_of = (mine, status, collapsed)``), median and fractiles."""
+    mine, status, collapsed = rows_of
+    values, intensity = ds[quantity].values, ds["intensity"].values
+    good = mine & (status == "ok") & ~collapsed
+    edge = float(np.nanmax(np.where(good, values, np.nan))) if np.any(good & np.isfinite(values)) else 1.0
+    edge = 1.05 * (edge if edge > 0 else 1.0)                    # every peak 0 (nothing lifted): an edge at 1
+    records = list(dict.fromkeys(ds["record"].values[mine]))
+    cmap = plt.get_cmap("tab10" if len(records) <= 10 else "viridis")
+    marks = {"collapse": False, "failed": False}
+    for j, record in enumerate(records):
+        rows = np.flatnonzero(mine & (ds["record"].values == record))
+        rows = rows[np.argsort(intensity[rows])]
+        gone = np.flatnonzero(collapsed[rows])
+        curve = rows[: gone[0]] if gone.size else rows            # up to the first collapse
+        curve = curve[good[curve]]
+        color = cmap(j / max(len(records) - 1, 1)) if len(records) > 10 else cmap(j % 10)
+        x, y = list(values[curve]), list(intensity[curve])
+        if gone.size and x:                                       # the flatline at the last level standing
+            x.append(edge)
+            y.append(y[-1])
+        ax.plot(x, y, "-o", color=color, lw=0.9, ms=2.5, alpha=0.75, label=record if len(records) <= 12 else None)
+        if gone.size:
+            ax.plot(np.full(gone.size, edge), intensity[rows[gone]], ">", color=color, ms=5,
+                    label=None if marks["collapse"] else "collapse")
+            marks["collapse"] = True
+        bad = rows[(status[rows] != "ok") & (status[rows] != "pending") & ~collapsed[rows]]
+        if bad.size:
+            ax.plot(np.full(bad.size, edge * 1.04), intensity[bad], "x", color="red", ms=6,
+                    label=None if marks["failed"] else "failed (not a collapse)")
+            marks["failed"] = True
+    ax.set_xlim(right=edge * 1.08)                               # the edge marks inside the panel
+    levels = np.unique(intensity[mine])
+    stats = []
+    for level in levels:
+        at = mine & (intensity == level)
+        counted = np.concatenate([values[at & good], np.full(int(np.sum(at & collapsed)), np.inf)])
+        counted = counted[~np.isnan(counted)]
+        stats.append(np.percentile(counted, [16, 50, 84], method="inverted_cdf") if counted.size else [np.nan] * 3)
+    stats = np.minimum(np.array(stats), edge)                     # a collapsed fractile at the edge
+    if stats.size:
+        ax.plot(stats[:, 1], levels, "-", color="black", lw=2.4, label="median")
+        ax.plot(stats[:, 0], levels, "--", color="black", lw=1.4, label="16% / 84%")
+        ax.plot(stats[:, 2], levels, "--", color="black", lw=1.4)
+
+
 def fragility_fits(ds, limit_states) -> list[dict]:
-    """Fits of every limit state and variant: dicts with theta, beta, levels, n, z, note."""
+    """Fits of every limit state and variant: dicts with theta, beta, levels, n, z, note.
+
+    A collapse (column ``collapse``) exceeds every limit state, whatever its status; an analysis that
+    failed without a collapse is left out (and counted in the note): it is evidence of neither."""
     fits = []
-    status = ds["status"].values
+    status, collapsed = ds["status"].values, _collapsed(ds)
     for limit in limit_states:
         for v, label in variant_labels(ds).items():
-            mine = (ds["variant"].values == v) & (status == "ok")
-            levels = np.unique(ds["intensity"].values[ds["variant"].values == v])
+            variant = ds["variant"].values == v
+            mine = variant & ((status == "ok") | collapsed)
+            levels = np.unique(ds["intensity"].values[variant])
             n, z = [], []
             for level in levels:
                 rows = mine & (ds["intensity"].values == level)
                 values = ds[limit.quantity].values[rows]
-                values = values[np.isfinite(values)]
-                n.append(values.size)
-                z.append(int(np.sum(values > limit.threshold)))
-            failed = int(np.sum((ds["variant"].values == v) & np.isin(status, ["failed", "error", "timeout"])))
+                known = np.isfinite(values) | collapsed[rows]
+                n.append(int(np.sum(known)))
+                z.append(int(np.sum(known & ((np.nan_to_num(values, nan=-np.inf) > limit.threshold)
+                                             | collapsed[rows]))))
+            failed = int(np.sum(variant & np.isin(status, ["failed", "error", "timeout"]) & ~collapsed))
             fit = fit_fragility(levels, n, z)
             note = fit.note
             if failed:
-                note = (note + "; " if note else "") + f"{failed} failed analyses left out"
+                note = (note + "; " if note else "") + f"{failed} failed analyses left out (not counted as collapse)"
             fits.append({"limit_state": limit.name, "quantity": limit.quantity, "threshold": limit.threshold,
                          "variant": v, "label": label, "theta": fit.theta, "beta": fit.beta,
                          "levels": fit.levels.tolist(), "n": fit.n.tolist(), "z": fit.z.tolist(), "note": note,

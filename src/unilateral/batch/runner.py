@@ -483,6 +483,7 @@ def _close(client, cluster) -> None:
 
 # ---------------------------------------------------------------------- figures
 def _figures(study: Study, table, out: Path):
+    from .collapse import collapse_limit_states
     from .figures import fragility_figure, ida_figure
 
     doc = study.document
@@ -494,8 +495,9 @@ def _figures(study: Study, table, out: Path):
     if doc.records is not None and doc.scaling is not None:
         quantity = doc.figures.ida or study.quantity_columns[0]
         written += ida_figure(table, quantity, out / "ida.png", formats=formats, dpi=dpi, title=doc.title)
-    if doc.limit_states and doc.scaling is not None:
-        files, fits = fragility_figure(table, doc.limit_states, out / "fragility.png", formats=formats, dpi=dpi)
+    limits = list(doc.limit_states) + collapse_limit_states(doc)       # with [collapse]: its fragility too
+    if limits and doc.scaling is not None:
+        files, fits = fragility_figure(table, limits, out / "fragility.png", formats=formats, dpi=dpi)
         written += files
         write_json_atomic(out / "fragility.json", [{k: v for k, v in f.items() if k != "fit"} for f in fits])
     return written, fits

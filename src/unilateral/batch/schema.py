@@ -188,6 +188,18 @@ class LimitState(Table):
     threshold: float
 
 
+class Collapse(Table):
+    """[collapse]: when an analysis counts as a collapse of the structure (apart from a failed one)."""
+
+    quantity: Name | None = Field(None, description=(
+        "A quantity column (e.g. a drift ratio, or a displacement with dof = \"rz\"): the structure has "
+        "collapsed when it exceeds limit."))
+    limit: Positive | None = Field(None, description="The collapse limit of quantity (its units).")
+    mechanism: bool = Field(True, description=(
+        "Also a collapse: a mechanism under gravity at the end of the run (the static tangent with P-Delta, "
+        "the flowing hinges released, not positive definite)."))
+
+
 class Figures(Table):
     """[figures]: what to draw."""
 
@@ -207,6 +219,7 @@ class StudyFile(Table):
     analysis: StudyAnalysis = StudyAnalysis()
     quantities: list[Quantity] = Field(min_length=1)
     limit_states: list[LimitState] = []
+    collapse: Collapse | None = None
     figures: Figures = Figures()
 
 

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import copy
 import hashlib
-import itertools
 import json
 import math
 from dataclasses import dataclass, field
@@ -24,17 +23,18 @@ from pydantic import ValidationError
 from ..modelfile import ModelFileError, build_model_spec
 from ..modelfile.build import read_toml
 from ..modelfile.errors import Problems, did_you_mean, key_path, toml_value, translate, value_problem
+from .collapse import collapse_problems
+from .estimate import RECORD_SUFFIXES, combinations, size_problems, study_size
 from .keypath import KeyPathError, PlainErrors, parse_key_path, set_key_path
+from .keys import AnalysisKeys
 from .schema import StudyFile
 
-RECORD_SUFFIXES = (".at2", ".txt", ".dat", ".csv")
 MAX_RECORD_SAMPLES = 10_000_000
 """Most samples (duration / dt) of a synthetic record."""
 MAX_ACCELERATION_G = 100.0
 """Largest target intensity (PGA or Sa) of ``[scaling]``, in g: beyond it a study is a typo."""
 MAX_SCALE_FACTOR = 1e4
 """Largest scale factor of ``[scaling] measure = "factor"``."""
-"""Files of a records folder that are read as records (any case); .AT2 files carry their units."""
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3}
 PAIR_DIRECTIONS = {2: ("ux", "uy"), 3: ("ux", "uy", "uz")}
@@ -168,6 +168,7 @@ class Study:
     analyses: list
     quantity_columns: list
     intensity_label: str
+    size: object = None               # the StudySize counted before the study was expanded
 
     @property
     def title(self) -> str:
@@ -183,8 +184,13 @@ def read_study_document(source: Path) -> tuple[StudyFile, dict]:
         raise Problems(translate(PlainErrors(exc, data), data, StudyFile)) from None
 
 
-def load_study(path) -> Study:
+def load_study(path, *, announce=None) -> Study:
     """Read, check and expand the study file ``path`` (TOML; see ``docs/study-file.md``).
+
+    The analyses are counted first (:func:`unilateral.batch.estimate.study_size`, from the file
+    alone) and a study whose reading would not fit in memory is refused before anything is built;
+    ``announce(size)``, if given, is called with that :class:`~unilateral.batch.estimate.StudySize`
+    before the variants are built (``unilateral batch`` prints :meth:`StudySize.describe`).
 
     Raises
     ------
@@ -194,16 +200,20 @@ def load_study(path) -> Study:
     source = Path(path)
     try:
         document, _ = read_study_document(source)
-        return _expand(document, source)
+        return _expand(document, source, announce)
     except Problems as exc:
         raise StudyFileError(path, exc.problems) from None
 
 
-def _expand(doc: StudyFile, source: Path) -> Study:
+def _expand(doc: StudyFile, source: Path, announce=None) -> Study:
     folder = source.parent
     problems = _static_problems(doc, folder)
+    size = study_size(doc, folder)
+    problems = problems or size_problems(size)       # counted, nothing built: refused before any allocation
     if problems:
         raise Problems(problems)
+    if announce is not None:
+        announce(size)
     records = _records(doc, folder)
     variants = _variants(doc, folder)
     problems = _lcp_option_problems(doc, variants)
@@ -217,15 +227,14 @@ def _expand(doc: StudyFile, source: Path) -> Study:
         _read_records(records, doc)
     levels = list(scaling.values) if scaling is not None else [1.0]
     analyses = []
-    record_list = records if records else [None]
+    quantities = [q.model_dump() for q in doc.quantities]       # one list shared by every payload
     for variant in variants:
-        for record in record_list:
+        keys = AnalysisKeys(variant.digest, variant.overrides, variant.ground_motion, quantities, package_version())
+        for record in records or [None]:
             for level, value in enumerate(levels):
-                analyses.append(_analysis(len(analyses), doc, variant, record, level, value))
-    columns = quantity_columns(doc, variants)
-    label = _intensity_label(doc)
+                analyses.append(_analysis(len(analyses), doc, (variant, keys, quantities), record, level, value))
     return Study(source=source, document=doc, variants=variants, records=records, analyses=analyses,
-                 quantity_columns=columns, intensity_label=label)
+                 quantity_columns=quantity_columns(doc, variants), intensity_label=_intensity_label(doc), size=size)
 
 
 def _intensity_label(doc: StudyFile) -> str:
@@ -500,6 +509,7 @@ def _check_quantities(doc: StudyFile, variants) -> None:
             problems.append(value_problem(("limit_states", k, "quantity"), limit.quantity,
                                           f"no such quantity (valid: {', '.join(columns)})")
                             + did_you_mean(limit.quantity, columns))
+    problems += collapse_problems(doc, columns)
     ida = doc.figures.ida
     if ida is not None and ida not in columns:
         problems.append(value_problem(("figures", "ida"), ida, f"no such quantity (valid: {', '.join(columns)})")
@@ -612,23 +622,6 @@ def _read_records(records: list[Record], doc: StudyFile) -> None:
 
 
 # ---------------------------------------------------------------------- model variants
-def _combinations(doc: StudyFile) -> list[dict]:
-    """Every combination of the swept parameters: groups zipped, groups crossed."""
-    groups: dict = {}
-    for k, parameter in enumerate(doc.parameters):
-        groups.setdefault(parameter.group or f"#{k}", []).append(parameter)
-    axes = []
-    for members in groups.values():
-        axes.append([{p.key: p.values[i] for p in members} for i in range(len(members[0].values))])
-    combos = []
-    for choice in itertools.product(*axes):
-        combo = {}
-        for part in choice:
-            combo.update(part)
-        combos.append(combo)
-    return combos or [{}]
-
-
 def _parameter_site(doc: StudyFile, key: str, value) -> tuple:
     for k, parameter in enumerate(doc.parameters):
         if parameter.key == key:
@@ -642,7 +635,7 @@ def _parameter_site(doc: StudyFile, key: str, value) -> tuple:
 def _variants(doc: StudyFile, folder: Path) -> list[Variant]:
     problems = []
     variants = []
-    combos = _combinations(doc)
+    combos = combinations(doc)
     for k, entry in enumerate(doc.models):
         path = (folder / entry.file)
         name = entry.name or Path(entry.file).stem
@@ -781,13 +774,14 @@ def _referenced_digests(data, folder: Path) -> dict:
 
 
 # ---------------------------------------------------------------------- analyses
-def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | None, level: int, value: float):
+def _analysis(index: int, doc: StudyFile, shared: tuple, record: Record | None, level: int, value: float):
+    """The analysis of ``record`` at level ``value``; ``shared``: ``(variant, its AnalysisKeys, the
+    quantities)``, the parts common to the variant's analyses (encoded, and held, once)."""
     from ..loads import acceleration_factor
 
+    variant, keys, quantities = shared
     scaling = doc.scaling
-    settings = dict(variant.settings)
-    settings["lcp_options"] = dict(doc.analysis.lcp_options)
-    settings["timeout"] = doc.analysis.timeout
+    t_end = variant.settings["t_end"]
     error = None if record is None else record.error
     record_im = math.nan
     scale = 1.0
@@ -815,16 +809,14 @@ def _analysis(index: int, doc: StudyFile, variant: Variant, record: Record | Non
         if record.motion is not None:
             seconds = TIME_UNITS[variant.spec.units["time"]]
             duration = max(m.duration for m in _components(record))       # a pair: its longest component
-            settings["t_end"] = (duration + doc.analysis.t_after) / seconds
+            t_end = (duration + doc.analysis.t_after) / seconds
         else:
-            settings["t_end"] = math.nan
-    ident = {"version": package_version(), "model": variant.digest, "overrides": variant.overrides,
-             "record": None if record is None else record.digest, "ground_motion": variant.ground_motion,
-             "scale": scale, "settings": {k: v for k, v in settings.items() if k != "timeout"},
-             "quantities": [q.model_dump() for q in doc.quantities]}
-    key = sha256_json(ident)[:24]
+            t_end = math.nan
+    base = dict(variant.settings, lcp_options=dict(doc.analysis.lcp_options), timeout=doc.analysis.timeout)
+    settings, text = keys.settings(base, t_end)
+    key = keys.key(None if record is None else record.digest, scale, text)     # sha256_json of the ident
     payload = {"key": key, "variant": variant.index, "record": None if record is None else record.samples_key,
-               "scale": scale, "settings": settings, "quantities": [q.model_dump() for q in doc.quantities]}
+               "scale": scale, "settings": settings, "quantities": quantities}
     if record is not None and record.kind == "pair":
         payload["ground"] = record.ground()
     return Analysis(key=key, index=index, variant=variant, record=record, level=level, intensity=intensity,

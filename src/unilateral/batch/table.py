@@ -1,5 +1,8 @@
 """The study table: one row per analysis, its inputs and its peak quantities.
 
+Besides ``status`` (``failed``: the LCP of a step failed) each row says whether the structure
+collapsed (``collapse``, ``collapse_reason``: :mod:`unilateral.batch.collapse`); the two are apart.
+
 :func:`study_table` gathers the results written by the analyses into an :class:`xarray.Dataset`
 along the dimension ``analysis``; :func:`write_table` writes it as ``study.nc`` (netCDF-4 via
 h5netcdf) and ``study.csv``, both atomically. Analyses without a result yet are ``"pending"``.
@@ -15,6 +18,7 @@ import numpy as np
 
 from ..io.atomic import atomic_path, to_jsonable, write_json_atomic
 from ..modelfile.errors import toml_value
+from .collapse import collapse_of
 
 STATUSES = ("ok", "failed", "error", "timeout", "pending")
 
@@ -93,6 +97,7 @@ def study_rows(study, results: Path) -> list[dict]:
             "contact_changes": float(stats.get("contact_changes", math.nan)),
             "run_id": "" if result is None else str(result.get("run_id", "")),
         })
+        row["collapse"], row["collapse_reason"] = collapse_of(result, study.document.collapse)
         rows.append(row)
     return rows
 
@@ -112,6 +117,8 @@ def study_table(study, results) -> "xarray.Dataset":  # noqa: F821 - xarray impo
     ds = xr.Dataset(data, coords={"analysis": np.arange(len(rows))})
     doc = study.document
     counts = {s: int(np.sum(ds["status"].values == s)) for s in STATUSES} if rows else {}
+    if rows:
+        counts["collapse"] = int(np.sum(ds["collapse"].values == 1))
     ds.attrs.update({
         "title": doc.title, "study_file": str(study.source), "unilateral_version": package_version(),
         "intensity": study.intensity_label,
@@ -127,6 +134,9 @@ def study_table(study, results) -> "xarray.Dataset":  # noqa: F821 - xarray impo
             ds[column].attrs["units"] = units[column]
     ds["intensity"].attrs["long_name"] = study.intensity_label
     ds["T1"].attrs.update(long_name="first period with every constraint bilateral", units="s")
+    if rows:
+        ds["collapse"].attrs.update(long_name="the structure collapsed (1), not (0), pending (-1); apart from status",
+                                    flag_values="-1 0 1")
     return ds
 
 

@@ -459,7 +459,9 @@ def run_analysis(payload: dict, source: dict, record=None, run_id: str = "") -> 
     -------
     dict
         The result: ``key``, ``status`` (``"ok"``, ``"failed"``, ``"error"``, ``"timeout"``),
-        ``message``, ``values`` (the peak quantities), ``notes``, ``stats`` (steps, method,
+        ``message``, ``values`` (the peak quantities; NaN for a failed run, whose peaks over the
+        steps it computed are ``values_computed``), ``mechanism`` (why the last state computed is a
+        mechanism under gravity, or ``""``: :func:`unilateral.batch.collapse.mechanism`), ``notes``, ``stats`` (steps, method,
         max_lcp_error, contact_changes), ``solve_time``, ``quantities_time`` (collecting the
         peaks), ``task_time`` in seconds, ``worker``, ``host``, ``pid``, ``run_id``, ``cache``
         (``{"model": "hit" or "miss"}``), and ``restart_worker`` (True) after a timeout.
@@ -514,7 +516,11 @@ def _solve_and_collect(result: dict, payload: dict, spec, load, variant_extras) 
     overflow = _non_finite(sol, values) if sol.success else ""
     if overflow:
         result.update(status="failed", message=overflow)
+    from .collapse import mechanism
+
+    result["mechanism"] = "" if overflow else mechanism(spec.model, sol)     # collapse, not failure
     if result["status"] == "failed":                   # peaks of a run that stopped half-way mislead
+        result["values_computed"] = values             # ... but may show a collapse before the failure
         values = {name: math.nan for name in values}
     result["values"] = values
     result["quantities_time"] = time.perf_counter() - t0

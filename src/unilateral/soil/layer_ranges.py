@@ -36,3 +36,37 @@ def check_modulus(where: str, G: float | None, vs: float | None, rho: float) -> 
         raise ValueError(f"{where}: the shear modulus rho Vs^2 = {modulus!r} (rho = {rho!r}, Vs = {vs!r}) is not a "
                          "finite number > 0; give values of a consistent unit set")
     return modulus
+
+
+#: Most wavenumber nodes of the contour of one Laplace value (:meth:`.Layered.contour`). The contour
+#: runs to ``k_max = 1.5 max|s/c_s| + 12 / h_1`` in panels of width ``2 Y = 2 min(3 / D, 0.25 / h_max)``,
+#: so its nodes grow as ``1 / h_1``: measured on six strips (D = 3.5 m) under a 5 m layer, 1.8e3 nodes
+#: with a top layer of 1 m, 1.5e4 of 10 cm, 1.4e5 of 1 cm (73 s for 64 values on a loaded machine),
+#: 1.4e6 of 1 mm (over 540 s in the issue's case) and 1.4e9 of 1 um (22 GiB for the nodes alone).
+MAX_CONTOUR_NODES = 200_000
+#: Rough seconds per node and Laplace value of the integration (8e-6 measured for 21 pairs of patches on a
+#: loaded machine: 78 s for 1.4e5 nodes and 64 values).
+SECONDS_PER_NODE = 8e-6
+
+
+def check_contour_nodes(thickness, nodes: int, values: int, D: float) -> None:
+    """Refuse, before the contour is allocated, a layered soil whose wavenumber integration would take
+    more than :data:`MAX_CONTOUR_NODES` nodes per Laplace value: a ValueError naming the top layer's
+    thickness (what sets them), the count, the estimated cost and the thickness that fits.
+
+    Parameters
+    ----------
+    thickness : (n,) layer thicknesses [L];  nodes : nodes of the contour per value;  values : the
+    Laplace values asked for;  D : the largest pair extent [L] (the panel width is ``6 / D`` at most)
+    """
+    if nodes <= MAX_CONTOUR_NODES:
+        return
+    h1 = float(thickness[0])
+    fits = h1 * nodes / MAX_CONTOUR_NODES
+    raise ValueError(
+        f"layers[0]['thickness'] = {h1!r}: a top layer this thin needs {nodes:.3g} wavenumber nodes per Laplace "
+        f"value (the contour runs to 12 / thickness = {12.0 / h1:.3g} [1/L] in panels of width 2 min(3 / D, "
+        f"0.25 / h_max), D = {D:.3g} [L] the footprint), {nodes * values:.3g} for the {values} values asked "
+        f"(roughly {nodes * values * SECONDS_PER_NODE:.3g} s for 21 pairs of patches): more than the "
+        f"{MAX_CONTOUR_NODES:,} nodes allowed; make the top layer at least {fits:.3g} thick, or merge it with "
+        "the layer below (a layer much thinner than the footing changes its flexibility little)")

@@ -108,7 +108,7 @@ from .. import _validate as V
 from . import lamb
 from .halfspace import HalfSpace, component_blocks, laplace_points
 from .patches import RectangularPatches, pair_table
-from .layer_ranges import check_modulus, check_thickness
+from .layer_ranges import check_contour_nodes, check_modulus, check_thickness
 
 __all__ = ["Layered"]
 
@@ -733,12 +733,12 @@ class Layered:
         D : float, m
             Largest pair extent (:func:`.lamb.pair_extent`).
         kmax_factor, height_factor : float
-            As in :meth:`surface_flexibility`.
+            As in :meth:`surface_flexibility` (more than ``layer_ranges.MAX_CONTOUR_NODES`` nodes, a top
+            layer far thinner than the footprint, are refused before they are allocated).
 
         Returns
         -------
-        k, w : (nk,) complex, 1/m
-            Nodes in increasing ``Re k`` and weights (including ``dk/dx``).
+        k, w : (nk,) complex, 1/m: nodes in increasing ``Re k`` and weights (including ``dk/dx``)
         """
         zero = sq == 0
         sig = np.zeros(sq.size)
@@ -755,12 +755,12 @@ class Layered:
         sig_lo = min(sig_lo, 1.0 / htot)
         Y = height_factor * min(3.0 / D, 0.25 / float(self.thickness.max()))
         xc = Y / lamb.WEDGE
-        x0 = min(0.25 * sig_lo, xc)
-        edges = [0.0, x0]
+        edges = [0.0, min(0.25 * sig_lo, xc)]
         while edges[-1] < xc * (1 - 1e-12):
             edges.append(min(2.0 * edges[-1], xc))
         kmax = kmax_factor * (_SIG_FACTOR * sig.max() + 12.0 / self.thickness[0])
         n = max(1, int(np.ceil((kmax - xc) / (2.0 * Y))))
+        check_contour_nodes(self.thickness, 12 * (n + len(edges) - 1), sq.size, D)     # before it is allocated
         flat = np.linspace(xc, xc + n * 2.0 * Y, n + 1)
         ks, ws = [], []
         for e, wedge in ((np.array(edges), True), (flat, False)):
