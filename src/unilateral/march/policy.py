@@ -36,6 +36,7 @@ import contextlib
 import contextvars
 import dataclasses
 import os
+import threading
 from dataclasses import dataclass
 
 __all__ = ["COMMAND_LINE", "ENGINE_CHOICES", "LIBRARY", "SizePolicy", "current_policy", "size_policy"]
@@ -140,26 +141,33 @@ class SizePolicy:
         """Whether the compiled loops pay for a run of ``steps`` steps (engine ``"auto"``, a direct
         march, :attr:`engine_choice` ``"cost"``), why, and the cache state read.
 
-        ``cache()`` returns the state of the march's loops (:data:`unilateral.march.loops.STATES`).
-        It is called if reading it is ``cheap`` (numba is imported already) or if the choice depends
-        on it (the Python estimate between the load and the compile cost), so that a short run in a
-        fresh process does not import numba. Returns ``(compiled, reason, state)``, ``state`` None
-        if the cache was not read.
+        The compiled loops pay if making them ready and running them costs less than the Python
+        loops, or, as in the ski-rental problem, once the Python seconds that this process spent
+        for lack of them (:func:`python_seconds_spent`) reach the cost of making them ready: a
+        process that runs many short analyses (a batch worker, a notebook) pays at most twice the
+        better of the two. ``cache()`` returns the state of the march's loops
+        (:data:`unilateral.march.loops.STATES`); it is called if reading it is ``cheap`` (numba is
+        imported already) or if the choice depends on it, so that a short run in a fresh process
+        does not import numba. Returns ``(compiled, reason, state)``, ``state`` None if the cache
+        was not read; a run that goes to Python adds its estimate to :func:`python_seconds_spent`.
         """
         python = self.python_seconds(steps, n, m)
         run = self.compiled_seconds(steps, n)
+        spent = python_seconds_spent()
         estimate = f"the Python loops of {steps} steps take about {python:.2g} s"
-        if not cheap and python <= run + self.load_s:
-            return False, f"{estimate}, less than loading the compiled loops (about {self.load_s:.2g} s)", None
+        if spent:
+            estimate += f" ({spent:.2g} s spent in Python by earlier runs of this process)"
+        if not cheap and python <= run + self.load_s and python + spent < self.load_s:
+            return _rented(python), f"{estimate}, less than loading the compiled loops (about {self.load_s:.2g} s)", None
         if not cheap and python > run + self.compile_s:
             return True, f"{estimate}, more than compiling the compiled loops (about {self.compile_s:.2g} s)", None
         state = cache()
         ready = {"loaded": 0.0, "cold": self.compile_s}.get(state, self.load_s)
         how = {"loaded": "already in this process", "cold": f"to compile (a cold numba cache), about "
                f"{self.compile_s:.2g} s"}.get(state, f"in numba's cache, loaded in about {self.load_s:.2g} s")
-        compiled = run + ready < python
-        return compiled, (f"{estimate}; the compiled loops are {how}, then {run:.2g} s: "
-                          f"{'compiled' if compiled else 'Python'} is faster"), state
+        compiled = run + ready < python or (ready > 0.0 and spent + python >= ready)
+        return compiled or _rented(python), (f"{estimate}; the compiled loops are {how}, then {run:.2g} s: "
+                                             f"{'compiled' if compiled else 'Python'}"), state
 
     def replace(self, **changes) -> SizePolicy:
         """A copy with ``changes`` (field names of :class:`SizePolicy`)."""
@@ -168,6 +176,23 @@ class SizePolicy:
             raise ValueError(f"SizePolicy has no field {', '.join(map(repr, unknown))}; valid: "
                              + ", ".join(f.name for f in dataclasses.fields(self)))
         return dataclasses.replace(self, **changes)
+
+
+_SPENT = [0.0]                              # estimated Python seconds of runs that chose Python by cost
+_SPENT_LOCK = threading.Lock()
+
+
+def python_seconds_spent() -> float:
+    """Estimated seconds that runs of this process spent in the Python loops because the compiled
+    ones cost more to make ready (:meth:`SizePolicy.engine_cost`)."""
+    return _SPENT[0]
+
+
+def _rented(python: float) -> bool:
+    """Count ``python`` seconds as spent in Python for lack of compiled loops; False (the engine)."""
+    with _SPENT_LOCK:
+        _SPENT[0] += python
+    return False
 
 
 #: The policy of a library process (a notebook, a batch worker): compiled wherever it applies.
