@@ -14,10 +14,10 @@ solves), which the tests check. :func:`direct_steps` is the direct march of ``me
 where a polygon's dependent facets defeat it), shared with the Python marches.
 
 Compile cost: a cold cache compiles these loops once (seconds, see
-:mod:`unilateral.march.policy`). Rows are copied and products formed by explicit loops, never by
-``a[0] = b`` between arrays or ``@``: numba compiles those with shape checks whose error messages
-format strings (its string and ``repr`` machinery, 4-6 s of a cold compile of the direct march) and
-with its BLAS binding (1.4 s). :func:`unilateral.march.loops.cache_state` says whether the cache
+:mod:`unilateral.march.policy`). Rows are copied by explicit loops, never by ``a[0] = b`` between
+arrays: numba compiles that with shape checks whose error messages format strings (its string and
+``repr`` machinery, 4-6 s of a cold compile of the direct march). The two products by ``@`` stay
+(BLAS's round-off is that of the frozen outputs). :func:`unilateral.march.loops.cache_state` says whether the cache
 holds a loop.
 """
 
@@ -64,19 +64,12 @@ def law_vector(code, rate, P, W0, q, v_prev, o, t):
 def law_matrix(code, P, W0):
     """The step LCP matrix ``P W0`` (``W0`` itself unless ``code`` is 2).
 
-    The product is a loop, not ``P @ W0``: numba's ``@`` compiles its BLAS binding and its shape
-    checks with formatted messages, 1.4 s of a cold compile for an m x m product.
+    ``P @ W0`` is BLAS's product (numba compiles its binding, about 1.4 s of a cold compile): a
+    loop would change the round-off of every frozen output of a law with a projection.
     """
-    if code != 2:
-        return W0
-    m = W0.shape[0]
-    out = np.zeros((m, m))
-    for a in range(m):
-        for c in range(m):
-            pac = P[a, c]
-            for b in range(m):
-                out[a, b] += pac * W0[c, b]
-    return out
+    if code == 2:
+        return P @ W0
+    return W0
 
 
 @njit(cache=True)
@@ -84,14 +77,11 @@ def _outputs(W0, psi_affine, v_b):
     """Histories of a march initialised at step 0, its statistics, the contact set, ``W0 v_b``."""
     N1, m = psi_affine.shape
     v, psi, dv = np.zeros((N1, m)), np.zeros((N1, m)), np.zeros((N1, m))
-    base = np.zeros(m)
     for a in range(m):                      # (loops: see the module's note on compile cost)
         v[0, a] = v_b[a]
         psi[0, a] = psi_affine[0, a]
-        for b in range(m):
-            base[a] += W0[a, b] * v_b[b]
     active = v_b > 0.0
-    return v, psi, dv, np.zeros(5), active, active.copy(), base
+    return v, psi, dv, np.zeros(5), active, active.copy(), W0 @ v_b     # (BLAS: see law_matrix)
 
 
 @njit(cache=True)
