@@ -133,3 +133,10 @@ def test_a_short_run_in_a_fresh_process_never_imports_numba(tmp_path):
         print(json.dumps([sol.stats["engine"], "numba" in sys.modules]))
     """
     assert run_python(code, {"UNILATERAL_ENGINE_CHOICE": "cost", "NUMBA_CACHE_DIR": str(tmp_path)}) == ["python", False]
+
+
+def test_a_wrong_engine_choice_in_the_environment_is_refused_by_name():
+    done = subprocess.run([sys.executable, "-c", "import unilateral.march.policy"], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(SRC), "UNILATERAL_ENGINE_CHOICE": "fast"}, timeout=300)
+    assert done.returncode != 0
+    assert "UNILATERAL_ENGINE_CHOICE='fast' is not valid: set it to 'cost' or 'steps'" in done.stderr

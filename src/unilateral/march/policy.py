@@ -45,6 +45,9 @@ __all__ = ["COMMAND_LINE", "ENGINE_CHOICES", "LIBRARY", "SizePolicy", "current_p
 ENGINE_CHOICES = ("cost", "steps")
 #: Its default: the environment's ``UNILATERAL_ENGINE_CHOICE``, else ``"cost"``.
 DEFAULT_ENGINE_CHOICE = os.environ.get("UNILATERAL_ENGINE_CHOICE", "cost")
+if DEFAULT_ENGINE_CHOICE not in ENGINE_CHOICES:
+    raise ValueError(f"the environment variable UNILATERAL_ENGINE_CHOICE={DEFAULT_ENGINE_CHOICE!r} is not valid: "
+                     f"set it to {' or '.join(map(repr, ENGINE_CHOICES))}, or unset it (the default is 'cost')")
 
 
 @dataclass(frozen=True)
