@@ -47,7 +47,8 @@ its peak, the linear one (above) and the banded recursion. ``--quick``: two smal
 (CI); ``--opensees-system``, ``--opensees-tol`` change OpenSees's solver and its test. OpenSees
 runs in a subprocess with its library path (:func:`opensees_frames.opensees_environment`); without
 it the table has the project's rows only. BLAS runs in one thread in both codes. Medians of
-``--repeats`` runs after a warm-up that loads the compiled code.
+``--repeats`` runs after a warm-up that loads the compiled code (the engine by the size policy's
+steps rule; the first run after a fresh install and in a new process: ``cold_start.py``).
 
 The tower row (a second table, ``"tower"`` in the JSON) is the benchmark suite's tower
 (``unilateral.bench.problems.tower``: five storeys of 3 m, 40 t each on ``ux`` and ``uy``, a column
@@ -88,6 +89,9 @@ from pathlib import Path
 if __name__ == "__main__":                  # before numpy is imported: BLAS in one thread in both codes
     for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(_name, "1")
+    # the warm figures of the compiled loops (the engine by the steps rule): the first run of a
+    # fresh install or of a new process, where the cost rule may step in Python, is cold_start.py's
+    os.environ.setdefault("UNILATERAL_ENGINE_CHOICE", "steps")
 
 import numpy as np  # noqa: E402
 

@@ -2,11 +2,19 @@
 
 from __future__ import annotations
 
-import numpy as np
-import pytest
-import scipy.linalg as sla
+import os
 
-import unilateral as ul
+# The engine of method "auto" by the size policy's steps rule, never by what numba's cache holds
+# (unilateral.march.policy): a test's numbers and stats do not depend on the tests before it. Set
+# before unilateral is imported (the default of SizePolicy.engine_choice), and for the CLI's
+# subprocesses. tests/test_engine_cost.py tests the "cost" rule with policies of its own.
+os.environ.setdefault("UNILATERAL_ENGINE_CHOICE", "steps")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+import scipy.linalg as sla  # noqa: E402
+
+import unilateral as ul  # noqa: E402
 
 #: The files of ``pytest -m smoke``: the README, the entry points, every method against direct,
 #: stepping, the LCP solvers and the paper's example, in about a minute.

@@ -26,6 +26,9 @@ N_PICKS = 8
 #: Every case runs with one BLAS thread: the threads change the order of a product's sums (by 5e-11
 #: of the peak on the 3-D building), and the snapshot is to show the code's changes, not the pool's.
 ONE_THREAD = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+#: ... and with the engine chosen by the policy's steps rule, never by what numba's cache holds
+#: (:mod:`unilateral.march.policy`): the two engines agree to round-off, not bit for bit.
+PINNED = {**ONE_THREAD, "UNILATERAL_ENGINE_CHOICE": "steps"}
 SKIP_WORDS = ("time", "timing", "wall", "elapsed", "seconds", "version", "path", "file", "dir", "date")
 
 CASES = {
@@ -46,7 +49,7 @@ def run_case(name, out):
         raise ValueError(f"case={name!r} is not a snapshot case; valid: {sorted(CASES)}")
     cmd = [sys.executable, "-m", "unilateral", *CASES[name], "--out", str(out), "--figures", "none"]
     start = time.perf_counter()
-    done = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, **ONE_THREAD})
+    done = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, **PINNED})
     if done.returncode != 0:
         raise RuntimeError(f"case {name!r} failed ({' '.join(cmd)}):\n{done.stdout}\n{done.stderr}")
     return time.perf_counter() - start

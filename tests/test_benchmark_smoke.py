@@ -60,3 +60,15 @@ def test_batch_throughput_of_two_analyses(tmp_path):
     for case in report["cases"]:
         assert case["analyses"] == 2 and case["statuses"] == ["ok"], case
     assert report["run_study"]["analyses"] == 2
+
+
+@pytest.mark.slow
+def test_cold_start_quick(tmp_path):
+    """The tower of 400 steps in fresh processes, numba's cache empty and then filled (it compiles)."""
+    out = tmp_path / "cold.json"
+    text = run("cold_start.py", "--quick", "--out", out, timeout=1800)
+    assert "cold auto chose" in text
+    rows = json.loads(out.read_text())["models"][0]["rows"]
+    assert set(rows) == {"cold auto", "cold compiled", "cached compiled", "cached auto"}
+    assert rows["cold compiled"]["stats"]["engine"] == rows["cached compiled"]["stats"]["engine"] == "compiled"
+    assert rows["cold auto"]["stats"]["engine"] == "python"      # 400 steps: less than loading compiled code

@@ -1,4 +1,4 @@
-"""Run a study on Dask: every analysis a task, results written one by one, resumable.
+"""Run a study on Dask: the analyses grouped into tasks, results written one by one, resumable.
 
 :func:`run_study` reads the study (or takes a :class:`~unilateral.batch.study.Study`), skips the
 analyses whose result is already in ``<out>/results/`` (a JSON file named by the hash of
@@ -6,7 +6,9 @@ everything the result depends on), reads the model files and records of the othe
 (:mod:`unilateral.batch.inputs`), runs them as Dask tasks — on a
 :class:`~distributed.LocalCluster` with one single-threaded worker process per core, on an
 existing cluster (``scheduler``), or in this process one after the other (``synchronous``) —
-and writes the study table and its figures. The workers read and write no file: the inputs are
+and writes the study table and its figures. On Dask the analyses are grouped into a few tasks per
+worker of about equal cost (:func:`group_analyses`: a task's round trip costs more than a short
+analysis); a failure in a group is the result of its own analysis. The workers read and write no file: the inputs are
 scattered to them, each task returns its result, and this process writes it, atomically, as it
 comes back (so it is the only writer of ``<out>``). Interrupting it (Ctrl-C) cancels the tasks,
 closes the cluster and keeps every result already written; running it again continues.
@@ -43,6 +45,12 @@ worker that left to come back before it closes the worker's nanny (Dask's defaul
 nanny of a worker restarted after a timeout whenever the restart outlasted it, on a loaded machine:
 the cluster was left with no worker and the study waited for one forever). A restarted worker
 always comes back: its nanny starts it again."""
+TASKS_PER_WORKER = 4
+"""Tasks per worker that the analyses are grouped into (:func:`group_analyses`): a task's round
+trip costs 20-30 ms on Dask against 5-9 ms per analysis in one process, so analyses of 40 ms run
+one per task made 2 workers slower than one process; a few tasks per worker still balance them."""
+MAX_ANALYSES_PER_TASK = 25
+"""Most analyses in one task: a task's results come back (and are written) when it ends."""
 WORKER_WAIT = 600.0
 """Seconds the inputs wait for a worker to scatter them to (after a restart) before the study
 stops with a :class:`ClusterError`: a hang guard, far beyond any restart."""
@@ -344,45 +352,144 @@ def _run_dask(todo, inputs: StudyInputs, run_id: str, cluster_spec, done: _Recor
 
 
 def _run_on(todo, inputs: StudyInputs, run_id: str, cluster_spec, done: _Recorder) -> None:
-    """:func:`_run_dask` once the cluster's settings are set."""
-    from concurrent.futures import CancelledError
-
-    from distributed import as_completed
-
+    """:func:`_run_dask` once the cluster's settings are set: the analyses grouped into tasks
+    (:func:`group_analyses`), each task a list of analyses run by :func:`run_analyses`."""
     client, workers = cluster_spec
     cluster = None
     if client is None:
         client, cluster = start_cluster(workers)
-    futures = {}
+    queue = None
     try:
         tasks = _Tasks(client, inputs, run_id)
-        futures = dict(zip(tasks.submit(todo), todo))
-        resubmitted, restarts = dict.fromkeys((a.key for a in todo), 0), 0
-        queue = as_completed(list(futures), with_results=True, raise_errors=False)
-        for future, result in queue:
-            analysis = futures.pop(future)
-            future.release()
-            if isinstance(result, CancelledError) and resubmitted[analysis.key] < ALLOWED_FAILURES + restarts:
-                resubmitted[analysis.key] += 1
-                tasks.ensure()
-                again, = tasks.submit([analysis], attempt=resubmitted[analysis.key])
-                futures[again] = analysis
-                queue.add(again)
+        queue = _Queue(tasks, group_analyses(todo, _worker_count(client, workers)))
+        for future, result in queue.results():
+            group = queue.pop(future)
+            if queue.cancelled(group, result):
                 continue
-            if not isinstance(result, dict):           # the task raised: e.g. its workers died
-                result = _failure(analysis, "error", _task_error(result), run_id)
-            if done(result) and result.get("worker"):
-                _restart(client, result["worker"])
+            if not isinstance(result, list):           # the task raised: e.g. its workers died
+                if len(group) > 1:                      # each alone, so that it is recorded for its own
+                    queue.add(*([a] for a in group))
+                    continue
+                result = [_failure(group[0], "error", _task_error(result), run_id)]
+            restart = [done(r) and r.get("worker") for r in result]
+            if any(restart):
+                _restart(client, result[-1]["worker"])
                 tasks.ensure()                          # the worker may have held the only copies
-                restarts += 1
+                queue.restarts += 1
+            if len(result) < len(group):                # the task stopped at a timeout: the rest again
+                queue.add(group[len(result):])
     except KeyboardInterrupt:
         try:
-            client.cancel(list(futures), force=True)
+            client.cancel(queue.pending() if queue is not None else [], force=True)
         except Exception:                               # noqa: BLE001 - the cluster is closed next anyway
             pass
         raise
     finally:
         _close(client, cluster)
+
+
+class _Queue:
+    """The tasks of a study in flight: each future's group of analyses, resubmissions after a
+    cancellation (inputs lost with a restarted worker: once per restart, and up to
+    ``ALLOWED_FAILURES`` times more)."""
+
+    def __init__(self, tasks, groups):
+        from distributed import as_completed
+
+        self.tasks, self.futures, self.restarts, self.resubmitted = tasks, {}, 0, {}
+        self.completed = as_completed([], with_results=True, raise_errors=False)
+        self.add(*groups)
+
+    def add(self, *groups) -> None:
+        for group, future in zip(groups, self.tasks.submit(groups)):
+            self.futures[future] = group
+            self.completed.add(future)
+
+    def results(self):
+        return self.completed
+
+    def pop(self, future) -> list:
+        group = self.futures.pop(future)
+        future.release()
+        return group
+
+    def pending(self) -> list:
+        return list(self.futures)
+
+    def cancelled(self, group, result) -> bool:
+        """Submit ``group`` again if ``result`` is a cancellation it may be retried for; whether so."""
+        from concurrent.futures import CancelledError
+
+        key = group[0].key
+        if not isinstance(result, CancelledError) or self.resubmitted.get(key, 0) >= ALLOWED_FAILURES + self.restarts:
+            return False
+        self.resubmitted[key] = self.resubmitted.get(key, 0) + 1
+        self.tasks.ensure()
+        self.add(group)
+        return True
+
+
+def _worker_count(client, workers) -> int:
+    """Workers of the cluster (those of ``workers`` for a local one), at least 1."""
+    if workers:
+        return int(workers)
+    try:
+        return max(1, len(client.scheduler_info().get("workers", {})))
+    except Exception:                                   # noqa: BLE001 - a guess is enough to group
+        return max(1, os.cpu_count() or 1)
+
+
+def analysis_cost(analysis) -> float:
+    """The relative cost of an analysis: its steps (``t_end / dt``), 1 if they are unknown."""
+    settings = analysis.payload.get("settings", {})
+    try:
+        steps = float(settings["t_end"]) / float(settings["dt"])
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        return 1.0
+    return steps if math.isfinite(steps) and steps > 0 else 1.0
+
+
+def group_analyses(analyses, workers: int, *, per_worker: int | None = None, most: int | None = None) -> list:
+    """The analyses in consecutive groups of about equal cost (:func:`analysis_cost`), one task each.
+
+    ``per_worker * workers`` groups (:data:`TASKS_PER_WORKER`), more if a group would hold more than
+    ``most`` analyses (:data:`MAX_ANALYSES_PER_TASK`), never more groups than analyses; each group
+    takes the analyses in order (those of a model variant and record stay together: the worker's
+    cached model serves them) until its share of the total cost is reached. ``most=1``: a task
+    per analysis.
+    """
+    per_worker = TASKS_PER_WORKER if per_worker is None else per_worker
+    most = MAX_ANALYSES_PER_TASK if most is None else most
+    analyses = list(analyses)
+    if not analyses:
+        return []
+    count = min(len(analyses), max(per_worker * max(1, workers), math.ceil(len(analyses) / max(1, most))))
+    costs = [analysis_cost(a) for a in analyses]
+    share, groups, current, filled = sum(costs) / count, [], [], 0.0
+    for i, (analysis, cost) in enumerate(zip(analyses, costs)):
+        current.append(analysis)
+        filled += cost
+        left = len(analyses) - i - 1
+        groups_left = count - len(groups) - 1
+        if groups_left and (filled >= share * (len(groups) + 1) or len(current) >= most or left == groups_left):
+            groups.append(current)
+            current = []
+    if current:
+        groups.append(current)
+    return groups
+
+
+def run_analyses(payloads, sources, records, run_id: str = "") -> list:
+    """Run a group of analyses one after the other (:func:`~unilateral.batch.worker.run_analysis`
+    each: a failure is the result of its own analysis, the others run); the results in order. A
+    result that asks for its worker to be restarted (a timeout) ends the group there: the analyses
+    after it are submitted again, to a worker without the stopped solve."""
+    out = []
+    for payload, source, record in zip(payloads, sources, records):
+        out.append(run_analysis(payload, source, record, run_id))
+        if out[-1].get("restart_worker"):
+            break
+    return out
 
 
 class _Tasks:
@@ -400,7 +507,7 @@ class _Tasks:
 
     def __init__(self, client, inputs: StudyInputs, run_id: str):
         self.client, self.inputs, self.run_id = client, inputs, run_id
-        self.variants, self.records, self.generation = {}, {}, 0
+        self.variants, self.records, self.generation, self.submitted = {}, {}, 0, 0
         self.ensure()
 
     def scatter(self) -> None:
@@ -442,14 +549,18 @@ class _Tasks:
         except CancelledError:                          # lost since the statuses were read
             return False
 
-    def submit(self, analyses, attempt: int = 0) -> list:
-        """The futures of ``analyses``; ``attempt`` > 0 names the tasks of a submission again (the
-        key of a cancelled task stays cancelled until the scheduler has forgotten it)."""
-        sources, motions = zip(*(_inputs_of(a, self.variants, self.records) for a in analyses))
-        suffix = f"-{attempt}" if attempt else ""
-        return self.client.map(run_analysis, [a.payload for a in analyses], sources, motions,
-                               [self.run_id] * len(analyses),
-                               key=[f"unilateral-analysis-{a.key}{suffix}" for a in analyses], pure=False, retries=0)
+    def submit(self, groups) -> list:
+        """The futures of ``groups`` (lists of analyses), a task of :func:`run_analyses` each, named
+        by the first analysis, the group's size and a submission count (a cancelled task's key stays
+        cancelled until the scheduler has forgotten it)."""
+        futures = []
+        for group in groups:
+            sources, motions = zip(*(_inputs_of(a, self.variants, self.records) for a in group))
+            self.submitted += 1
+            futures.append(self.client.submit(
+                run_analyses, [a.payload for a in group], list(sources), list(motions), self.run_id,
+                key=f"unilateral-analyses-{group[0].key}-{len(group)}-{self.submitted}", pure=False, retries=0))
+        return futures
 
 
 def _task_error(exc) -> str:

@@ -25,6 +25,9 @@ BLOCK_TRIES = 3
 #: reach their limit at once) that round-off splits into near-ties and tiny pivots.
 PIVOT_TOL = 1e-9
 TIE_TOL = 1e-9
+# Integer variables passed to a callee start as ``np.int64(0)``, not ``0``: numba types a
+# variable first from its constant and compiles the callee once for ``Literal[int](0)`` and again
+# for ``int64`` (a whole second specialisation of the callee, on a cold cache seconds each).
 
 
 @njit(cache=True)
@@ -132,7 +135,7 @@ def bpp(W, q, active, v, w, max_iter, work_idx, work_S, work_rhs, work_x, symmet
         if not _complementary(W, q, active, v, w, (work_idx, work_S, work_rhs, work_x), symmetric):
             return -it
         count = 0
-        last = -1
+        last = np.int64(-1)
         for i in range(m):
             if (active[i] and v[i] < -eps_v) or (not active[i] and w[i] < -eps):
                 count += 1
@@ -182,7 +185,7 @@ def _complementary(W, q, active, v, w, work, symmetric):
     singular."""
     work_idx, work_S, work_rhs, work_x = work
     m = q.shape[0]
-    k = 0
+    k = np.int64(0)
     for i in range(m):
         if active[i]:
             work_idx[k] = i
@@ -325,20 +328,21 @@ def _leaving_row(T, d, basis, z0, rows):
     d_max = 0.0
     for i in range(d.shape[0]):
         d_max = max(d_max, abs(d[i]))
-    n = 0
+    n = np.int64(0)
     for i in range(d.shape[0]):
         if d[i] > PIVOT_TOL * d_max:
             rows[n] = i
             n += 1
     if n == 0:
         return -1
-    n = _lexmin(T, 0, d, rows, n)
+    col = np.int64(0)
+    n = _lexmin(T, col, d, rows, n)
     if n == 1:
         return rows[0]
     for a in range(n):
         if basis[rows[a]] == z0:
             return rows[a]
-    col = 1
+    col = np.int64(1)
     while n > 1 and col < T.shape[1]:
         n = _lexmin(T, col, d, rows, n)
         col += 1
@@ -359,7 +363,7 @@ def lemke(W, q, active, max_iter):
     T = np.zeros((m, m + 1))
     basis = np.arange(m)
     d, rows = np.empty(m), np.empty(m, dtype=np.int64)
-    r = 0
+    r = np.int64(0)
     for i in range(m):
         T[i, 0] = q[i]
         T[i, 1 + i] = 1.0
@@ -432,7 +436,9 @@ def solve_step(W, q, active, v, w, max_iter, tol, work, symmetric, faces):
     spent = abs(it)
     pivots = lemke(W, q, active, max_iter)
     spent += abs(pivots)
-    if pivots < 0 or not _complementary(W, q, active, v, w, work, False):
+    # (``not faced`` is False here: a variable, not the constant, so that _complementary has one
+    # specialisation, not a second one for the literal False)
+    if pivots < 0 or not _complementary(W, q, active, v, w, work, not faced):
         return -spent, np.inf, 1
     _clip(W, q, active, v, w, tol)
     err = lcp_error(v, w, q)

@@ -12,6 +12,13 @@ solves), which the tests check. :func:`direct_steps` is the direct march of ``me
 :func:`sweep` the linear sweep of the CLCP methods. The step LCP solvers are in
 :mod:`unilateral.lcp.pivoting` (block principal pivoting with the face rules, Lemke's method
 where a polygon's dependent facets defeat it), shared with the Python marches.
+
+Compile cost: a cold cache compiles these loops once (seconds, see
+:mod:`unilateral.march.policy`). Rows are copied by explicit loops, never by ``a[0] = b`` between
+arrays: numba compiles that with shape checks whose error messages format strings (its string and
+``repr`` machinery, 4-6 s of a cold compile of the direct march). The two products by ``@`` stay
+(BLAS's round-off is that of the frozen outputs). :func:`unilateral.march.loops.cache_state` says whether the cache
+holds a loop.
 """
 
 from __future__ import annotations
@@ -55,7 +62,11 @@ def law_vector(code, rate, P, W0, q, v_prev, o, t):
 
 @njit(cache=True)
 def law_matrix(code, P, W0):
-    """The step LCP matrix ``P W0`` (``W0`` itself unless ``code`` is 2)."""
+    """The step LCP matrix ``P W0`` (``W0`` itself unless ``code`` is 2).
+
+    ``P @ W0`` is BLAS's product (numba compiles its binding, about 1.4 s of a cold compile): a
+    loop would change the round-off of every frozen output of a law with a projection.
+    """
     if code == 2:
         return P @ W0
     return W0
@@ -66,10 +77,11 @@ def _outputs(W0, psi_affine, v_b):
     """Histories of a march initialised at step 0, its statistics, the contact set, ``W0 v_b``."""
     N1, m = psi_affine.shape
     v, psi, dv = np.zeros((N1, m)), np.zeros((N1, m)), np.zeros((N1, m))
-    v[0] = v_b
-    psi[0] = psi_affine[0]
+    for a in range(m):                      # (loops: see the module's note on compile cost)
+        v[0, a] = v_b[a]
+        psi[0, a] = psi_affine[0, a]
     active = v_b > 0.0
-    return v, psi, dv, np.zeros(5), active, active.copy(), W0 @ v_b
+    return v, psi, dv, np.zeros(5), active, active.copy(), W0 @ v_b     # (BLAS: see law_matrix)
 
 
 @njit(cache=True)
@@ -457,11 +469,13 @@ def direct_start(N1, n, m, v_b, psi0, ustart):
     """
     du, dud = np.empty((N1, n)), np.empty((N1, n))        # every row is written by the steps
     v, psi = np.empty((N1, m)), np.empty((N1, m))
-    du[0] = 0.0
-    v[0] = v_b
-    psi[0] = psi0
     ustate = ustart.copy()
-    dud[0] = ustate[2]
+    for i in range(n):                      # (loops, not ``dud[0] = ustate[2]``: the module's note)
+        du[0, i] = 0.0
+        dud[0, i] = ustate[2, i]
+    for b in range(m):
+        v[0, b] = v_b[b]
+        psi[0, b] = psi0[b]
     active = v_b > 0.0
     return (du, dud, v, psi, np.zeros(5), active, active.copy(), ustate, np.zeros((5, m)),
             np.zeros(m))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -83,7 +84,9 @@ class Direct(Method):
                              f"({_listed(reasons)})")
         run.timer.lap("factorize")
         run.stats.update(march=spec.name, march_alternatives=reasons, engine=spec.engine,
-                         lcp_space=spec.space)
+                         lcp_space=spec.space, engine_reason=problem.engine_reason)
+        if problem.cache is not None:
+            run.stats["numba_cache"] = problem.cache
         stepping = ("chunk" if isinstance(march, ChunkedMarch) else "whole" if isinstance(march, WholeMarch)
                     else "step")
         return MarchRun(model, run, disc, base.init, march, stepping)
@@ -91,7 +94,13 @@ class Direct(Method):
 
 class MarchProblem:
     """What the choice of a direct march looks at: the model, the grid, the run and the engine asked
-    for, with the facts the marches' conditions share."""
+    for, with the facts the marches' conditions share.
+
+    ``wanted``: the compiled loops are wanted (engine ``"compiled"``, or ``"auto"`` and the policy's
+    :meth:`~unilateral.march.policy.SizePolicy.compiled_pays`, then with ``engine_choice="cost"``
+    :meth:`~unilateral.march.policy.SizePolicy.engine_cost`), ``engine_reason`` why, ``cache`` the
+    state of numba's cache where it was read (:func:`unilateral.march.loops.cache_state`) or None.
+    """
 
     def __init__(self, model, disc, run, engine):
         self.model, self.disc, self.run, self.engine = model, disc, run, engine
@@ -99,7 +108,29 @@ class MarchProblem:
         self.bpp = isinstance(run.solver, BlockPrincipalPivoting)
         self.ours = type(disc.rule).__module__ == "unilateral.rules"
         self.full_space = self.bpp and full_space_applies(model)
-        self.wanted = engine == "compiled" or (engine == "auto" and self.policy.compiled_pays(disc.N))
+        self.wanted, self.engine_reason, self.cache = self._wanted()
+
+    def _wanted(self):
+        p, N = self.policy, self.disc.N
+        if self.engine != "auto":
+            return self.engine == "compiled", f"engine={self.engine!r} was asked for", None
+        if not p.compiled_pays(N):
+            return False, (f"a run of {N} steps is shorter than the policy's compile_min_steps = "
+                           f"{p.compile_min_steps}: the Python loops cost less than loading compiled code"), None
+        if p.engine_choice == "steps":
+            return True, f"the policy's engine_choice='steps': {N} >= compile_min_steps = {p.compile_min_steps}", None
+        if not (self.bpp and self.ours) or self.model.law.faced:
+            return True, "no cost to weigh: no compiled march applies, or the Python one compiles its step solver", None
+        model = self.model
+        full = model.sparse and model.law.trivial and (self.full_space or model.n > p.compiled_max_n)
+        if not full and model.n > p.compiled_max_n:
+            return True, f"no compiled march applies (n = {model.n} > compiled_max_n)", None
+
+        def cache():
+            from ..march import loops     # lazily: numba
+
+            return loops.cache_state(loops.FULL_SPACE if full else loops.CONDENSED)
+        return p.engine_cost(N, model.n, model.m, cache, cheap="numba" in sys.modules)
 
 
 def _needs_compiled(p: MarchProblem) -> str | None:
@@ -109,8 +140,7 @@ def _needs_compiled(p: MarchProblem) -> str | None:
         return (f"compiled marches need lcp='bpp' and a rule of unilateral.rules (got lcp={p.run.solver.name!r}, "
                 f"rule={p.disc.rule!r})")
     if not p.wanted:
-        return (f"a run of {p.disc.N} steps is shorter than the policy's compile_min_steps = "
-                f"{p.policy.compile_min_steps}: the Python loops cost less than loading compiled code")
+        return p.engine_reason
     return None
 
 
