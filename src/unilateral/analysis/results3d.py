@@ -88,7 +88,7 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
             fnd = structure.foundation
             energy = energy_results(variables, structure, h, samples, case=case,
                                     contact=None if fnd is None else fnd.contact_load(structure, sol),
-                                    keys=energy_keys, unit=moment)
+                                    keys=energy_keys, unit=moment, rule=rule)
             peaks[case]["energy"] = energy_peaks(h.t, energy, energy_keys)
         if inelastic:                           # the frame's own unknowns (h: without the footings')
             histories = inelastic.histories(h, structure.element_deformations(h.u, h.v)[0])
