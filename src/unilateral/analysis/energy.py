@@ -3,7 +3,7 @@
 From the equations of motion in natural form, ``M u'' + C u' + G sigma = q`` with
 ``sigma = E eps + E_v eps'``, ``eps = G^T u - B v - theta``, and ``B^T sigma = psi + A v + r``:
 
-    W_in = (T - T_0) + (U - U_0) + D_damping + D_contact + W_plastic + W_friction
+    W_in = (T - T_0) + (U - U_0) + D_damping + D_contact + W_plastic + W_friction + D_numerical
 
 * ``T = u'^T M u' / 2``: kinetic energy (relative to the ground under a ground motion);
 * ``U = sum eps^T E eps / 2``: elastic energy, of the bilateral elements (``elastic_structure``,
@@ -23,14 +23,23 @@ From the equations of motion in natural form, ``M u'' + C u' + G sigma = q`` wit
   - ``W_friction = int (B^T sigma)_f^T v_f' dt``: the work of the tangential forces on the slips
     (Coulomb friction), dissipated;
 
-* ``W_in = int q^T u' dt``: the work of the applied loads (gravity, pulses, ``-M r a_g``).
+* ``W_in = int q^T u' dt``: the work of the applied loads (gravity, pulses, ``-M r a_g``);
+* ``geometric = u^T K_G u / 2``: with P-Delta, the energy of the geometric stiffness of the constant
+  gravity axial forces (negative where they compress: the gravity loads' work through the sway);
+* ``numerical_dissipation``: what the time-stepping rule dissipated, and ``numerical_storage``: the
+  energy BDF2's two-step state holds beyond ``T + U`` (bounded, of order ``dt``).
 
-The integrals use the trapezoidal rule on the step increments, e.g.
-``W_in += (q_n + q_{n-1})^T (u_n - u_{n-1}) / 2``. With these quadratures the balance of the
-trapezoidal time-stepping rule is exact (to round-off) for linear structures, with or without
-contact, yield and friction; other rules leave an error of their order (measured in
-``tests/test_energy.py``). The relative error is the balance residual over the largest energy of
-the run (input work, kinetic energy, change of elastic energy or energy dissipated).
+The sums over the steps pair the equations of motion with the increments of the run's rule
+(:class:`unilateral.rules.EnergyPairing`): for the trapezoidal rule the mean of two steps' equations
+with ``x_n - x_{n-1}``, e.g. ``W_in += (q_n + q_{n-1})^T (u_n - u_{n-1}) / 2``; for BDF1 and BDF2 the
+equation at the step with ``dt x'_n``, e.g. ``W_in += q_n^T (3 u_n - 4 u_{n-1} + u_{n-2}) / 2``. The
+balance is then an exact identity of the discrete equations (to round-off), with contact, yield
+and friction, and the numerical dissipation of BDF1 and BDF2 is a quadratic form in the first and
+second differences of the state (G-stability; docs/theory.md, section 14). Newmark with
+``gamma != 1/2`` and HHT are paired as the trapezoidal rule with no dissipation term: their
+residual is their dissipation, of their order. The relative error is the balance residual over the
+largest energy of the run (input work, kinetic energy, change of elastic energy or energy
+dissipated).
 """
 
 from __future__ import annotations
