@@ -697,11 +697,12 @@ def energy_figure(ds):
                        ("elastic_structure", "elastic Δ (structure)"),
                        ("elastic_unilateral", "elastic Δ (unilateral)"),
                        ("damping_dissipated", "damping dissipated"), ("contact_dissipated", "contact dissipated"),
-                       ("plastic_work", "plastic work"), ("friction_work", "friction work")):
+                       ("plastic_work", "plastic work"), ("friction_work", "friction work"),
+                       ("geometric", "P-Delta Δ (geometric)"), ("numerical_dissipation", "numerical (the rule)")):
         if f"energy_{key}" not in d:
             continue
         y = d[f"energy_{key}"].values
-        if key.startswith("elastic"):
+        if key.startswith("elastic") or key == "geometric":
             y = y - y[0]
         if np.any(y):
             top.plot(*envelope(t, y), label=label)
