@@ -286,7 +286,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         energy = None
         if load_samples is not None:
             energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
-                                    keys=energy_keys, unit=moment_unit, rule=rule)
+                                    keys=energy_keys, unit=moment_unit, rule=pairing_rule(sol, rule))
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
         if per_frame:
@@ -494,6 +494,13 @@ def energy_results(variables, structure, h, load_samples, *, case, contact=None,
         _put(variables, f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
              "1" if key == "relative_error" else unit)
     return energy
+
+
+def pairing_rule(sol, rule):
+    """The rule the energy balance of a run is paired with: the run's ``rule``, or None (the
+    trapezoidal pairing) for a run that did not step by a rule (``method="event"``: exact
+    integration between events)."""
+    return None if sol.stats.get("method") == "event" else rule
 
 
 def energy_peaks(t, energy, keys=()) -> dict:

@@ -92,8 +92,8 @@ def energy_warnings(results: dict, *, rule=None, dt=None) -> list[str]:
         if energy.get("rule_identity"):
             what = ("the balance is the exact identity of the rule's steps (the rule's own dissipation is a term "
                     "of it), so neither the rule nor the time step explains it: the run did not follow the rule "
-                    "(--method event integrates between events and is not paired as a rule) or its loads were "
-                    "not the samples the balance took")
+                    "(--method event integrates exactly between events; its balance is summed as the trapezoidal "
+                    "rule) or its loads were not the samples the balance took")
         elif rule in ("bdf1", "bdf2", "hht"):
             what = (f"the {rule} rule damps numerically at this time step: use --rule trapezoidal (it conserves "
                     f"energy) or a smaller --dt{step}")
@@ -128,7 +128,10 @@ def numerical_warning(case: str, share: float, *, rule=None, dt=None, period=Non
     from ..rules import get_rule
 
     name = rule if isinstance(rule, str) else getattr(rule, "name", "the")
-    head = (f"{case} case: the {name} rule dissipated {100 * share:.2g} % of the input work numerically (more "
+    shown = f"{100 * share:.2g}"
+    if float(shown) <= 100 * NUMERICAL_WARNING:         # just above the threshold: one more digit
+        shown = f"{100 * share:.3g}"
+    head = (f"{case} case: the {name} rule dissipated {shown} % of the input work numerically (more "
             f"than {100 * NUMERICAL_WARNING:g} %): the response is less accurate than the balance's closing says; "
             "use --rule trapezoidal (second order, no numerical dissipation)")
     if not isinstance(dt, (int, float)) or not dt > 0:
