@@ -527,12 +527,12 @@ def _yield_panels(d) -> list[dict]:
         return []
     _components(d, "yield")
     force, deformation = d["yield_force"].values, d["yield_element_deformation"].values
-    plastic = d["plastic_deformation"].values
+    plastic, pairing = d["plastic_deformation"].values, _pairing(d)
     positive, negative = d["yield_limit_positive"].values, d["yield_limit_negative"].values
     panels = []
     for k, name in enumerate(d["yield_element"].values):
         rotational = str(d["yield_deformation_unit"].values[k]) == "rad"
-        work, label = _work_of(force, plastic, k), str(name)
+        work, label = _work_of(force, plastic, k, pairing), str(name)
         if force.ndim == 3:                     # components (a 3-D frame): the one of the larger peak
             j, label = _along(d, "yield", plastic, force, k)
             f, e, limits = force[:, k, j], deformation[:, k, j], (positive[k, j], -negative[k, j])
@@ -555,14 +555,15 @@ def _friction_panels(d) -> list[dict]:
         return []
     _components(d, "friction")
     force, motion, slip = d["friction_force"].values, d["tangential_deformation"].values, d["slip"].values
-    panels = []
+    panels, pairing = [], _pairing(d)
     for k, name in enumerate(d["friction_element"].values):
         label, j = str(name), None
         if force.ndim == 3:
             j, label = _along(d, "friction", slip, force, k)
         pick = (lambda a: a[:, k]) if j is None else (lambda a: a[:, k, j])
         panels.append({"name": label, "kind": str(d["friction_element_kind"].values[k]), "force": pick(force),
-                       "deformation": pick(motion), "limits": (), "work": _work_of(force, slip, k), "ratio": 0.0,
+                       "deformation": pick(motion), "limits": (), "work": _work_of(force, slip, k, pairing),
+                       "ratio": 0.0,
                        "x": "length", "y": "force", "xlabel": "tangential motion", "ylabel": "friction force T"})
     return panels
 
@@ -584,17 +585,37 @@ def _along(d, family, plastic, force, k) -> tuple[int, str]:
     return j, (f"{name} ({names[j]})" if count > 1 else name)
 
 
-def _work_of(force, deformation, k) -> float:
-    """Work of element ``k``'s force on its deformation, summed over its components (if any)."""
+def _work_of(force, deformation, k, pairing=None) -> float:
+    """Work of element ``k``'s force on its deformation, summed over its components (if any), paired
+    as the run's rule (:func:`_pairing`)."""
     if force.ndim == 2:
-        return _work(force[:, k], deformation[:, k])
-    return float(sum(_work(force[:, k, j], deformation[:, k, j]) for j in range(force.shape[2])))
+        return _work(force[:, k], deformation[:, k], pairing)
+    return float(sum(_work(force[:, k, j], deformation[:, k, j], pairing) for j in range(force.shape[2])))
 
 
-def _work(force, deformation) -> float:
-    """Work of ``force`` on ``deformation`` (trapezoidal, NaN steps left out)."""
-    increments = 0.5 * (force[1:] + force[:-1]) * np.diff(deformation)
+def _work(force, deformation, pairing=None) -> float:
+    """Work of ``force`` on ``deformation`` (NaN steps left out), paired as the energy balance pairs the
+    run's rule (:class:`unilateral.rules.EnergyPairing`; default the trapezoidal rule): the summary's
+    plastic and friction work."""
+    if pairing is None or not pairing.lead and pairing.kind != "bdf1":
+        increments = 0.5 * (force[1:] + force[:-1]) * np.diff(deformation)
+    else:                                       # BDF: v before t = 0 is v_0, as the stepping starts
+        x = np.concatenate([deformation[:1]] * pairing.lead + [deformation])
+        increments = pairing.weights(force[None])[0] * pairing.increments(x[None])[0]
     return float(np.nansum(increments))
+
+
+def _pairing(d):
+    """The :class:`~unilateral.rules.EnergyPairing` of the run of case ``d`` (its ``stats``' rule), or None."""
+    import json
+
+    from ..rules import EnergyPairing
+
+    try:
+        stats = json.loads(str(d["stats"].values))
+        return EnergyPairing(None if stats.get("method") == "event" else stats.get("rule"))
+    except (KeyError, ValueError, TypeError, AttributeError):
+        return None
 
 
 def _hysteresis_scales(d, panels) -> dict:
