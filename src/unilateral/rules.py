@@ -322,6 +322,26 @@ class EnergyPairing:
             return 1.5 * x[:, 2:] - 2.0 * x[:, 1:-1] + 0.5 * x[:, :-2]
         return np.diff(x, axis=1)
 
+    @classmethod
+    def of_stats(cls, stats) -> EnergyPairing:
+        """The pairing of a run from its ``stats`` (a dict or its JSON text): its ``rule``; the
+        trapezoidal pairing for ``method="event"`` (no rule steps it) or a rule not named."""
+        import json
+
+        try:
+            stats = json.loads(stats) if isinstance(stats, str) else dict(stats)
+        except (ValueError, TypeError):          # not a run's statistics
+            stats = {}
+        rule = stats.get("rule") if isinstance(stats, dict) else None
+        method = stats.get("method") if isinstance(stats, dict) else None
+        return cls(rule if isinstance(rule, str) and rule in RULES and method != "event" else None)
+
+    def series_work(self, f, x) -> float:
+        """The work of a force history ``f`` (N+1,) on a deformation ``x`` (N+1,) of constraint unknowns
+        (``x`` before ``t = 0`` is ``x_0``, as the stepping starts); NaN steps left out."""
+        x = np.concatenate([x[:1]] * self.lead + [x])
+        return float(np.nansum(self.weights(f[None]) * self.increments(x[None])))
+
     def pairs(self, f, x) -> np.ndarray:
         """Work increments (N,) of rows ``f`` (k, N+1) on rows ``x`` (k, N+1+lead)."""
         return np.einsum("ik,ik->k", self.weights(f), self.increments(x))

@@ -40,6 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io.summary import RATE_KINDS
+from ..rules import EnergyPairing
 from . import FigureDataError
 from .plots import PAGE_WIDTH, _figure, _styled, envelope, math_unit, plain_text, save_figure
 
@@ -527,7 +528,7 @@ def _yield_panels(d) -> list[dict]:
         return []
     _components(d, "yield")
     force, deformation = d["yield_force"].values, d["yield_element_deformation"].values
-    plastic, pairing = d["plastic_deformation"].values, _pairing(d)
+    plastic, pairing = d["plastic_deformation"].values, EnergyPairing.of_stats(str(d["stats"].values) if "stats" in d else "{}")
     positive, negative = d["yield_limit_positive"].values, d["yield_limit_negative"].values
     panels = []
     for k, name in enumerate(d["yield_element"].values):
@@ -555,15 +556,14 @@ def _friction_panels(d) -> list[dict]:
         return []
     _components(d, "friction")
     force, motion, slip = d["friction_force"].values, d["tangential_deformation"].values, d["slip"].values
-    panels, pairing = [], _pairing(d)
+    panels, pairing = [], EnergyPairing.of_stats(str(d["stats"].values) if "stats" in d else "{}")
     for k, name in enumerate(d["friction_element"].values):
         label, j = str(name), None
         if force.ndim == 3:
             j, label = _along(d, "friction", slip, force, k)
         pick = (lambda a: a[:, k]) if j is None else (lambda a: a[:, k, j])
         panels.append({"name": label, "kind": str(d["friction_element_kind"].values[k]), "force": pick(force),
-                       "deformation": pick(motion), "limits": (), "work": _work_of(force, slip, k, pairing),
-                       "ratio": 0.0,
+                       "deformation": pick(motion), "limits": (), "work": _work_of(force, slip, k, pairing), "ratio": 0.0,
                        "x": "length", "y": "force", "xlabel": "tangential motion", "ylabel": "friction force T"})
     return panels
 
@@ -585,37 +585,11 @@ def _along(d, family, plastic, force, k) -> tuple[int, str]:
     return j, (f"{name} ({names[j]})" if count > 1 else name)
 
 
-def _work_of(force, deformation, k, pairing=None) -> float:
-    """Work of element ``k``'s force on its deformation, summed over its components (if any), paired
-    as the run's rule (:func:`_pairing`)."""
+def _work_of(force, deformation, k, pairing) -> float:
+    """Work of element ``k``'s force on its deformation, summed over its components (if any)."""
     if force.ndim == 2:
-        return _work(force[:, k], deformation[:, k], pairing)
-    return float(sum(_work(force[:, k, j], deformation[:, k, j], pairing) for j in range(force.shape[2])))
-
-
-def _work(force, deformation, pairing=None) -> float:
-    """Work of ``force`` on ``deformation`` (NaN steps left out), paired as the energy balance pairs the
-    run's rule (:class:`unilateral.rules.EnergyPairing`; default the trapezoidal rule): the summary's
-    plastic and friction work."""
-    if pairing is None or not pairing.lead and pairing.kind != "bdf1":
-        increments = 0.5 * (force[1:] + force[:-1]) * np.diff(deformation)
-    else:                                       # BDF: v before t = 0 is v_0, as the stepping starts
-        x = np.concatenate([deformation[:1]] * pairing.lead + [deformation])
-        increments = pairing.weights(force[None])[0] * pairing.increments(x[None])[0]
-    return float(np.nansum(increments))
-
-
-def _pairing(d):
-    """The :class:`~unilateral.rules.EnergyPairing` of the run of case ``d`` (its ``stats``' rule), or None."""
-    import json
-
-    from ..rules import EnergyPairing
-
-    try:
-        stats = json.loads(str(d["stats"].values))
-        return EnergyPairing(None if stats.get("method") == "event" else stats.get("rule"))
-    except (KeyError, ValueError, TypeError, AttributeError):
-        return None
+        return pairing.series_work(force[:, k], deformation[:, k])
+    return float(sum(pairing.series_work(force[:, k, j], deformation[:, k, j]) for j in range(force.shape[2])))
 
 
 def _hysteresis_scales(d, panels) -> dict:
