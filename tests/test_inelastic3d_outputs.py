@@ -274,6 +274,8 @@ def test_every_hinge_shape_writes_its_end_rotations_plastic_rotations_and_work(t
     sigma`` on its (roty, rotz) rows; the plastic works add up to the energy balance's."""
     from test_hinge3d import PORTAL_3D
 
+    from unilateral.rules import EnergyPairing
+
     spec, ds, summary, out = _run(tmp_path, PORTAL_3D, "shapes")
     st = spec.structure
     d = ds.sel(case="unilateral")
@@ -284,6 +286,7 @@ def test_every_hinge_shape_writes_its_end_rotations_plastic_rotations_and_work(t
     E_inv = np.linalg.inv(st.natural.E.toarray() if hasattr(st.natural.E, "toarray") else st.natural.E)
     plastic = strains - sigma @ E_inv.T
     yields = summary["results"]["unilateral"]["yield_elements"]
+    pairing = EnergyPairing(summary["rule"])
     for k, name in enumerate(d["yield_element"].values):
         beam, end = str(name).split(".")
         rows = [st.strain_names.index(f"{beam}.roty_{end}"), st.strain_names.index(f"{beam}.rotz_{end}")]
@@ -292,8 +295,9 @@ def test_every_hinge_shape_writes_its_end_rotations_plastic_rotations_and_work(t
         assert scale > 1e-4, name                                   # every hinge yields
         np.testing.assert_allclose(d["plastic_deformation"].values[:, k], plastic[:, rows], rtol=0,
                                    atol=1e-9 * scale)
-        M = sigma[:, rows]
-        work = float(np.sum(0.5 * (M[1:] + M[:-1]) * np.diff(plastic[:, rows], axis=0)))
+        M = sigma[:, rows]               # the work paired as the run's rule, as the energy balance pairs it
+        p = np.concatenate([plastic[:1, rows]] * pairing.lead + [plastic[:, rows]])
+        work = float(np.sum(pairing.weights(M.T) * pairing.increments(p.T)))
         assert yields[str(name)]["plastic_work"] == pytest.approx(work, rel=1e-9), name
     assert sum(e["plastic_work"] for e in yields.values()) == pytest.approx(
         summary["results"]["unilateral"]["energy"]["plastic_work"], rel=1e-12)

@@ -270,3 +270,100 @@ def get_rule(rule, *, cq: bool = False) -> Rule:
             + " (use method='direct' for Newmark and HHT)"
         )
     return out
+
+
+class EnergyPairing:
+    """The discrete energy identity of a rule: how the work terms are summed and what it dissipates.
+
+    The energy balance (:mod:`unilateral.analysis.energy`) pairs the equations of motion with an
+    increment of the state. With the pairing of the rule that made the steps the balance is an
+    exact identity (to round-off), and the rule's numerical dissipation is a term of it:
+
+    * trapezoidal rule (``Newmark(1/2, 1/4)``): the mean of the equations at ``n-1`` and ``n``
+      with ``x_n - x_{n-1}``; ``f^T dx ~ (f_n + f_{n-1})^T (x_n - x_{n-1}) / 2``, no numerical
+      dissipation (it conserves the discrete energy);
+    * BDF1: the equation at ``n`` with ``x_n - x_{n-1} = dt x'_n``; for a quadratic energy
+      ``y^T Q y / 2`` it dissipates ``(y_n - y_{n-1})^T Q (y_n - y_{n-1}) / 2`` per step;
+    * BDF2: the equation at ``n`` with ``(3 x_n - 4 x_{n-1} + x_{n-2}) / 2 = dt x'_n``. Its energy is
+      the G-norm ``(y_n^T Q y_n + (2 y_n - y_{n-1})^T Q (2 y_n - y_{n-1})) / 4`` (Dahlquist's
+      G-stability), which equals ``y^T Q y / 2`` for a constant ``y`` and differs from the energy at
+      the step by a bounded term of order ``dt`` (:attr:`lead`: the state needs one value before
+      the start, that of the rule's start); it dissipates
+      ``(y_n - 2 y_{n-1} + y_{n-2})^T Q (y_n - 2 y_{n-1} + y_{n-2}) / 4`` per step.
+
+    Other rules (Newmark with ``gamma != 1/2``, HHT-alpha) are paired as the trapezoidal rule
+    without a dissipation term (:attr:`exact` False): their balance closes to their order only.
+
+    Parameters
+    ----------
+    rule : Rule, a rule's name, or None (the trapezoidal pairing)
+    """
+
+    def __init__(self, rule=None):
+        rule = get_rule(rule) if isinstance(rule, str) else rule
+        name = "trapezoidal" if rule is None else rule.name
+        if isinstance(rule, Newmark) and (rule.gamma, rule.beta, rule.alpha) == (0.5, 0.25, 0.0):
+            name = "trapezoidal"
+        self.kind = name if name in ("bdf1", "bdf2", "trapezoidal") else "other"
+        #: Whether the balance is an exact identity of the rule (its numerical dissipation a term of it).
+        self.exact = self.kind != "other"
+        #: States before ``t = 0`` the pairing needs (BDF2: one).
+        self.lead = 1 if self.kind == "bdf2" else 0
+
+    def weights(self, f) -> np.ndarray:
+        """The force factor of each step's work (k, N) from rows ``f`` (k, N+1) at ``t_0 .. t_N``."""
+        if self.kind in ("bdf1", "bdf2"):
+            return f[:, 1:]
+        return 0.5 * (f[:, 1:] + f[:, :-1])
+
+    def increments(self, x) -> np.ndarray:
+        """The increment of each step (k, N) from rows ``x`` (k, N+1+lead) (``x_{-1}`` first for BDF2)."""
+        if self.kind == "bdf2":
+            return 1.5 * x[:, 2:] - 2.0 * x[:, 1:-1] + 0.5 * x[:, :-2]
+        return np.diff(x, axis=1)
+
+    @classmethod
+    def of_stats(cls, stats) -> EnergyPairing:
+        """The pairing of a run from its ``stats`` (a dict or its JSON text): its ``rule``; the
+        trapezoidal pairing for ``method="event"`` (no rule steps it) or a rule not named."""
+        import json
+
+        try:
+            stats = json.loads(stats) if isinstance(stats, str) else dict(stats)
+        except (ValueError, TypeError):          # not a run's statistics
+            stats = {}
+        rule = stats.get("rule") if isinstance(stats, dict) else None
+        method = stats.get("method") if isinstance(stats, dict) else None
+        return cls(rule if isinstance(rule, str) and rule in RULES and method != "event" else None)
+
+    def series_work(self, f, x) -> float:
+        """The work of a force history ``f`` (N+1,) on a deformation ``x`` (N+1,) of constraint unknowns
+        (``x`` before ``t = 0`` is ``x_0``, as the stepping starts); NaN steps left out."""
+        x = np.concatenate([x[:1]] * self.lead + [x])
+        return float(np.nansum(self.weights(f[None]) * self.increments(x[None])))
+
+    def pairs(self, f, x) -> np.ndarray:
+        """Work increments (N,) of rows ``f`` (k, N+1) on rows ``x`` (k, N+1+lead)."""
+        return np.einsum("ik,ik->k", self.weights(f), self.increments(x))
+
+    def quadratic(self, y, Qy) -> tuple[np.ndarray, np.ndarray]:
+        """The rule's energy of ``y^T Q y / 2`` and its numerical dissipation.
+
+        Parameters
+        ----------
+        y, Qy : (k, N+1+lead) rows of a state and of ``Q`` times it (``Q`` symmetric)
+
+        Returns
+        -------
+        energy : (N+1,) the rule's energy at ``t_0 .. t_N`` (the G-norm for BDF2)
+        dissipated : (N,) dissipated by the rule over each step (zero for the trapezoidal rule)
+        """
+        dot = lambda a, b: np.einsum("ik,ik->k", a, b)
+        if self.kind == "bdf2":
+            energy = 0.25 * (dot(y[:, 1:], Qy[:, 1:]) + dot(2 * y[:, 1:] - y[:, :-1], 2 * Qy[:, 1:] - Qy[:, :-1]))
+            second = lambda a: a[:, 2:] - 2.0 * a[:, 1:-1] + a[:, :-2]
+            return energy, 0.25 * dot(second(y), second(Qy))
+        energy = 0.5 * dot(y, Qy)
+        if self.kind == "bdf1":
+            return energy, 0.5 * dot(np.diff(y, axis=1), np.diff(Qy, axis=1))
+        return energy, np.zeros(y.shape[1] - 1)

@@ -49,9 +49,9 @@ from ..structure.modes import modes
 
 #: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
 MODES_MAX_N = 3000
-ENERGY_KEYS = ("kinetic", "elastic_structure", "elastic_unilateral", "damping_dissipated",
-               "contact_dissipated", "plastic_work", "friction_work", "input_work", "balance_error",
-               "relative_error")
+ENERGY_KEYS = ("kinetic", "elastic_structure", "elastic_unilateral", "geometric", "damping_dissipated",
+               "contact_dissipated", "plastic_work", "friction_work", "numerical_dissipation",
+               "numerical_storage", "input_work", "balance_error", "relative_error")
 #: The energy terms written only for a structure with unknowns of that family.
 FAMILY_ENERGY = {"plastic_work": "yield", "friction_work": "friction"}
 
@@ -282,7 +282,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         energy = None
         if load_samples is not None:
             energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
-                                    keys=energy_keys, unit=moment_unit, stats=sol.stats)
+                                    keys=energy_keys, unit=moment_unit, rule=pairing_rule(sol, rule),
+                                    stats=sol.stats)
         peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
                              structure=structure)
         if per_frame:
@@ -392,7 +393,9 @@ def _frame_part(structure, foundation, sol):
 def _energy_keys(structure) -> tuple:
     """:data:`ENERGY_KEYS` without the plastic and friction work of families the structure lacks."""
     kinds = set(unknown_kinds(structure).tolist()) if structure.m else set()
-    return tuple(key for key in ENERGY_KEYS if key not in FAMILY_ENERGY or FAMILY_ENERGY[key] in kinds)
+    p_delta = getattr(structure, "geometric", None) is not None         # the geometric energy: with P-Delta only
+    return tuple(key for key in ENERGY_KEYS if (key not in FAMILY_ENERGY or FAMILY_ENERGY[key] in kinds)
+                 and (key != "geometric" or p_delta))
 
 
 def element_end_forces(coords, structure, ends, components, steps=0) -> np.ndarray:
@@ -495,17 +498,15 @@ def acceleration_peaks(structure, h, ground_motions, directions=("ux", "uy")) ->
 
 
 def energy_results(variables, structure, h, load_samples, *, case, contact=None, keys=ENERGY_KEYS, unit="",
-                   stats=None):
-    """The energy balance of a case (:func:`unilateral.analysis.energy.energy_balance`, 2-D or 3-D), its
-    terms ``keys`` added to ``variables`` as ``energy_<key>`` (time); returns the energies.
+                   rule=None, stats=None):
+    """The energy balance of a case (:func:`unilateral.analysis.energy.energy_balance`, 2-D or 3-D, paired
+    as the run's ``rule``), its terms ``keys`` added to ``variables`` as ``energy_<key>`` (time); returns
+    the energies.
 
     ``contact`` (N+1, n): the footings' contact load ``T c`` on a frame on a soil medium (its work
-    went into the soil, :func:`unilateral.structure.foundation.add_soil_energy`)."""
-    energy = energy_balance(structure, h, np.asarray(load_samples)[: len(h.t)])
-    if contact is not None:                 # the work of the contact forces went into the soil
-        from ..structure.foundation import add_soil_energy
-
-        energy = add_soil_energy(energy, contact, h.u)
+    went into the soil, counted in ``contact_dissipated``); ``stats``: the run's, for the energies of
+    rigid contacts (:func:`unilateral.analysis.rigid.add_rigid_energy`)."""
+    energy = energy_balance(structure, h, np.asarray(load_samples)[: len(h.t)], rule=rule, contact=contact)
     if getattr(structure, "rigid", None) is not None:       # rigid contacts: analysis/rigid.py
         from .rigid import add_rigid_energy
 
@@ -514,6 +515,13 @@ def energy_results(variables, structure, h, load_samples, *, case, contact=None,
         _put(variables, f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
              "1" if key == "relative_error" else unit)
     return energy
+
+
+def pairing_rule(sol, rule):
+    """The rule the energy balance of a run is paired with: the run's ``rule``, or None (the
+    trapezoidal pairing) for a run that did not step by a rule (``method="event"``: exact
+    integration between events)."""
+    return None if sol.stats.get("method") == "event" else rule
 
 
 def energy_peaks(t, energy, keys=()) -> dict:
@@ -525,8 +533,10 @@ def energy_peaks(t, energy, keys=()) -> dict:
            "input_work": float(energy["input_work"][-1]),
            "damping_dissipated": float(energy["damping_dissipated"][-1]),
            "contact_dissipated": float(energy["contact_dissipated"][-1]),
-           "kinetic_max": float(energy["kinetic"].max())}
-    return out | {key: float(energy[key][-1]) for key in FAMILY_ENERGY if key in keys}
+           "kinetic_max": float(energy["kinetic"].max()),
+           "numerical_dissipation": float(energy["numerical_dissipation"][-1]),
+           "numerical_share": energy["numerical_share"], "rule_identity": bool(energy["exact"])}
+    return out | {key: float(energy[key][-1]) for key in (*FAMILY_ENERGY, "geometric") if key in keys}
 
 
 def _residual_drift(t, drifts) -> dict:

@@ -25,7 +25,7 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
     from .inelastic import Inelastic
     from .results import (_abs_peak, _energy_keys, _extreme, _put, acceleration_peaks, acceleration_results,
                           bilateral_modes, element_end_forces, energy_peaks, energy_results, ground_motion_samples,
-                          load_samples_of)
+                          load_samples_of, pairing_rule)
 
     units = units or {}
     force, length, time = units.get("force", ""), units.get("length", ""), units.get("time", "")
@@ -88,7 +88,7 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
             fnd = structure.foundation
             energy = energy_results(variables, structure, h, samples, case=case,
                                     contact=None if fnd is None else fnd.contact_load(structure, sol),
-                                    keys=energy_keys, unit=moment)
+                                    keys=energy_keys, unit=moment, rule=pairing_rule(sol, rule))
             peaks[case]["energy"] = energy_peaks(h.t, energy, energy_keys)
         if inelastic:                           # the frame's own unknowns (h: without the footings')
             histories = inelastic.histories(h, structure.element_deformations(h.u, h.v, h.t)[0])

@@ -158,12 +158,17 @@ def add_rigid_energy(energy: dict, structure, u, udot, stats) -> dict:
         out["contact_dissipated"] = march["impact_loss"]       # moreau-jean: every unknown a rigid contact
         out["impact_loss"] = march["impact_loss"]
         out["friction_work"] = march.get("friction_work", np.zeros_like(out["kinetic"]))
+        for key in ("numerical_dissipation", "numerical_storage"):      # the march's own accounting
+            if key in out:
+                out[key] = np.zeros_like(out["kinetic"])
     dissipated = out["damping_dissipated"] + out["contact_dissipated"] + sum(
         out[k] for k in ("plastic_work", "friction_work") if k in out)
-    elastic = out["elastic_structure"] + out["elastic_unilateral"]
-    residual = out["input_work"] - (out["kinetic"] - out["kinetic"][0]) - (elastic - elastic[0]) - dissipated
+    numerical = sum(out[k] for k in ("numerical_dissipation", "numerical_storage") if k in out)
+    elastic = out["elastic_structure"] + out["elastic_unilateral"] + out.get("geometric", 0.0)
+    residual = (out["input_work"] - (out["kinetic"] - out["kinetic"][0]) - (elastic - elastic[0]) - dissipated
+                - numerical)
     scale = max(float(np.max(np.abs(x), initial=0.0)) for x in (out["input_work"], out["kinetic"], elastic - elastic[0],
-                                                                  dissipated))
+                                                                  dissipated + numerical))
     out["balance_error"] = residual
     out["relative_error"] = np.abs(residual) / scale if scale > 0 else np.zeros_like(residual)
     out["max_relative_error"] = float(out["relative_error"].max()) if residual.size else 0.0

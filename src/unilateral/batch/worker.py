@@ -387,11 +387,9 @@ class FrameResults:
         """Largest relative error of the energy balance over the run."""
         sol = self.sol
         q = _load_samples(self.load, sol.u.shape[1], len(sol.t) - 1, float(sol.t[1] - sol.t[0]))
-        energy = self.operators.energy_balance(self.state, q)
-        if self.foundation is not None:             # the work of the contact forces went into the soil
-            from ..structure.foundation import add_soil_energy
-
-            energy = add_soil_energy(energy, self.foundation.contact_load(self.operators.structure, sol), sol.u)
+        contact = None if self.foundation is None else self.foundation.contact_load(self.operators.structure, sol)
+        energy = self.operators.energy_balance(self.state, q, rule=self.rule, dt=float(sol.t[1] - sol.t[0]),
+                                               contact=contact)     # its work went into the soil
         return float(energy["max_relative_error"])
 
 

@@ -40,6 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io.summary import RATE_KINDS
+from ..rules import EnergyPairing
 from . import FigureDataError
 from .plots import PAGE_WIDTH, _figure, _styled, envelope, math_unit, plain_text, save_figure
 
@@ -527,12 +528,12 @@ def _yield_panels(d) -> list[dict]:
         return []
     _components(d, "yield")
     force, deformation = d["yield_force"].values, d["yield_element_deformation"].values
-    plastic = d["plastic_deformation"].values
+    plastic, pairing = d["plastic_deformation"].values, EnergyPairing.of_stats(str(d["stats"].values) if "stats" in d else "{}")
     positive, negative = d["yield_limit_positive"].values, d["yield_limit_negative"].values
     panels = []
     for k, name in enumerate(d["yield_element"].values):
         rotational = str(d["yield_deformation_unit"].values[k]) == "rad"
-        work, label = _work_of(force, plastic, k), str(name)
+        work, label = _work_of(force, plastic, k, pairing), str(name)
         if force.ndim == 3:                     # components (a 3-D frame): the one of the larger peak
             j, label = _along(d, "yield", plastic, force, k)
             f, e, limits = force[:, k, j], deformation[:, k, j], (positive[k, j], -negative[k, j])
@@ -555,14 +556,14 @@ def _friction_panels(d) -> list[dict]:
         return []
     _components(d, "friction")
     force, motion, slip = d["friction_force"].values, d["tangential_deformation"].values, d["slip"].values
-    panels = []
+    panels, pairing = [], EnergyPairing.of_stats(str(d["stats"].values) if "stats" in d else "{}")
     for k, name in enumerate(d["friction_element"].values):
         label, j = str(name), None
         if force.ndim == 3:
             j, label = _along(d, "friction", slip, force, k)
         pick = (lambda a: a[:, k]) if j is None else (lambda a: a[:, k, j])
         panels.append({"name": label, "kind": str(d["friction_element_kind"].values[k]), "force": pick(force),
-                       "deformation": pick(motion), "limits": (), "work": _work_of(force, slip, k), "ratio": 0.0,
+                       "deformation": pick(motion), "limits": (), "work": _work_of(force, slip, k, pairing), "ratio": 0.0,
                        "x": "length", "y": "force", "xlabel": "tangential motion", "ylabel": "friction force T"})
     return panels
 
@@ -584,17 +585,11 @@ def _along(d, family, plastic, force, k) -> tuple[int, str]:
     return j, (f"{name} ({names[j]})" if count > 1 else name)
 
 
-def _work_of(force, deformation, k) -> float:
+def _work_of(force, deformation, k, pairing) -> float:
     """Work of element ``k``'s force on its deformation, summed over its components (if any)."""
     if force.ndim == 2:
-        return _work(force[:, k], deformation[:, k])
-    return float(sum(_work(force[:, k, j], deformation[:, k, j]) for j in range(force.shape[2])))
-
-
-def _work(force, deformation) -> float:
-    """Work of ``force`` on ``deformation`` (trapezoidal, NaN steps left out)."""
-    increments = 0.5 * (force[1:] + force[:-1]) * np.diff(deformation)
-    return float(np.nansum(increments))
+        return pairing.series_work(force[:, k], deformation[:, k])
+    return float(sum(pairing.series_work(force[:, k, j], deformation[:, k, j]) for j in range(force.shape[2])))
 
 
 def _hysteresis_scales(d, panels) -> dict:
@@ -697,11 +692,12 @@ def energy_figure(ds):
                        ("elastic_structure", "elastic Δ (structure)"),
                        ("elastic_unilateral", "elastic Δ (unilateral)"),
                        ("damping_dissipated", "damping dissipated"), ("contact_dissipated", "contact dissipated"),
-                       ("plastic_work", "plastic work"), ("friction_work", "friction work")):
+                       ("plastic_work", "plastic work"), ("friction_work", "friction work"),
+                       ("geometric", "P-Delta Δ (geometric)"), ("numerical_dissipation", "numerical (the rule)")):
         if f"energy_{key}" not in d:
             continue
         y = d[f"energy_{key}"].values
-        if key.startswith("elastic"):
+        if key.startswith("elastic") or key == "geometric":
             y = y - y[0]
         if np.any(y):
             top.plot(*envelope(t, y), label=label)

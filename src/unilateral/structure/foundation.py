@@ -585,31 +585,6 @@ def structural_solution(sol, first=0):
                     constraint_names=list(sol.constraint_names)[:first])
 
 
-def add_soil_energy(energy: dict, contact_load: np.ndarray, u: np.ndarray) -> dict:
-    """Put the work of the contact forces into the energy balance of the frame alone.
-
-    ``energy`` is :func:`unilateral.analysis.energy.energy_balance` of the frame under the applied
-    load ``q`` only; the contact forces ``T c`` also work on it. ``W_soil = -int (T c)^T u' dt``
-    (trapezoidal on the increments, as the other terms) is the energy that went into the soil
-    (stored in it, radiated into the half-space, dissipated by its dashpots): it is reported as
-    ``contact_dissipated`` and the balance ``W_in = dT + dU + D_damping + W_soil`` is re-evaluated.
-    """
-    du = np.diff(u, axis=0)
-    inc = -0.5 * np.einsum("ki,ki->k", contact_load[1:] + contact_load[:-1], du)
-    soil = np.concatenate([[0.0], np.cumsum(inc)])
-    out = dict(energy)
-    out["contact_dissipated"] = energy["contact_dissipated"] + soil
-    residual = energy["balance_error"] - soil
-    scale = float(np.max(np.maximum.reduce([np.abs(out["input_work"]), out["kinetic"],
-                                            np.abs(out["elastic_structure"] - out["elastic_structure"][0]),
-                                            np.abs(out["damping_dissipated"] + out["contact_dissipated"])]),
-                         initial=0.0))
-    out["balance_error"] = residual
-    out["relative_error"] = np.abs(residual) / scale if scale > 0 else np.zeros_like(residual)
-    out["max_relative_error"] = float(out["relative_error"].max()) if residual.size else 0.0
-    return out
-
-
 def build_foundation(*, name, node, nodes, width, length, soil, patches, horizontal, gap, coords,
                      mu=None) -> Foundation:
     """Check the arguments of :meth:`Frame2D.foundation` and make the :class:`Foundation`."""
