@@ -57,7 +57,8 @@ import numpy as np
 from ..io.atomic import WriteError, to_jsonable, write_json_atomic, write_text_atomic
 from ..io.dataset import Variable, cases_dataset, save_netcdf
 from ..io.folder import OutputFolder
-from ..io.results import save_csv
+from ..io.recorders import Recorders, select, solution_view
+from ..io.results import csv_text, save_csv
 from ..io.summary import summary
 from ..result import Solution
 from ..solve import solve
@@ -95,7 +96,7 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", in
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
                   meta=None, labels=None, model=None, load=None, rule=None, formats=("png",),
                   point=None, storeys=None, figure_process=None, extra_figures=None, summary_extra=None,
-                  spectra=None, model_figure=False) -> dict:
+                  spectra=None, model_figure=False, recorders=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     The files replace those of the previous run in ``out_dir`` as a set (see the module's doc).
@@ -134,6 +135,10 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     model_figure : bool
         With a frame: the figure ``model`` (:mod:`unilateral.figures.model`), the structure with its
         names and its first modes; ``results.nc`` keeps it in its attribute ``model_drawing``.
+    recorders : unilateral.io.recorders.Recorders or dict, optional
+        What of the results is written to ``results.nc`` and the CSV tables (default: every history
+        of a small run, the key histories of a large one); the summary and the figures are of every
+        result. ``summary.json``'s ``output`` says what was written.
     """
     folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir)
     try:
@@ -142,7 +147,8 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
             result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
                                 meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
                                 point=point, storeys=storeys, figure_process=figure_process,
-                                summary_extra=summary_extra, spectra=spectra, model_figure=model_figure)
+                                summary_extra=summary_extra, spectra=spectra, model_figure=model_figure,
+                                recorders=recorders)
             if formats and extra_figures is not None:
                 result["figures"] += [str(p) for p in extra_figures(staging, formats)]
         except BaseException:
@@ -161,7 +167,8 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
 
 
 def _write_all(out, cases: dict, *, structure, units, figure, title, meta, labels, model, load, rule, formats,
-               point, storeys, figure_process, summary_extra=None, spectra=None, model_figure=False) -> dict:
+               point, storeys, figure_process, summary_extra=None, spectra=None, model_figure=False,
+               recorders=None) -> dict:
     """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
     labels = labels or {}
     computed = cases
@@ -196,21 +203,8 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         ds.attrs["model_drawing"] = _model_drawing(structure, extra_results, units, title).to_json()
     if formats and figure_process is not None:
         figure_process.submit(figure_view(ds), out, formats)
-    save_netcdf(ds, out / "results.nc")
-    for name, sol in computed.items():
-        save_csv(sol, out, prefix="" if name == main_name else f"{name}_", column_units=csv_units(sol, units, structure))
-    if extra_results is not None:
-        _save_result_tables(ds, out, main_name=main_name, rows={name: len(sol.t) for name, sol in computed.items()},
-                            units=units)
-    if response is not None:
-        from .spectra import spectra_columns
-
-        columns = {}
-        for each in responses:              # a 3-D frame: every column names its direction
-            columns |= _with_direction(spectra_columns(each, {}), each["direction"], units) if three_d else \
-                spectra_columns(each, units)
-        write_text_atomic(out / "spectra.csv", _csv(columns))
-
+    output_info = _write_files(ds, out, computed, responses, main_name=main_name, structure=structure, units=units,
+                               recorders=recorders, figure=figure, tables=extra_results is not None)
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
     extra |= summary_extra or {}
     if figure is not None and structure is not None:
@@ -227,7 +221,7 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                                  "steps_computed": len(sol.t) - 1, "t_reached": float(sol.t[-1])}
                           for name, sol in computed.items()}
     kinds = ds["constraint_kind"].values.tolist() if "constraint_kind" in ds.coords else None
-    result = summary(computed[main_name], units=units, extra=extra, kinds=kinds)
+    result = summary(computed[main_name], units=units, extra=extra, kinds=kinds) | {"output": output_info}
     if any(labels.get(name, name) != name for name in computed):
         result["case_labels"] = {name: labels.get(name, name) for name in computed}
     if extra_results is not None:
@@ -260,6 +254,34 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         drawing = model_drawing_3d(structure, units=units, title=title)
         result["figures"] += [str(p) for p in draw_model(drawing, out, formats)]
     return result
+
+
+def _write_files(ds, out, computed, responses, *, main_name, structure, units, recorders, figure, tables) -> dict:
+    """``results.nc`` and the CSV tables of what ``recorders`` write (:func:`unilateral.io.recorders.select`) of
+    the Dataset ``ds`` of every result; returns the choice made (``summary.json``'s ``output``)."""
+    recorders = Recorders.of(recorders)
+    written, info = select(ds, recorders, figure_node=None if figure is None else figure["node"])
+    save_netcdf(written, out / "results.nc")
+    if not recorders.csv:
+        return info
+    digits = recorders.precision
+    for name, sol in computed.items():
+        view = solution_view(written.sel(case=name) if "case" in written.dims else written, sol)
+        save_csv(view, out, prefix="" if name == main_name else f"{name}_", precision=digits,
+                 column_units=csv_units(view, units, structure))
+    if tables:
+        every = recorders.every
+        _save_result_tables(written, out, main_name=main_name, units=units, precision=digits,
+                            rows={name: -(-len(sol.t) // every) for name, sol in computed.items()})
+    if responses:
+        from .spectra import spectra_columns
+
+        columns = {}
+        for each in responses:              # a 3-D frame: every column names its direction
+            columns |= _with_direction(spectra_columns(each, {}), each["direction"], units) \
+                if is_3d(structure) else spectra_columns(each, units)
+        write_text_atomic(out / "spectra.csv", csv_text(columns))
+    return info
 
 
 def _with_direction(columns: dict, direction: str, units) -> dict:
@@ -510,7 +532,7 @@ INELASTIC_COLUMNS = {"yield_element": ("plastic_deformation", "yield_force", "yi
                      "friction_element": ("slip", "friction_force", "normal_force")}
 
 
-def _save_result_tables(ds, out, *, main_name, rows=None, units=None):
+def _save_result_tables(ds, out, *, main_name, rows=None, units=None, precision="float64"):
     """``element_forces.csv``, ``base.csv`` and ``yield_and_slip.csv`` of every case: the main case's
     without prefix, the others' as ``<case>_<file>`` (``bilateral_base.csv``), as the displacements.
     ``rows``: case -> the number of time steps it computed (a case that stopped early ends there)."""
@@ -519,10 +541,11 @@ def _save_result_tables(ds, out, *, main_name, rows=None, units=None):
         d = ds.sel(case=name) if "case" in ds.dims else ds
         if rows and name in rows:
             d = d.isel(time=slice(0, rows[name]))
-        _save_case_tables(d, out, prefix="" if name == main_name else f"{name}_", units=units or {})
+        _save_case_tables(d, out, prefix="" if name == main_name else f"{name}_", units=units or {},
+                          precision=precision)
 
 
-def _save_case_tables(d, out, *, prefix, units):
+def _save_case_tables(d, out, *, prefix, units, precision="float64"):
     force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
     moment = f"{force} {length}".strip()
     t = d["time"].values
@@ -532,7 +555,7 @@ def _save_case_tables(d, out, *, prefix, units):
         for k, name in enumerate(d["element"].values):
             for c, comp in enumerate(d["end_component"].values):
                 columns[_head(f"{name}:{comp}", moment if str(comp).startswith(("M", "T")) else force)] = end[:, k, c]
-        write_text_atomic(out / f"{prefix}element_forces.csv", _csv(columns))
+        write_text_atomic(out / f"{prefix}element_forces.csv", csv_text(columns, precision))
     columns = {_head("time", time): t}
     for name, unit in (("base_shear", force), ("base_vertical", force), ("overturning_moment", moment)):
         if name in d:
@@ -554,7 +577,7 @@ def _save_case_tables(d, out, *, prefix, units):
         if f"drift_ratio_{axis}" in d:
             for k, label in enumerate(d["storey"].values):
                 columns[_head(f"drift_ratio_{axis}:{label}", "1")] = d[f"drift_ratio_{axis}"].values[:, k]
-    write_text_atomic(out / f"{prefix}base.csv", _csv(columns))
+    write_text_atomic(out / f"{prefix}base.csv", csv_text(columns, precision))
     columns = {_head("time", time): t}
     for dim, names in INELASTIC_COLUMNS.items():
         for name in (name for name in names if name in d):
@@ -570,7 +593,7 @@ def _save_case_tables(d, out, *, prefix, units):
                         head = f"{name}:{label}:{part}" if sum(map(bool, parts)) > 1 else f"{name}:{label}"
                         columns[_head(head, unit)] = values[:, k, j]
     if len(columns) > 1:
-        write_text_atomic(out / f"{prefix}yield_and_slip.csv", _csv(columns))
+        write_text_atomic(out / f"{prefix}yield_and_slip.csv", csv_text(columns, precision))
 
 
 def _head(name: str, unit: str) -> str:
@@ -608,17 +631,6 @@ def csv_units(sol, units, structure=None) -> dict:
         for key in ("psi", "psiL"):
             out[f"{key}:{c}"] = f"{force} {length}".strip() if hinge else force
     return out
-
-
-def _csv(columns) -> str:
-    import csv
-    import io
-
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(columns)
-    writer.writerows(np.column_stack(list(columns.values())).astype(float).tolist())
-    return buffer.getvalue()
 
 
 def _with_unit(label, units, dof):

@@ -32,7 +32,7 @@ def settings_of(defaults: dict, **given) -> dict:
 
 
 def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progress=None, point=None,
-                   storeys=None, figure_process=None, **overrides) -> dict:
+                   storeys=None, figure_process=None, output=None, **overrides) -> dict:
     """Analyse a model file and write every output, as ``unilateral run`` does.
 
     Parameters
@@ -46,6 +46,9 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
     figure_process : :class:`unilateral.figures.background.BackgroundFigures`, optional
         A forked process that draws the figures while this one writes the other outputs (the
         command line starts one as it starts); by default the figures are drawn in process.
+    output : dict or unilateral.io.recorders.Recorders, optional
+        What is written (``histories``, ``variables``, ``nodes``, ``elements``, ``every``,
+        ``precision``, ``csv``): these keys replace those of the file's ``[output]``.
     **overrides : ``dt``, ``t_end``, ``method``, ``rule``, ``lcp``, ``initial``
 
     Returns
@@ -67,7 +70,18 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
                    cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
                    labels=case_labels(_kinds(spec)), formats=figures, progress=progress, point=point,
                    storeys=storeys, figure_process=figure_process, spectra=spectra,
-                   model_figure=spec.structure is not None)
+                   model_figure=spec.structure is not None, recorders=recorders_of(spec.document.output, output))
+
+
+def recorders_of(table, output=None):
+    """The :class:`~unilateral.io.recorders.Recorders` of a model file's ``[output]`` ``table`` with the keys of
+    ``output`` (a dict, a ``Recorders`` or None) in place of the file's."""
+    from ..io.recorders import FIELDS, Recorders
+
+    if isinstance(output, Recorders):
+        return output
+    given = {key: getattr(table, key) for key in FIELDS if getattr(table, key, None) is not None}
+    return Recorders.of(given | dict(output or {}))
 
 
 def spectra_settings(spec):
@@ -215,7 +229,7 @@ def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:
 
 def analyse(model, load, settings, out, *, structure, units, figure, title, meta, cases, labels,
             formats=("png",), progress=None, point=None, storeys=None, figure_process=None, spectra=None,
-            model_figure=False) -> dict:
+            model_figure=False, recorders=None) -> dict:
     """Solve ``cases`` (``"unilateral"``, ``"bilateral"``) and write every output to ``out``.
 
     With ``model_figure`` a frame (``structure``) also gets the model figure ``model.png``, and with
@@ -257,7 +271,7 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
         result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
                                meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
                                formats=formats, point=point, storeys=storeys, figure_process=figure_process,
-                               spectra=spectra, model_figure=model_figure)
+                               spectra=spectra, model_figure=model_figure, recorders=recorders)
     finally:
         folder.close()
     if progress is not None:

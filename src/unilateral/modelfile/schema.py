@@ -27,6 +27,7 @@ from pydantic_core import PydanticCustomError
 from .. import _LCP_NAMES as LCP_SOLVERS
 from .. import _RULE_NAMES as RULES
 from .. import _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES
+from .recorders import OutputRecorders
 
 LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
@@ -616,8 +617,8 @@ class SpectraPeriods(Table):
         return self
 
 
-class Output(Table):
-    """[output]: what to draw."""
+class Output(OutputRecorders, Table):
+    """[output]: what to draw and what to write (:class:`~unilateral.modelfile.recorders.OutputRecorders`)."""
 
     figure: Figure | None = None
     overturning_about: Annotated[list[float], Field(min_length=2, max_length=2)] | None = Field(None, description=(
@@ -734,7 +735,6 @@ class ModelFile(Table):
     site: Site | None = None
     analysis: Analysis
     output: Output = Output()
-
 
     @model_validator(mode="after")
     def _one_way_to_give_footings(self):
