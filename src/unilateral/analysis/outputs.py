@@ -50,6 +50,7 @@ nor pandas; ``unilateral plot`` draws the same figures from the file read by xar
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -170,6 +171,45 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
                point, storeys, figure_process, summary_extra=None, spectra=None, model_figure=False,
                recorders=None) -> dict:
     """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
+    done = compute_results(cases, structure=structure, units=units, figure=figure, title=title, meta=meta,
+                           labels=labels, model=model, load=load, rule=rule, point=point, storeys=storeys,
+                           summary_extra=summary_extra, spectra=spectra, model_figure=model_figure)
+    return write_results(done, out, formats=formats, figure_process=figure_process, recorders=recorders)
+
+
+@dataclass
+class ComputedResults:
+    """Every result of solved cases, in memory (:func:`compute_results`), before anything is written.
+
+    Attributes
+    ----------
+    ds : unilateral.io.dataset.Dataset
+        Every history and static result (what ``histories = "full"`` writes to ``results.nc``).
+    solutions : dict of str to Solution
+        The cases as solved (a case that stopped early: up to where it stopped).
+    summary : dict
+        ``summary.json`` but its ``output`` (what is written) and ``figures``.
+    responses : list of dict
+        The response spectra (:func:`unilateral.analysis.spectra.run_spectra`), none without.
+    """
+
+    ds: object
+    solutions: dict
+    summary: dict
+    responses: list
+    structure: object = None
+    units: dict | None = None
+    figure: dict | None = None
+    title: str = ""
+    main_name: str = "unilateral"
+    tables: bool = False
+    model_figure: bool = False
+
+
+def compute_results(cases: dict, *, structure=None, units=None, figure=None, title="", meta=None, labels=None,
+                    model=None, load=None, rule=None, point=None, storeys=None, summary_extra=None, spectra=None,
+                    model_figure=False) -> ComputedResults:
+    """The Dataset, spectra and summary of solved ``cases`` (see :func:`write_outputs` for the parameters)."""
     labels = labels or {}
     computed = cases
     cases = _on_common_axis(cases)
@@ -187,26 +227,32 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
     if structure is None and model is not None:
         ds = _with_model_kinds(ds, model)
     three_d = is_3d(structure)
+    rule = rule or main.stats.get("rule", "bdf2")
     if structure is not None:
         ds = _with_node_displacements(ds, cases, structure, units)
         ds = _with_constraint_coords(ds, structure)
         if model is not None:
             results_of = structure_results_3d if three_d else _structure_results
-            extra_results = results_of(structure, model, computed, load=load, units=units,
-                                       rule=rule or main.stats.get("rule", "bdf2"), point=point, storeys=storeys)
+            extra_results = results_of(structure, model, computed, load=load, units=units, rule=rule, point=point,
+                                       storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
         ds = with_constraint_units(ds, structure, units)
     ds, responses = _with_spectra(ds, structure, extra_results, spectra, dt=_time_step(main), units=units,
                                   names=list(cases), three_d=three_d)
-    response = responses[0] if responses else None
     if model_figure and structure is not None and not three_d:
         ds.attrs["model_drawing"] = _model_drawing(structure, extra_results, units, title).to_json()
-    if formats and figure_process is not None:
-        figure_process.submit(figure_view(ds), out, formats)
-    output_info = _write_files(ds, out, computed, responses, main_name=main_name, structure=structure, units=units,
-                               recorders=recorders, figure=figure, tables=extra_results is not None)
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
-    extra |= summary_extra or {}
+    result = _summary_of(ds, computed, main_name, extra | (summary_extra or {}), structure=structure, units=units,
+                         figure=figure, labels=labels, extra_results=extra_results, rule=rule, responses=responses)
+    return ComputedResults(ds, computed, result, responses, structure=structure, units=units, figure=figure,
+                           title=title, main_name=main_name, tables=extra_results is not None,
+                           model_figure=model_figure)
+
+
+def _summary_of(ds, computed, main_name, extra, *, structure, units, figure, labels, extra_results, rule,
+                responses) -> dict:
+    """``summary.json`` of the cases (:func:`compute_results`), without ``output`` and ``figures``."""
+    main = computed[main_name]
     if figure is not None and structure is not None:
         histories = {name: structure.node_displacement(sol, figure["node"], figure["dof"])
                      for name, sol in computed.items()}
@@ -216,29 +262,41 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
             "peak": {label: float(np.max(y)) for label, y in histories.items()},
             "minimum": {label: float(np.min(y)) for label, y in histories.items()},
         }
-    if len(cases) > 1 or not main.success:
+    if len(computed) > 1 or not main.success:
         extra["cases"] = {name: {"success": sol.success, "message": sol.message,
                                  "steps_computed": len(sol.t) - 1, "t_reached": float(sol.t[-1])}
                           for name, sol in computed.items()}
     kinds = ds["constraint_kind"].values.tolist() if "constraint_kind" in ds.coords else None
-    result = summary(computed[main_name], units=units, extra=extra, kinds=kinds) | {"output": output_info}
+    result = summary(main, units=units, extra=extra, kinds=kinds)
     if any(labels.get(name, name) != name for name in computed):
         result["case_labels"] = {name: labels.get(name, name) for name in computed}
     if extra_results is not None:
         result["results"] = to_jsonable(extra_results["peaks"])
         warnings = energy_warnings({case_name(name, labels): p for name, p in result["results"].items()},
-                                   rule=rule or main.stats.get("rule", "bdf2"),
-                                   dt=main.stats.get("dt"))
+                                   rule=rule, dt=main.stats.get("dt"))
         if warnings:
             result["warnings"] = warnings
-    if response is not None:
+    if responses:
         from .spectra import spectra_summary
 
-        result["spectra"] = spectra_summary(response)
-        if three_d:
+        result["spectra"] = spectra_summary(responses[0])
+        if is_3d(structure):
             result["spectra"]["by_direction"] = {each["direction"]: spectra_summary(each) for each in responses}
-    if three_d:
+    if is_3d(structure):
         result["notes"] = [NOT_IN_3D]
+    return result
+
+
+def write_results(done: ComputedResults, out, *, formats=("png",), figure_process=None, recorders=None) -> dict:
+    """Write ``results.nc``, the CSV tables, ``summary.json`` and the figures of ``done`` into the folder ``out``
+    (a staging folder: :func:`write_outputs` swaps it in); return the summary with ``output`` and ``figures``."""
+    ds, structure = done.ds, done.structure
+    if formats and figure_process is not None:
+        figure_process.submit(figure_view(ds), out, formats)
+    output_info = _write_files(ds, out, done.solutions, done.responses, main_name=done.main_name,
+                               structure=structure, units=done.units, recorders=recorders, figure=done.figure,
+                               tables=done.tables)
+    result = dict(done.summary) | {"output": output_info}
     write_json_atomic(out / "summary.json", result)
     result["figures"] = []
     if formats and figure_process is not None:
@@ -247,11 +305,11 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         from ..figures.results import draw_figures
 
         result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]
-    if formats and model_figure and three_d:    # drawn here: results.nc holds no 3-D drawing to redraw it from
+    if formats and done.model_figure and is_3d(structure):    # drawn here: results.nc holds no 3-D drawing
         from ..figures.model import draw_model
         from ..figures.model3d import model_drawing_3d
 
-        drawing = model_drawing_3d(structure, units=units, title=title)
+        drawing = model_drawing_3d(structure, units=done.units, title=done.title)
         result["figures"] += [str(p) for p in draw_model(drawing, out, formats)]
     return result
 

@@ -59,18 +59,24 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
 
     path = Path(path)
     spec = load_model_file(path)
+    job = model_file_job(spec, bilateral=bilateral, point=point, storeys=storeys, output=output, **overrides)
+    return analyse(**job, out=Path(out) if out is not None else Path(path.stem), formats=figures,
+                   progress=progress, figure_process=figure_process)
+
+
+def model_file_job(spec, *, bilateral=False, point=None, storeys=None, output=None, **overrides) -> dict:
+    """The arguments of :func:`analyse` (but ``out``, ``formats``, ``progress``, ``figure_process``) for the
+    model file read as ``spec`` (:func:`unilateral.modelfile.load_model_file`); see :func:`run_model_file`."""
     a = spec.analysis
-    settings = settings_of(a, **overrides)
+    source = Path(spec.source)
     if point is None and spec.document.output.overturning_about is not None:
         point = tuple(spec.document.output.overturning_about)
-    spectra = spectra_settings(spec)
-    return analyse(spec.model, spec.load, settings, Path(out) if out is not None else Path(path.stem),
-                   structure=spec.structure, units=spec.units, figure=spec.figure,
-                   title=a.get("title") or path.stem, meta={"model_file": str(path)},
-                   cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
-                   labels=case_labels(_kinds(spec)), formats=figures, progress=progress, point=point,
-                   storeys=storeys, figure_process=figure_process, spectra=spectra,
-                   model_figure=spec.structure is not None, recorders=recorders_of(spec.document.output, output))
+    return dict(model=spec.model, load=spec.load, settings=settings_of(a, **overrides), structure=spec.structure,
+                units=spec.units, figure=spec.figure, title=a.get("title") or source.stem,
+                meta={"model_file": str(source)},
+                cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
+                labels=case_labels(_kinds(spec)), point=point, storeys=storeys, spectra=spectra_settings(spec),
+                model_figure=spec.structure is not None, recorders=recorders_of(spec.document.output, output))
 
 
 def recorders_of(table, output=None):
@@ -247,27 +253,14 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
     ``figure_process`` (a :class:`~unilateral.figures.background.BackgroundFigures`, optional)
     draws the figures while this process writes the other outputs (:func:`write_outputs`).
     """
-    from .._validate import positive_float
-    from ..discretization import step_count
     from ..io.folder import OutputFolder
-    from ..solve import solve
     from .outputs import write_outputs
 
-    dt = positive_float("dt", settings["dt"])
-    t_end = positive_float("t_end", settings["t_end"])
-    N = max(step_count(t_end, dt), 1)
-    total = N * (len(cases) + 1)
-    kw = {key: settings[key] for key in SETTINGS}
+    _steps(settings)                            # dt and t_end checked before the folder
     folder = OutputFolder(out)
     folder.prepare()
     try:
-        solved = {}
-        for k, name in enumerate(cases):
-            done = k * N
-            callback = None if progress is None else (lambda step, _N, done=done: progress(done + step, total))
-            solved[name] = solve(model, load, callback=callback, bilateral=(name == "bilateral"), **kw)
-            if progress is not None:
-                progress((k + 1) * N, total)
+        solved = solve_cases(model, load, settings, cases, progress=progress)
         result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
                                meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
                                formats=formats, point=point, storeys=storeys, figure_process=figure_process,
@@ -275,7 +268,34 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
     finally:
         folder.close()
     if progress is not None:
+        total = _steps(settings) * (len(cases) + 1)
         progress(total, total)
     result["success_all"] = all(sol.success for sol in solved.values())
     return result
+
+
+def _steps(settings) -> int:
+    from .._validate import positive_float
+    from ..discretization import step_count
+
+    dt = positive_float("dt", settings["dt"])
+    return max(step_count(positive_float("t_end", settings["t_end"]), dt), 1)
+
+
+def solve_cases(model, load, settings, cases, *, progress=None) -> dict:
+    """Solve ``cases`` (``"unilateral"``, ``"bilateral"``) of ``model`` under ``load`` with ``settings``
+    (:func:`settings_of`); ``progress(done, total)`` in steps over the cases and the writing after them."""
+    from ..solve import solve
+
+    N = _steps(settings)
+    total = N * (len(cases) + 1)
+    kw = {key: settings[key] for key in SETTINGS}
+    solved = {}
+    for k, name in enumerate(cases):
+        done = k * N
+        callback = None if progress is None else (lambda step, _N, done=done: progress(done + step, total))
+        solved[name] = solve(model, load, callback=callback, bilateral=(name == "bilateral"), **kw)
+        if progress is not None:
+            progress((k + 1) * N, total)
+    return solved
 
