@@ -189,6 +189,32 @@ def test_auto_chooses_key_above_the_limit():
     assert info["histories"] == "full" and set(small.data_vars) == {"u", "base_shear"}
 
 
+def test_a_very_long_run_writes_its_key_histories_decimated_under_the_limit():
+    from unilateral.io.dataset import Dataset
+    from unilateral.io.recorders import WRITE_LIMIT
+
+    n = 10**6 + 1                                       # 10^6 steps of a small model, six key histories
+    ds = Dataset({f"energy_{k}": (("time",), np.arange(n, dtype=float)) for k in range(6)} |
+                 {"u": (("time", "dof"), np.zeros((n, 3)))},
+                 coords={"time": np.arange(n, dtype=float), "dof": ["1.ux", "1.uy", "1.rz"], "node": ["1"]})
+    written, info = select(ds, Recorders())
+    size = sum(var.values.nbytes for name, var in written.data_vars.items())
+    assert info["histories"] == "key" and info["every"] == 2 and size <= WRITE_LIMIT and "note_every" in info
+    np.testing.assert_array_equal(written["time"].values, np.arange(0, n, 2, dtype=float))
+    assert select(ds, Recorders(every=1))[1]["every"] == 1
+    assert select(ds, Recorders(histories="full"))[1]["every"] == 1
+
+
+def test_a_run_without_spectra_does_not_import_scipy_signal(tmp_path):
+    import subprocess
+
+    path = write(tmp_path)
+    code = ("import sys; from unilateral.analysis import run_model_file; "
+            f"run_model_file({str(path)!r}, {str(tmp_path / 'o')!r}, figures=()); print('scipy.signal' in sys.modules)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip().splitlines()[-1] == "False", done.stderr
+
+
 @pytest.mark.slow
 def test_the_nine_storey_frame_at_one_millisecond_writes_at_most_50_mb(tmp_path):
     sys.path.insert(0, str(ROOT / "benchmarks"))

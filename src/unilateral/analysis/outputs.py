@@ -328,7 +328,7 @@ def _write_files(ds, out, computed, responses, *, main_name, structure, units, r
         save_csv(view, out, prefix="" if name == main_name else f"{name}_", precision=digits,
                  column_units=csv_units(view, units, structure))
     if tables:
-        every = recorders.every
+        every = info["every"]
         _save_result_tables(written, out, main_name=main_name, units=units, precision=digits,
                             rows={name: -(-len(sol.t) // every) for name, sol in computed.items()})
     if responses:

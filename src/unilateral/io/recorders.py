@@ -15,7 +15,10 @@ are those of a model file's ``[output]`` (``docs/model-file.md``, "What is writt
                 accelerations are written for them (also under ``"key"``) and only for them.
 ``elements``    the elements (beams, bars, hinges, links, contacts) whose histories are written: end
                 forces, yield and slip histories, ``v``, ``psi`` of their constraint unknowns.
-``every``       write every ``every``-th step (steps 0, k, 2k, ...; the summary's peaks are of every step).
+``every``       write every ``every``-th step (steps 0, k, 2k, ...; the summary's peaks are of every step);
+                None (default): 1, unless the histories chosen (not ``"full"``) would still take more than
+                :data:`WRITE_LIMIT` bytes (a very long run): then the smallest ``every`` that keeps them
+                under it, with a note.
 ``precision``   ``"float64"`` (default) or ``"float32"``: the histories in ``results.nc`` and the digits
                 of the CSV tables (shortest round trip, or 9 significant digits).
 ``csv``         write the CSV tables (default True); ``results.nc`` and ``summary.json`` always.
@@ -31,6 +34,8 @@ HISTORIES = ("auto", "key", "full")
 PRECISIONS = ("float32", "float64")
 #: ``histories = "auto"`` writes every history up to this many bytes (float64, all cases), else the key ones.
 AUTO_LIMIT = 20_000_000
+#: With ``every`` not given, the histories written take at most this many bytes (float64): longer runs are decimated.
+WRITE_LIMIT = 40_000_000
 
 #: The key histories: always written (those a model has).
 KEY_VARIABLES = ("base_shear", "base_vertical", "overturning_moment", "frame_base_shear", "storey_drift",
@@ -73,7 +78,7 @@ class Recorders:
     variables: tuple = ()
     nodes: tuple | None = None
     elements: tuple | None = None
-    every: int = 1
+    every: int | None = None
     precision: str = "float64"
     csv: bool = True
     extra: dict = field(default_factory=dict, compare=False, repr=False)
@@ -83,7 +88,8 @@ class Recorders:
             raise ValueError(f"histories={self.histories!r}: valid: {', '.join(HISTORIES)}")
         if self.precision not in PRECISIONS:
             raise ValueError(f"precision={self.precision!r}: valid: {', '.join(PRECISIONS)}")
-        if isinstance(self.every, bool) or not isinstance(self.every, int) or self.every < 1:
+        if self.every is not None and (isinstance(self.every, bool) or not isinstance(self.every, int)
+                                       or self.every < 1):
             raise ValueError(f"every={self.every!r}: give an integer >= 1 (1: every step)")
         if not isinstance(self.csv, bool):
             raise ValueError(f"csv={self.csv!r}: give true or false")
@@ -143,14 +149,21 @@ def select(ds, recorders: Recorders, *, figure_node=None):
     out = ds.copy()
     out.variables = {n: v for n, v in ds.variables.items() if n not in timed or n in wanted}
     out = _restrict(out, nodes, recorders.elements)
-    if recorders.every > 1:
-        out = out.isel(time=slice(0, None, recorders.every))
+    every = recorders.every
+    kept_size = 0
+    if every is None and recorders.histories == "full":     # asked for in full: every step
+        every = 1
+    elif every is None:
+        kept_size = sum(out[n].values.size * 8 for n in kept)
+        every = max(1, -(-kept_size // WRITE_LIMIT))
+    if every > 1:
+        out = out.isel(time=slice(0, None, every))
     if recorders.precision == "float32":
         for n in kept:
             var = out.variables[n]
             if var.values.dtype.kind == "f":
                 out.variables[n] = type(var)(var.dims, var.values.astype(np.float32), var.attrs)
-    info = {"histories": mode, "every": recorders.every, "precision": recorders.precision, "csv": recorders.csv,
+    info = {"histories": mode, "every": every, "precision": recorders.precision, "csv": recorders.csv,
             "written": kept, "left_out": sorted(set(timed) - set(kept))}
     if nodes is not None:
         info["nodes"] = list(nodes)
@@ -160,7 +173,10 @@ def select(ds, recorders: Recorders, *, figure_node=None):
         info["note"] = (f"the histories of every DOF, constraint and element ({size / 1e6:.0f} MB in float64) are "
                         "not written: set [output] histories = \"full\", or name the nodes, elements or variables "
                         "to write (docs/model-file.md, What is written)")
-    out.attrs = {**out.attrs, "output_histories": mode, "output_every": recorders.every,
+    if recorders.every is None and every > 1:
+        info["note_every"] = (f"every {every}-th step is written (the histories would take {kept_size / 1e6:.0f} MB): "
+                              "set [output] every = 1 for every step")
+    out.attrs = {**out.attrs, "output_histories": mode, "output_every": every,
                  "output_precision": recorders.precision}
     return out, info
 

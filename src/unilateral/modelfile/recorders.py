@@ -37,7 +37,8 @@ class OutputRecorders(BaseModel):
     nodes: list[NodeId] | None = Field(None, description="Frames: the nodes whose histories are written (only them).")
     elements: list[Annotated[str, Field(min_length=1)]] | None = Field(None, description=(
         "Frames: the elements (beams, hinges, contacts, ...) whose histories are written (only them)."))
-    every: Annotated[int, Field(ge=1)] = Field(1, description="Write every k-th step (1: every step).")
+    every: Annotated[int, Field(ge=1)] | None = Field(None, description=(
+        "Write every k-th step (1: every step; default 1, or what keeps a very long run's histories under 40 MB)."))
     precision: Literal[PRECISIONS] = Field("float64", description=(
         "float64, or float32: histories in results.nc as float32, CSV numbers with 9 significant digits."))
     csv: bool = Field(True, description="Write the CSV tables (results.nc and summary.json always).")
