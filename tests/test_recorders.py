@@ -244,3 +244,14 @@ def _node_index(full, node):
 def test_summary_json_says_what_was_written(full):
     info = json.loads((full[0] / "summary.json").read_text())["output"]
     assert info["histories"] == "full" and info["every"] == 1 and info["precision"] == "float64"
+
+
+def test_plot_redraws_what_a_key_file_gives_and_names_what_it_skips(tmp_path):
+    from click.testing import CliRunner
+
+    from unilateral.cli import main
+
+    out, _ = run(tmp_path, 'histories = "key"')
+    done = CliRunner().invoke(main, ["plot", str(out / "results.nc"), "--out", str(tmp_path / "figs")])
+    assert "Traceback" not in done.output and (tmp_path / "figs" / "fig2.png").exists(), done.output
+    assert (tmp_path / "figs" / "energy.png").exists()

@@ -377,7 +377,8 @@ def open_results(path: str | os.PathLike) -> xr.Dataset:
         said = f"source = {source!r}" if source else "no source attribute"
         raise ResultsFileError(path, f"it is a netCDF file another program wrote ({said}; unilateral writes "
                                      "source = 'unilateral <version>')")
-    missing = [name for name in ("time", "v", "psi") if name not in ds.variables]
+    selected = ds.attrs.get("output_histories", "full") != "full"     # [output]: not every history written
+    missing = [name for name in (("time",) if selected else ("time", "v", "psi")) if name not in ds.variables]
     if missing:
         raise ResultsFileError(path, f"it lacks {', '.join(missing)}")
     return ds
