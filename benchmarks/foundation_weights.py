@@ -60,7 +60,8 @@ OLD_JIT_MAX_N = 400
 
 def chain_model(n: int, m: int, seed: int = 0):
     """The benchmark's FoundationModel (see the module's docstring)."""
-    from unilateral.soil.foundation_model import FoundationModel, SoilFlexibility
+    from unilateral.soil.flexibility import SoilFlexibility
+    from unilateral.soil.foundation_model import FoundationModel
 
     rng = np.random.default_rng(seed)
     k = rng.uniform(1e6, 2e6, n)

@@ -20,8 +20,9 @@ NODES = {1: (0.0, 0.0), 2: (0.0, H), 3: (L, H), 4: (L, 0.0)}
 BEAMS = {"c1": (1, 2, I_COL), "c2": (4, 3, I_COL), "g": (2, 3, I_BEAM)}
 
 
-def portal(*, p_delta=False, mass=10.0):
-    """The fixed-base portal with rigid-plastic hinges at the column bases and the beam ends."""
+def portal(*, p_delta=False, mass=10.0, k_hinge=None):
+    """The fixed-base portal with rigid-plastic hinges at the column bases and the beam ends (with
+    ``k_hinge``: elastic-plastic rotational springs of that stiffness)."""
     fr = Frame2D()
     for n, (x, y) in NODES.items():
         fr.node(n, x, y)
@@ -30,7 +31,7 @@ def portal(*, p_delta=False, mass=10.0):
     for name, (i, j, inertia) in BEAMS.items():
         fr.beam(name, i, j, E=E, A=A, I=inertia)
     for name, beam, end, mp in HINGES:
-        fr.hinge(name, beam, end, My=mp)
+        fr.hinge(name, beam, end, My=mp, k=k_hinge)
     fr.mass(2, mass)
     fr.mass(3, mass)
     if p_delta:

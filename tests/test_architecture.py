@@ -112,8 +112,8 @@ PACKAGE_CYCLES = {
 #: to be split (by line count when listed). The lists may only shrink: a new one, or a listed one
 #: that grew, fails; a listed one that got short enough fails until it is taken off the list.
 LONG_MODULES = {
-    "structure/frame.py": 1516, "soil/foundation_model.py": 1410, "modelfile/schema.py": 1137,
-    "march/event.py": 903, "batch/study.py": 875,
+    "structure/frame.py": 1487, "modelfile/schema.py": 1137,
+    "batch/study.py": 875,
     "soil/layered.py": 840,
 }
 LONG_FUNCTIONS = {
@@ -122,9 +122,9 @@ LONG_FUNCTIONS = {
     "loads/site_response.py:free_field": 100, "linalg.py:stiff_split": 100,
     "batch/runner.py:run_study": 95, "analysis/results3d.py:structure_results_3d": 96,
     "soil/lamb.py:_axis_factors": 94, "kernels/time_domain.py:from_laplace": 93,
-    "structure/frame3d.py:foundation": 91, "batch/study.py:_static_problems": 90, "soil/fit.py:fit_rational": 88,
-    "structure/foundation.py:soil_flexibility": 87, "structure/frame.py:foundation": 86,
-    "march/event_config.py:__init__": 86, "model/__init__.py:from_natural": 84,
+    "batch/study.py:_static_problems": 90,
+    "structure/frame.py:foundation": 86,
+    "march/event_config.py:__init__": 86,
 }
 
 

@@ -22,7 +22,8 @@ import unilateral as ul
 from unilateral.bench.problems import build
 from unilateral.loads import LoadHistory, Rectangular
 from unilateral.march import event
-from unilateral.march.event import _March, _matrices, _slack, find_root
+from unilateral.march.event import _March, _matrices
+from unilateral.march.event_search import _slack, find_root
 from unilateral.march.event_config import Config
 from unilateral.march.event_load import load_generator
 

@@ -61,9 +61,10 @@ def test_every_example_is_listed_in_the_readme_and_tested():
     readme = (EXAMPLES / "README.md").read_text(encoding="utf-8")
     files = sorted(p.name for p in EXAMPLES.iterdir() if p.suffix in (".py", ".toml"))
     # ida.toml: tests/test_batch.py; building3d.py: tests/test_example_building3d.py; rocking_block.py:
-    # tests/test_rocking_block.py; pushover_portal.py: tests/test_pushover_example.py
+    # tests/test_rocking_block.py; pushover_portal.py, pushover_cyclic.py: tests/test_pushover_example.py;
+    # pushover_portal.toml: tests/test_pushover_files.py
     assert files == sorted((*SCRIPTS, *MODEL_FILES, "ida.toml", "make_ida_records.py", "building3d.py",
-                            "rocking_block.py", "pushover_portal.py"))
+                            "rocking_block.py", "pushover_portal.py", "pushover_cyclic.py", "pushover_portal.toml"))
     for name in files:
         assert f"[{name}]({name})" in readme, f"{name} is not listed in examples/README.md"
         assert f"examples/{name}" in readme, f"examples/README.md gives no command for {name}"

@@ -97,7 +97,7 @@ def test_algebraic_tail_of_the_soil_weights_against_all_weights():
 
     from unilateral.rules import get_rule
     from unilateral.soil import HalfSpace, RectangularPatches, SoilFlexibility, strips
-    from unilateral.soil.foundation_model import TAIL_POWER
+    from unilateral.soil.flexibility import TAIL_POWER
 
     a = strips(10.0, 10.0, 3)
     patches = RectangularPatches(np.vstack([a.centres, a.centres + [15.0, 0.0]]), np.vstack([a.sizes, a.sizes]))

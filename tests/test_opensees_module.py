@@ -158,3 +158,11 @@ def test_scripts_differ_from_openseespy_only_in_the_import():
         a, b = source(script, "opensees"), source(script, "unilateral")
         diff = [(x, y) for x, y in zip(a.splitlines(), b.splitlines()) if x != y]
         assert diff == [(IMPORT, "import unilateral.opensees as ops")], script.name
+
+
+@needs_opensees
+def test_rigid_links_in_2d():
+    theirs, _ = assert_equal_histories("rigid_link_2d.py")
+    u5 = theirs["u5"].reshape(-1, 3)
+    assert np.isclose(np.abs(theirs["hinge"]).max(), 50.0)           # the base hinge yields
+    assert np.abs(u5[:, 2]).max() > 1e-4                              # the arm rotates with node 3

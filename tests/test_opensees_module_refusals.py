@@ -44,7 +44,7 @@ REFUSED_CALLS = [
     (lambda: ops.uniaxialMaterial('Steel02', 9, 400.0, 2e5, 0.01), "Steel02", "smooth"),
     (lambda: ops.uniaxialMaterial('Concrete02', 9, -30.0, -0.002, -6.0, -0.006), "Concrete02", "softening"),
     (lambda: ops.uniaxialMaterial('Hysteretic', 9, 1.0, 0.1), "Hysteretic"),
-    (lambda: ops.uniaxialMaterial('Steel01', 9, 400.0, 2e5, 0.01), "Steel01"),
+    (lambda: ops.uniaxialMaterial('Steel01', 9, 400.0, 2e5, 0.01, 0.05, 1.0, 0.0, 1.0), "Steel01", "isotropic"),
     (lambda: ops.uniaxialMaterial('MinMax', 9, 1), "MinMax", "ElasticPP"),
     (lambda: ops.uniaxialMaterial('Elastic', 9, 100.0, 0.0, 50.0), "Eneg", "ENT"),
     (lambda: ops.uniaxialMaterial('ElasticPPGap', 9, 100.0, -5.0, -0.01, 0.1), "ElasticPPGap", "hardening"),
@@ -67,7 +67,7 @@ REFUSED_CALLS = [
     (lambda: ops.pattern('UniformExcitation', 7, 3, '-accel', 1), "direction 3", "rotation"),
     (lambda: ops.integrator('HHT', 0.9), "HHT", "Newmark"),
     (lambda: ops.integrator('Newmark', 0.5, 0.1), "unconditionally stable"),
-    (lambda: ops.integrator('DisplacementControl', 3, 1, 0.01), "DisplacementControl"),
+    (lambda: ops.integrator('ArcLength', 1.0, 1.0), "ArcLength", "DisplacementControl"),
     (lambda: ops.integrator('LoadControl', 0.1, 1, 0.01, 0.2), "automatic load increment"),
     (lambda: ops.analysis('VariableTransient'), "VariableTransient"),
     (lambda: ops.reactions('-dynamic'), "-dynamic"),
@@ -75,11 +75,13 @@ REFUSED_CALLS = [
     (lambda: ops.section('Fiber', 1), "section()", "fibre"),
     (lambda: ops.fiber(0.0, 0.0, 0.01, 1), "fiber()"),
     (lambda: ops.patch('rect', 1, 4, 4, 0, 0, 1, 1), "patch()"),
-    (lambda: ops.recorder('Node', '-file', 'x.out', '-node', 3, '-dof', 1, 'disp'), "recorder()", "nodeDisp"),
+    (lambda: ops.recorder('Drift', '-file', 'x.out', '-iNode', 1, '-jNode', 3), "recorder('Drift')", "Node"),
     (lambda: ops.eigen(2), "eigen()"),
     (lambda: ops.sp(3, 1, 0.01), "sp()"),
     (lambda: ops.eleLoad('-ele', 3, '-type', '-beamUniform', -10.0), "eleLoad()", "nodal loads"),
-    (lambda: ops.rigidLink('beam', 3, 4), "rigidLink()"),
+    (lambda: ops.rigidLink('joint', 3, 4), "rigidLink('joint', 3, 4)", "'beam' or 'bar'"),
+    (lambda: ops.rigidDiaphragm(3, 3, 4), "rigidDiaphragm(3, 3, ...)", "perpDirn 3", "2-D"),
+    (lambda: ops.geomTransf('Linear', 8, 0.0, 0.0, 1.0), "geomTransf('Linear', 8) 0.0", "joint offsets"),
     (lambda: ops.beamIntegration('Lobatto', 1, 1, 5), "beamIntegration()"),
     (lambda: ops.analyze(10, 0.01, 0.001, 0.02, 10), "variable time steps"),
 ]
@@ -94,10 +96,10 @@ def test_refused_at_once_with_reason_and_alternative(call_and_words):
     refused(call, *words)
 
 
-def test_model_3d_and_other_dofs_are_refused():
+def test_models_without_rotations_are_refused():
     ops.wipe()
-    refused(lambda: ops.model('basic', '-ndm', 3, '-ndf', 6), "3-D", "Frame3D")
-    refused(lambda: ops.model('basic', '-ndm', 2, '-ndf', 2), "three DOFs")
+    refused(lambda: ops.model('basic', '-ndm', 3, '-ndf', 3), "rotations", "'-ndf', 6")
+    refused(lambda: ops.model('basic', '-ndm', 2, '-ndf', 2), "rotations", "'-ndf', 3")
     refused(lambda: ops.node(1, 0.0, 0.0), "no model")
 
 

@@ -4,8 +4,8 @@ analysis, equilibrium and the LCP conditions at every event, and the errors of b
 import numpy as np
 import pytest
 import yield_portal
-from pushover_frames import (HINGES, MP_BEAM, MP_COL, H, cantilever, independent_events, portal, rocking_block,
-                             sdof)
+from pushover_frames import (HINGES, I_COL, MP_BEAM, MP_COL, A, E, H, L, cantilever, independent_events, portal,
+                             rocking_block, sdof)
 
 import unilateral as ul
 from unilateral.pushover import PushoverResult, pushover
@@ -82,10 +82,14 @@ def test_portal_with_p_delta_softens_after_the_mechanism():
     r = pushover(st, st.nodal_load(2, ux=1.0), node=2, dof="ux", target=0.1, gravity=9.81)
     assert r.success and len(r.events) == 4
     slope = np.diff(r.load_factor)[-1] / np.diff(r.displacement)[-1]
-    # the consistent geometric stiffness of the columns, v = (0, 0, d, d/h) in the mechanism: N/h 34/30
-    # (to 1e-4: its moments at the joints also bend the columns a little more as the frame sways)
+    # the consistent geometric stiffness of the columns, v = (0, 0, d, d/h) in the mechanism: about
+    # N/h 34/30; exactly (closed form: tests/test_pushover_cyclic.py) with the joints' rotational terms
+    # and the beam's shortening
     N = sum(st.axial_forces[c] for c in ("c1", "c2"))
     assert slope == pytest.approx(N / H * 34 / 30, rel=1e-4)
+    beta = N / 2 * H * H / (90 * E * I_COL)
+    s = N / 2 * (33 + (1 + 3 * beta) / (1 + 4 * beta)) / (30 * H)
+    assert slope == pytest.approx(s + E * A / L * s / (E * A / L + s), rel=1e-9)
     assert r.load_factor[-1] < r.load_factor[-2]
     check_path(r)
     check_equilibrium(st, r)

@@ -14,7 +14,7 @@ import pytest
 
 import unilateral as ul
 from unilateral.loads import LoadHistory, Rectangular
-from unilateral.soil.foundation_model import facet_normals
+from unilateral.soil.flexibility import facet_normals
 from unilateral.methods.foundation_solve import primal_columns
 from unilateral.structure import Frame2D, Frame3D
 

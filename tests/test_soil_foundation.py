@@ -384,7 +384,7 @@ def test_a_coupled_cone_model_that_would_create_energy_is_refused_and_the_half_s
     """The admittance i omega Phi(i omega) of a soil must have a positive semidefinite Hermitian part
     (it absorbs energy); the coupled cones' does not, the rigorous half-space's does."""
     from unilateral.soil import HalfSpace, strips
-    from unilateral.soil.foundation_model import SoilFlexibility, _check_passive
+    from unilateral.soil.flexibility import SoilFlexibility, _check_passive
 
     patches = strips(10.0, 10.0, 2)
     with pytest.raises(ValueError, match=r"not passive: the Hermitian part of i omega Phi\(i omega\) has a negative eigenvalue \(-0\.\d+ of"):

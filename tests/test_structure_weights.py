@@ -15,7 +15,8 @@ from unilateral.linalg import dense
 from unilateral.march.direct import sweep_direct
 from unilateral.march.stepper import StructureStepper
 from unilateral.rules import get_rule
-from unilateral.soil.foundation_model import FoundationModel, SoilFlexibility
+from unilateral.soil.flexibility import SoilFlexibility
+from unilateral.soil.foundation_model import FoundationModel
 from unilateral.soil.structure_weights import structure_weights
 
 RULES = ("bdf1", "bdf2", "trapezoidal")

@@ -274,6 +274,25 @@ def _plot(results, target, formats):
     return paths, skipped, note
 
 
+@main.command()
+@click.argument("script", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+def opensees(script):
+    """Run an OpenSees script with this library's OpenSees commands (unilateral.opensees).
+
+    SCRIPT is a Tcl script (model.tcl, run by Python's Tcl interpreter) or an OpenSeesPy script
+    (model.py, its openseespy.opensees being unilateral.opensees). Files are read and written
+    relative to the current directory, as OpenSees does. A command outside the subset stops the
+    script with a message naming it, why and the nearest alternative (docs/opensees.md).
+    """
+    from .opensees import OpenSeesRefused
+    from .opensees.tcl import run_script
+
+    try:
+        run_script(script)
+    except (OpenSeesRefused, RuntimeError) as exc:
+        raise click.ClickException(str(exc)) from None
+
+
 @main.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True,
                                 "help_option_names": []})
 @click.pass_context
@@ -336,7 +355,7 @@ def _run(call, out, overrides, *, figures):
             figure_process.close()
         if bar is not None:
             bar.close()
-    report = _analysis().report(result)
+    report = result["report"] if "report" in result else _analysis().report(result)   # a pushover's own
     click.echo(report)
     click.echo(f"results in {out}/ ({time.perf_counter() - started:.2f} s)")
     if not result.get("success_all", True):

@@ -40,6 +40,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+from ..model import ConstantStrain
+
 #: Matrices with at most this many entries are multiplied dense (one BLAS call on the histories).
 DENSE_ENTRIES = 1 << 14
 
@@ -106,6 +108,9 @@ class EnergyBalance:
         order = np.concatenate([np.setdiff1d(np.arange(ne), unilateral), unilateral])
         A = sp.hstack([sp.csr_matrix(nat.G).T, -sp.csr_matrix(nat.B)]).tocsr()[order]
         E = sp.csr_matrix(nat.E)[order][:, order]
+        if not isinstance(nat.theta, ConstantStrain):
+            raise ValueError("energy balance: not available with support motions (the work of the moving "
+                             "supports is not in the balance)")
         theta = np.asarray(nat.theta(0.0), dtype=float)[order]
         zeros = sp.csr_matrix((n, m))
         rates = [sp.hstack([structure.M, zeros])]

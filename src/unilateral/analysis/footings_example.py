@@ -37,7 +37,8 @@ COLOURS = ("tab:blue", "tab:red", "tab:green", "tab:purple")
 
 def uncoupled(model, structure):
     """The same model with each footing on its own soil (no interaction through the ground)."""
-    from ..soil.foundation_model import FoundationModel, SoilFlexibility
+    from ..soil.flexibility import SoilFlexibility
+    from ..soil.foundation_model import FoundationModel
 
     soil = SoilFlexibility.block_diagonal([f.soil for f in structure.foundation.footings])
     return FoundationModel.on(model.structure, model.T, soil, gap=model.gap, contact_names=model.contact_names)

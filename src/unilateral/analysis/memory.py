@@ -145,6 +145,9 @@ def run(model, out=None, *, bilateral=False, figures=("png",), progress=None, ou
     from ..modelfile import ModelSpec, load_model_file
 
     spec = model if isinstance(model, ModelSpec) else load_model_file(Path(model))
+    if spec.analysis.get("type") == "pushover":
+        raise ValueError(f"{spec.source}: a [pushover] file is analysed by unilateral.analysis.run_model_file (or "
+                         "`unilateral run`), not in memory")
     if out is not None:                         # a folder that cannot be written fails before the solving
         from ..io.folder import OutputFolder
 

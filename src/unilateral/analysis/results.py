@@ -270,7 +270,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                 "interstorey drift ratio", "1")
         histories = {}
         if structure.m:
-            e, _ = structure.element_deformations(h.u, h.v)
+            e, _ = structure.element_deformations(h.u, h.v, h.t)
             histories = inelastic.histories(h, e)
             if foundation is not None:      # the footings' patches follow: their upward motion + gap
                 e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])

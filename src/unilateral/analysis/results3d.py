@@ -91,7 +91,7 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
                                     keys=energy_keys, unit=moment)
             peaks[case]["energy"] = energy_peaks(h.t, energy, energy_keys)
         if inelastic:                           # the frame's own unknowns (h: without the footings')
-            histories = inelastic.histories(h, structure.element_deformations(h.u, h.v)[0])
+            histories = inelastic.histories(h, structure.element_deformations(h.u, h.v, h.t)[0])
             for name, (dims, values, long_name, unit) in histories.items():
                 _put(variables, name, dims, case, values, long_name, unit)
             peaks[case] |= inelastic.peaks(h.t, h, histories, None if energy is None else energy["unknown_work"])

@@ -59,6 +59,11 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
 
     path = Path(path)
     spec = load_model_file(path)
+    if spec.analysis.get("type") == "pushover":     # [pushover]: unilateral.pushover.files
+        from ..pushover.files import run_file
+
+        return run_file(spec, Path(out) if out is not None else Path(path.stem), figures=figures,
+                        bilateral=bilateral, **overrides)
     job = model_file_job(spec, bilateral=bilateral, point=point, storeys=storeys, output=output, **overrides)
     return analyse(**job, out=Path(out) if out is not None else Path(path.stem), formats=figures,
                    progress=progress, figure_process=figure_process)

@@ -51,7 +51,7 @@ class CQ(Method):
             out["the FFT of the weights (2 x 8 (N+1) m^2 complex)"] = 256.0 * (N + 1) * m ** 2
             coupled = m
         else:                   # only the soil's: SOIL_FFT_POINTS (J+1) per entry (its diagonal if uncoupled)
-            from ..soil.foundation_model import SOIL_FFT_POINTS
+            from ..soil.flexibility import SOIL_FFT_POINTS
 
             memory = getattr(soil, "memory", None)
             J = N if memory is None else min(N, int(np.ceil(memory / disc.dt)) + 64)
@@ -82,9 +82,11 @@ class CQ(Method):
         def clcp(psiL, v_b):
             W = cq_weights(MatrixKernel(model), disc.N, disc.dt, disc.rule, **weight_options)
             run.timer.lap("weights")
-            return march_weights(W, psiL, v_b, disc, run, law=model.law, **march)
+            v, psi, log = march_weights(W, psiL, v_b, disc, run, law=model.law, **march)
+            run.stats["history_round_off"] = history_round_off(W, v, psi, model.law.rate)
+            return v, psi, log
 
-        return clcp_on_matrix_model(model, load, initial, disc, run, clcp)
+        return with_history_warning(clcp_on_matrix_model(model, load, initial, disc, run, clcp))
 
     def _solve_kernel(self, model, load, initial, disc, run):
         if load is not None:
@@ -141,5 +143,57 @@ class CQ(Method):
             psi_affine = psiL - np.cumsum(W, axis=0) @ v_b
         v, psi, log = march_weights(W, psi_affine, v_b, disc, run, law=model.law, **march)
         run.timer.lap("steps")
+        run.stats["history_round_off"] = history_round_off(W, v, psi, model.law.rate)
         K = v.shape[0] - 1
-        return finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi, psiL=model.law.rows(psiL[: K + 1]))
+        return with_history_warning(finish(model, run, log, t=disc.t[: K + 1], v=v, psi=psi,
+                                           psiL=model.law.rows(psiL[: K + 1])))
+
+
+#: Above this estimated relative round-off of the constraint functions a ``cq`` run warns
+#: (:func:`history_round_off`).
+HISTORY_ROUND_OFF_WARNING = 1e-6
+
+
+def history_round_off(W, v, psi, rate) -> float:
+    """An estimate of the relative round-off that the history sum of the rate unknowns (slips,
+    plastic multipliers) leaves in the constraint functions.
+
+    The history ``sum_j W_j v_{n-j}`` sums the cumulative multipliers: terms of size
+    ``|W_j| |v|`` (a stick spring ``kt`` times the slip), which must cancel down to forces of the
+    size of ``psi``. Each term carries a round-off ``eps |W_j| |v|``, so the estimate is
+    ``eps sum_{j>=1} max|W_j[:, rate]| max|v_rate| / max|psi|``. With the trapezoidal rule the
+    memory of an undamped stick spring does not decay (no numerical damping) and the sum grows
+    with the number of steps; BDF2 damps it within a few steps.
+
+    Parameters
+    ----------
+    W : (N+1, m, m) weights;  v, psi : (K+1, m) the march's unknowns and constraint functions
+    rate : (m,) bool, the rate unknowns
+
+    Returns
+    -------
+    float, 0 without rate unknowns or with no response
+    """
+    rate = np.asarray(rate, dtype=bool)
+    if not rate.any() or W.shape[0] < 2 or v.shape[0] < 2:
+        return 0.0
+    scale = float(np.abs(psi).max()) if psi.size else 0.0
+    reach = float(np.abs(v[:, rate] - v[0, rate]).max())
+    if scale == 0.0 or reach == 0.0:
+        return 0.0
+    terms = float(np.abs(W[1: v.shape[0], :, rate]).max(axis=(1, 2)).sum())
+    return float(np.finfo(float).eps * terms * reach / scale)
+
+
+def with_history_warning(sol):
+    """``sol`` with a warning when :func:`history_round_off` (in its stats) exceeds
+    :data:`HISTORY_ROUND_OFF_WARNING`."""
+    estimate = sol.stats.get("history_round_off", 0.0)
+    if sol.success and estimate > HISTORY_ROUND_OFF_WARNING:
+        warning = (f"the cq history of the slips and plastic multipliers carries terms |W_j| |v| whose round-off "
+                   f"may reach {estimate:.1e} of the largest constraint function (a stiff stick spring with "
+                   "the trapezoidal rule, whose memory does not decay); method='modal' or 'direct' solve the "
+                   "same discrete problem without the history sum (docs/theory.md, section 13)")
+        sol.stats.setdefault("warnings", []).append(warning)
+        sol.message = sol.message + ("; WARNING: " if "WARNING" not in sol.message else "; ") + warning
+    return sol

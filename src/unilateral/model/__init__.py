@@ -60,6 +60,12 @@ class NaturalForm:
     E_v: object = None
     theta_rate: object = None
 
+    def imposed_strains(self, t) -> np.ndarray:
+        """``theta`` at the times ``t`` (N,): (N, ne), or (ne,) when it is constant (broadcasts)."""
+        if isinstance(self.theta, ConstantStrain):
+            return self.theta.value
+        return np.array([self.theta(tk) for tk in np.atleast_1d(t)])
+
     def stresses(self, t, u, v, udot=None, vdot=None) -> np.ndarray:
         """Element stresses ``sigma = E eps + E_v eps'`` with ``eps = G^T u - B v - theta``.
 
@@ -72,11 +78,7 @@ class NaturalForm:
         sigma : (N, ne)
         """
         t = np.atleast_1d(t)
-        if isinstance(self.theta, ConstantStrain):
-            theta = self.theta.value
-        else:
-            theta = np.array([self.theta(tk) for tk in t])
-        eps = (self.G.T @ u.T).T - (self.B @ v.T).T - theta
+        eps = (self.G.T @ u.T).T - (self.B @ v.T).T - self.imposed_strains(t)
         sigma = (self.E @ eps.T).T
         if self.E_v is not None:
             if udot is None or vdot is None:
@@ -300,24 +302,14 @@ class Model:
         BtE = _dense_if_small(BtE)
         q_imposed = _load_of(GE, theta_f, theta_const)
         g = _offset_of(BtE, theta_f, theta_const, r)
-        F_v = H_v = None
-        C_total = C
         owned = {"K", "F", "H"}                 # computed here: handed to __init__ without a copy
+        kelvin = dict(C=C, F_v=None, H_v=None, q_imposed=q_imposed, g=g)
         if E_v is not None:
             owned |= {"C", "F_v", "H_v"}
-            GEv = G @ E_v
-            C_v = GEv @ G.T
-            C_total = C_v if C is None else V.as_matrix("C", C, (n, n)) + C_v
-            F_v = _dense_if_small(GEv @ B)
-            H_v = _dense(B.T @ E_v @ B)
-            if rate_f is not None:
-                BtEv = _dense_if_small(B.T @ E_v)
-                q_imposed = _sum(q_imposed, lambda t: np.asarray(GEv @ rate_f(t)).ravel())
-                g = _sum(g, lambda t: np.asarray(BtEv @ rate_f(t)).ravel())
+            kelvin = _kelvin_terms(G, B, E_v, rate_f, C=C, q_imposed=q_imposed, g=g)
         natural = NaturalForm(G=G, E=E, B=B, A=A, r=r, theta=theta_f, E_v=E_v, theta_rate=rate_f)
-        return cls(M=M, K=K, F=F, H=H, C=C_total, g=g, F_v=F_v, H_v=H_v, q_imposed=q_imposed,
-                   dof_names=dof_names, constraint_names=constraint_names, natural=natural,
-                   families=families, on_soil=on_soil, _owned=frozenset(owned))
+        return cls(M=M, K=K, F=F, H=H, **kelvin, dof_names=dof_names, constraint_names=constraint_names,
+                   natural=natural, families=families, on_soil=on_soil, _owned=frozenset(owned))
 
     def __repr__(self) -> str:
         kind = "sparse" if self.sparse else "dense"
@@ -361,6 +353,21 @@ def _offset_of(BtE, theta_f, constant, r):
         return np.asarray(BtE @ theta_f(0.0)).ravel() + r
     return lambda t: np.asarray(BtE @ theta_f(t)).ravel() + r
 
+
+
+def _kelvin_terms(G, B, E_v, rate_f, *, C, q_imposed, g) -> dict:
+    """The Kelvin elements' part of :meth:`Model.from_natural` (the correspondence ``E -> E + s E_v``):
+    ``C += G E_v G^T``, ``F_v = G E_v B``, ``H_v = B^T E_v B`` and, with imposed strains varying in
+    time, their rates in ``q_imposed`` and ``g``. Returns the keywords ``C, F_v, H_v, q_imposed, g``."""
+    n = G.shape[0]
+    GEv = G @ E_v
+    C_v = GEv @ G.T
+    C = C_v if C is None else V.as_matrix("C", C, (n, n)) + C_v
+    if rate_f is not None:
+        BtEv = _dense_if_small(B.T @ E_v)
+        q_imposed = _sum(q_imposed, lambda t: np.asarray(GEv @ rate_f(t)).ravel())
+        g = _sum(g, lambda t: np.asarray(BtEv @ rate_f(t)).ravel())
+    return dict(C=C, F_v=_dense_if_small(GEv @ B), H_v=_dense(B.T @ E_v @ B), q_imposed=q_imposed, g=g)
 
 def _sum(a, f):
     """Sum of a constant-or-callable and a callable, as a callable."""

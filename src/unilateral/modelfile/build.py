@@ -43,7 +43,8 @@ class ModelSpec:
     load : LoadHistory
         ``q(t) -> (n,)``, the total load in the model's force unit.
     analysis : dict
-        ``dt, t_end, method, rule, lcp, initial, bilateral_reference, title``.
+        ``type`` (``"transient"`` or ``"pushover"``: ``document.pushover``), ``dt, t_end, method, rule, lcp,
+        initial, bilateral_reference, p_delta, title``.
     units : dict
         ``length, force, time`` as declared and the derived ``mass``.
     figure : dict or None

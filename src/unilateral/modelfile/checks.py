@@ -28,6 +28,7 @@ from pydantic.fields import FieldInfo
 from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
 from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
                      translate, value_problem)
+from .pushover_table import pushover_problems
 from .recorders import recorder_problems
 from .schema import (DOFS_3D, FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Beam3D, Gap, Hinge, ModelFile,
                      Node, Node3D, Soil, YieldLink, iter_fields, model_class)
@@ -168,7 +169,7 @@ def check_document(document: ModelFile, folder: Path) -> None:
                 + _reference_problems(document, folder) + _record_problems(document)
                 + _foundation_problems(document) + _unilateral_problems(document)
                 + _link_problems(document) + _beam_load_problems(document) + _analysis_problems(document)
-                + _output_problems(document) + _diaphragm_problems(document))
+                + _output_problems(document) + _diaphragm_problems(document) + pushover_problems(document))
     if problems:
         raise Problems(problems)
 

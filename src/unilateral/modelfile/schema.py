@@ -24,17 +24,14 @@ from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchem
 from pydantic.fields import FieldInfo
 from pydantic_core import PydanticCustomError
 
-from .. import _LCP_NAMES as LCP_SOLVERS
-from .. import _RULE_NAMES as RULES
-from .. import _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES
+from .. import _LCP_NAMES as LCP_SOLVERS, _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES, _RULE_NAMES as RULES
+from .pushover_table import PushoverTable, needs_time_step
 from .recorders import OutputRecorders
 
 LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
-TIME_UNITS = {"s": 1.0, "ms": 1e-3}
-"""Time units and their factors to seconds."""
-MASS_UNITS = ("kg", "t", "Mg")
-"""Mass units of ``[units] mass``; without it masses are in force time^2 / length."""
+TIME_UNITS = {"s": 1.0, "ms": 1e-3}                       #: Time units and their factors to seconds.
+MASS_UNITS = ("kg", "t", "Mg")      #: Mass units of ``[units] mass``; without it masses are in force time^2 / length.
 
 
 class _Marker:
@@ -90,8 +87,7 @@ def _gravity(value):
 
 
 _NUMBER_SCHEMA = {"type": "number"}
-NodeId = Annotated[int | str, PlainValidator(_node_id),
-                   WithJsonSchema({"type": ["integer", "string"], "minLength": 1})]
+NodeId = Annotated[int | str, PlainValidator(_node_id), WithJsonSchema({"type": ["integer", "string"], "minLength": 1})]
 NodeRef = Annotated[NodeId, NODE_REF]
 FileRef = Annotated[str, Field(min_length=1), FILE_REF]
 DofRef = Annotated[int | str, PlainValidator(_dof_ref),
@@ -582,8 +578,10 @@ class Analysis(Table):
     """[analysis]: time stepping and solver settings."""
 
     EXAMPLE: ClassVar[str] = "[analysis] dt = 0.001, t_end = 1.0"
-    dt: Positive = Field(description="Time step [time].")
-    t_end: Positive = Field(description="End time [time].")
+    type: Literal["transient", "pushover"] = Field("transient", description='pushover: see [pushover].')
+    dt: Positive | None = Field(None, description='Time step [time] (type = "transient").')
+    t_end: Positive | None = Field(None, description='End time [time] (type = "transient").')
+    _time_step = model_validator(mode="after")(needs_time_step)
     method: Literal[MATRIX_METHOD_NAMES] = Field("auto", title="method")
     rule: Literal[tuple(RULES)] = Field("bdf2", title="rule")
     lcp: Literal[tuple(sorted(LCP_SOLVERS))] = Field("bpp", title="LCP solver")
@@ -735,6 +733,7 @@ class ModelFile(Table):
     site: Site | None = None
     analysis: Analysis
     output: Output = Output()
+    pushover: PushoverTable | None = None
 
     @model_validator(mode="after")
     def _one_way_to_give_footings(self):

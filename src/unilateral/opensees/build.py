@@ -20,14 +20,13 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..model import Model
-from ..structure import Frame2D
+from ..structure import Frame2D, Frame3D
 from .elements import BeamColumn, beam_stiffness
+from .elements3d import BeamColumn3D, beam_stiffness3d
 from .materials import DIRECTIONS
 from .refusals import OpenSeesRefused, refuse
 
 __all__ = ["Built", "build"]
-
-_DOFS = ("ux", "uy", "rz")
 
 
 @dataclass
@@ -42,7 +41,8 @@ class Built:
     row : dict node tag -> ``3 p``, its first row of ``P``
     mass : (3 nodes,) the lumped masses of the nodal DOFs
     beams : dict tag -> (rows (6,), K_e (6, 6), stiffness damping factor)
-    springs : dict tag -> list of (material, direction, element name, sign, strain index, damping factor)
+    springs : dict tag -> list of (material, direction, [(strain index, sign) of the elements read],
+        damping factor)
     ties : (n_structure, n) csr, the structure's DOFs ``T u`` of the reduced ``u`` (the equalDOF ties)
     """
 
@@ -54,6 +54,17 @@ class Built:
     beams: dict
     springs: dict
     ties: sp.csr_matrix = None
+    ndf: int = 3
+    stress: tuple = None
+
+    def stresses(self, u, v) -> np.ndarray:
+        """The element stresses (ne,) of the reduced ``u`` and ``v``, at the strains the queries read
+        (zero elsewhere)."""
+        rows, S_u, S_v, s0, ne = self.stress
+        sigma = np.zeros(ne)
+        if rows.size:
+            sigma[rows] = S_u @ u - S_v @ v - s0
+        return sigma
 
     def nodal(self, u) -> np.ndarray:
         """The nodal DOFs (3 nodes,) of the reduced ``u``."""
@@ -83,24 +94,19 @@ def build(domain) -> Built:
     """
     if not domain.nodes:
         refuse("analyze", "the model has no nodes", "define nodes and elements first")
-    fr = Frame2D()
-    for tag, (x, y) in domain.nodes.items():
-        fr.node(tag, x, y)
-    for tag, flags in domain.fixes.items():
-        if any(flags):
-            fr.support(tag, ux=bool(flags[0]), uy=bool(flags[1]), rz=bool(flags[2]))
-    for tag, (_, _, J) in domain.masses.items():
-        if J > 0:
-            fr.mass(tag, 0.0, J=J)                       # (a rotational mass makes rz a DOF)
-    names = _add_elements(fr, domain)
+    nf = domain.ndf
     try:
+        fr = _frame(domain)
+        names = _add_elements(fr, domain)
         st = fr.build()
-    except ValueError as exc:
+    except (ValueError, TypeError) as exc:
+        if isinstance(exc, OpenSeesRefused):
+            raise
         raise OpenSeesRefused("analyze", f"the model cannot be built: {exc}",
                               "give every free DOF a stiffness (an element, a fix or an equalDOF)") from None
     T, reduced_names = _ties(domain, st)
     P = (st.dofs.T @ T).tocsr()
-    row = {tag: 3 * p for p, tag in enumerate(st.dofs.nodes)}
+    row = {tag: nf * p for p, tag in enumerate(st.dofs.nodes)}
     mass, alpha_mass = _masses(domain, row)
     factors = domain.damping[0] if domain.damping else (0.0, 0.0, 0.0, 0.0)
     beta = factors[1] + factors[2] + factors[3]
@@ -114,19 +120,69 @@ def build(domain) -> Built:
     model = Model.from_natural((T.T @ nat.G).tocsr(), nat.E, nat.B, M=M, A=A, r=nat.r, theta=nat.theta(0.0),
                                C=sp.csr_matrix(C) if C.nnz else None, E_v=nat.E_v, dof_names=reduced_names,
                                constraint_names=list(st.constraint_names), families=st.families())
-    return Built(st, model, P, row, mass, beams, springs, T)
+    return Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs))
+
+
+def _stress_rows(st, T, springs):
+    """``(rows, S_u, S_v, s0, ne)``: ``sigma[rows] = S_u u - S_v v - s0`` (``E (G^T T u - B v - theta)``)
+    at the strains the queries of the zeroLength elements read."""
+    nat = st.natural
+    rows = np.array(sorted({strain for table in springs.values() for *_, reads, _ in table
+                            for strain, _ in reads}), dtype=np.int64)
+    E = sp.csr_matrix(nat.E)[rows]
+    theta = np.asarray(nat.theta(0.0), dtype=float)
+    S_u = (E @ sp.csr_matrix(nat.G).T @ T).tocsr()
+    S_v = sp.csr_matrix(E @ sp.csr_matrix(nat.B))
+    return rows, S_u, S_v, np.asarray(E @ theta).ravel(), sp.csr_matrix(nat.E).shape[0]
+
+
+def _frame(domain):
+    """The Frame2D or Frame3D of the nodes, supports, rotary masses and rigid links and diaphragms."""
+    if domain.ndm == 2:
+        fr = Frame2D()
+        for tag, (x, y) in domain.nodes.items():
+            fr.node(tag, x, y)
+        for tag, flags in domain.fixes.items():
+            if any(flags):
+                fr.support(tag, ux=bool(flags[0]), uy=bool(flags[1]), rz=bool(flags[2]))
+        for tag, (_, _, J) in domain.masses.items():
+            if J > 0:
+                fr.mass(tag, 0.0, J=J)                   # (a rotational mass makes rz a DOF)
+        for kind, master, slaves in domain.rigid:
+            fr.rigid_link(master, slaves[0])
+        return fr
+    fr = Frame3D()
+    for tag, (x, y, z) in domain.nodes.items():
+        fr.node(tag, x, y, z)
+    for kind, master, slaves in domain.rigid:
+        if kind == "link":
+            fr.rigid_link(master, slaves[0])
+        else:
+            fr.rigid_diaphragm(master, slaves)
+    for tag, flags in domain.fixes.items():
+        if any(flags):
+            fr.support(tag, **{d: bool(f) for d, f in zip(("ux", "uy", "uz", "rx", "ry", "rz"), flags)})
+    for tag, values in domain.masses.items():
+        if any(values[3:]):
+            fr.mass(tag, 0.0, Jx=values[3], Jy=values[4], Jz=values[5])
+    return fr
 
 
 def _add_elements(fr, domain) -> dict:
-    """Add every element to ``fr``; ``{(tag, k): (name, sign)}`` of the zeroLength materials."""
+    """Add every element to ``fr``; ``{(tag, k): [(element name, sign), ...]}`` of the zeroLength materials."""
     names = {}
+    dofs = DIRECTIONS[domain.ndf]
     for tag, e in domain.elements.items():
         if isinstance(e, BeamColumn):
             fr.beam(f"e{tag}", e.i, e.j, E=e.E, A=e.A, I=e.I)
             continue
+        if isinstance(e, BeamColumn3D):
+            fr.beam(f"e{tag}", e.i, e.j, E=e.E, A=e.A, Iy=e.Iy, Iz=e.Iz, G=e.G, J=e.J,
+                    vecxz=domain.transforms[e.transf][1])
+            continue
         for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
             name = f"e{tag}.{k}"
-            names[(tag, k)] = (name, domain.materials[mat].add(fr, name, e.i, e.j, direction))
+            names[(tag, k)] = domain.materials[mat].add(fr, name, e.i, e.j, dofs[direction])
     return names
 
 
@@ -141,12 +197,14 @@ def _ties(domain, st):
             x = parent[x]
         return x
 
+    names = DIRECTIONS[domain.ndf]
     for master, slave, dofs in domain.ties:
         for d in dofs:
-            a, b = find((master, _DOFS[d - 1])), find((slave, _DOFS[d - 1]))
+            a, b = find((master, names[d])), find((slave, names[d]))
             if a != b:
                 parent[b] = a
-    fixed = {find((tag, _DOFS[d])) for tag, flags in domain.fixes.items() for d in range(3) if flags[d]}
+    fixed = {find((tag, names[d + 1])) for tag, flags in domain.fixes.items() for d in range(domain.ndf)
+             if flags[d]}
     groups, rows, cols = {}, [], []
     for k, dof in enumerate(free):
         root = find(dof)
@@ -167,13 +225,14 @@ def _ties(domain, st):
 
 def _masses(domain, row):
     """The lumped masses of the nodal DOFs and those of them Rayleigh's ``alphaM`` acts on."""
-    n = 3 * len(row)
+    nf = domain.ndf
+    n = nf * len(row)
     mass, damped = np.zeros(n), np.zeros(n)
     nodes, elements = (domain.damping[1], domain.damping[2]) if domain.damping else ((), ())
     for tag, values in domain.masses.items():
-        mass[row[tag]:row[tag] + 3] += values
+        mass[row[tag]:row[tag] + nf] += values
         if tag in nodes:
-            damped[row[tag]:row[tag] + 3] += values
+            damped[row[tag]:row[tag] + nf] += values
     for tag, e in domain.elements.items():
         if isinstance(e, BeamColumn) and e.mass:
             L = float(np.hypot(*np.subtract(domain.nodes[e.j], domain.nodes[e.i])))
@@ -192,31 +251,30 @@ def _element_tables(domain, st, row, names, beta):
         starts[e.name] = at
         at += e.E.shape[0]
     in_set = domain.damping[2] if domain.damping else frozenset()
-    n = 3 * len(row)
+    nf = domain.ndf
+    n = nf * len(row)
     K = sp.lil_matrix((n, n))
     beams, springs = {}, {}
     for tag, e in domain.elements.items():
         factor = beta if tag in in_set else 0.0
-        if isinstance(e, BeamColumn):
-            rows = np.r_[row[e.i]:row[e.i] + 3, row[e.j]:row[e.j] + 3]
-            Ke = beam_stiffness(domain.nodes[e.i], domain.nodes[e.j], e.A, e.E, e.I)
+        if isinstance(e, (BeamColumn, BeamColumn3D)):
+            rows = np.r_[row[e.i]:row[e.i] + nf, row[e.j]:row[e.j] + nf]
+            if isinstance(e, BeamColumn):
+                Ke = beam_stiffness(domain.nodes[e.i], domain.nodes[e.j], e.A, e.E, e.I)
+            else:
+                Ke = beam_stiffness3d(domain, e)[0]
             beams[tag] = (rows, Ke, factor)
             if factor:
                 K[np.ix_(rows, rows)] += factor * Ke
             continue
         table = []
         for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
-            name, sign = names[(tag, k)]
             material = domain.materials[mat]
             damp = factor if e.rayleigh else 0.0
-            table.append((material, direction, name, sign, starts[name], damp))
+            table.append((material, direction, [(starts[name], sign) for name, sign in names[(tag, k)]], damp))
             if damp:
                 ri, rj = row[e.i] + direction - 1, row[e.j] + direction - 1
                 K[np.ix_([ri, rj], [ri, rj])] += damp * material.E * np.array([[1.0, -1.0], [-1.0, 1.0]])
         springs[tag] = table
     return beams, springs, K.tocsr()
 
-
-def dof_name(direction) -> str:
-    """The DOF name of an OpenSees direction (1, 2, 3)."""
-    return DIRECTIONS[direction]

@@ -6,9 +6,17 @@ from __future__ import annotations
 from .stepping import Analysis
 from .domain import Domain
 from .queries import element_force, element_response, nodal, nodal_reactions
+from .recorders import parse_recorder
 from .refusals import NOT_NEEDED, refuse
 
 __all__ = ["Session"]
+
+_DOMAIN_COMMANDS = ("model", "node", "fix", "mass", "equalDOF", "rigidLink", "rigidDiaphragm",
+                    "geomTransf", "uniaxialMaterial", "element",
+                    "timeSeries", "pattern", "load", "rayleigh", "loadConst", "setTime", "getTime")
+_SESSION_COMMANDS = ("wipe", "integrator", "analyze", "wipeAnalysis", "nodeDisp", "nodeVel", "nodeAccel",
+                     "nodeCoord", "getNodeTags", "getEleTags", "eleForce", "eleResponse", "reactions",
+                     "nodeReaction", "recorder", "record", "remove")
 
 
 class Session:
@@ -19,14 +27,56 @@ class Session:
         self.analysis = Analysis(self.domain)
         self.reactions_ = {}
         self.settings = {}
+        self.recorders = {}
+        self.analysis.on_commit = self._record
+
+    # ------------------------------------------------------------------ the command table
+    def commands(self) -> dict:
+        """``{OpenSees command name: callable}`` of this session (the module's and Tcl's commands)."""
+        table = {name: getattr(self.domain, name) for name in _DOMAIN_COMMANDS}
+        table.update({name: getattr(self, name) for name in _SESSION_COMMANDS})
+        table.update({name: self.accepted(name) for name in NOT_NEEDED})
+        table["analysis"] = self.analysis_
+        return table
 
     # ------------------------------------------------------------------ whole session
     def wipe(self):
         """``wipe()``: remove the model, the loads, the state and the analysis."""
+        self.remove("recorders")
         self.domain.__init__()
         self.analysis.wipe()
         self.reactions_ = {}
         self.settings = {}
+
+    # ------------------------------------------------------------------ recorders
+    def recorder(self, kind, *args):
+        """``recorder('Node' | 'Element', '-file', name, ...)``: its tag (see :mod:`.recorders`)."""
+        tag = max(self.recorders, default=-1) + 1
+        self.recorders[tag] = parse_recorder(kind, args, self.domain)
+        return tag
+
+    def _record(self, t):
+        for rec in self.recorders.values():
+            rec.record(self, t)
+
+    def record(self):
+        """``record()``: every recorder records the current state."""
+        self._record(self.domain.time)
+
+    def remove(self, what, *args):
+        """``remove('recorders')``, ``remove('recorder', tag)``, ``remove('loadPattern', tag)``."""
+        if what == "recorders":
+            for rec in self.recorders.values():
+                rec.close()
+            self.recorders = {}
+        elif what == "recorder" and args and int(args[0]) in self.recorders:
+            self.recorders.pop(int(args[0])).close()
+        elif what in ("loadPattern", "pattern") and args and int(args[0]) in self.domain.patterns:
+            self.domain.patterns.pop(int(args[0]))
+            self.domain.load_version += 1
+        else:
+            refuse(f"remove({what!r}, {', '.join(map(repr, args))})", "only recorders and defined load patterns "
+                   "can be removed here", "remove('recorders'), remove('recorder', tag), remove('loadPattern', tag)")
 
     def wipeAnalysis(self):
         """``wipeAnalysis()``: remove the analysis settings; the model and its state stay."""

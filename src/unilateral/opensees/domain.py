@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .composites import COMPOSITES, parse_composite
 from .elements import parse_element
 from .materials import parse_material
 from .refusals import refuse
@@ -30,7 +31,7 @@ class Domain:
 
     def __init__(self):
         self.ndm = self.ndf = None
-        self.nodes, self.fixes, self.masses, self.ties = {}, {}, {}, []
+        self.nodes, self.fixes, self.masses, self.ties, self.rigid = {}, {}, {}, [], []
         self.transforms, self.materials, self.elements = {}, {}, {}
         self.series, self.patterns, self.current = {}, {}, None
         self.damping = None
@@ -56,12 +57,9 @@ class Domain:
         opts = dict(zip(args[0::2], args[1::2]))
         ndm = int(opts.get("-ndm", 0))
         ndf = int(opts.get("-ndf", 3 if ndm == 2 else 6))
-        if ndm == 3:
-            refuse(what, "3-D models are not in this slice of unilateral.opensees",
-                   "a 2-D model ('-ndm', 2, '-ndf', 3), or unilateral.structure.Frame3D directly")
-        if ndm != 2 or ndf != 3:
-            refuse(what, "only plane frames with three DOFs per node (ux, uy, rz) are in this slice",
-                   "model('basic', '-ndm', 2, '-ndf', 3)")
+        if (ndm, ndf) not in ((2, 3), (3, 6)):
+            refuse(what, "only frames with rotations are in the subset: plane (ux, uy, rz) or space (ux, uy, uz, "
+                   "rx, ry, rz)", "model('basic', '-ndm', 2, '-ndf', 3) or model('basic', '-ndm', 3, '-ndf', 6)")
         self.ndm, self.ndf = ndm, ndf
         self._changed()
 
@@ -72,14 +70,16 @@ class Domain:
         tag = _tag(what, tag)
         if tag in self.nodes:
             refuse(what, f"node {tag} is already defined", "a new tag")
-        coords = [a for a in args[:2]]
-        if len(coords) != 2 or any(isinstance(c, str) for c in coords):
-            refuse(what, "a 2-D node needs x and y", "node(tag, x, y)")
-        rest = list(args[2:])
-        self.nodes[tag] = (float(coords[0]), float(coords[1]))
+        nd, nf = self.ndm, self.ndf
+        coords = [a for a in args[:nd]]
+        if len(coords) != nd or any(isinstance(c, str) for c in coords):
+            refuse(what, f"a node of a {nd}-D model needs {nd} coordinates", f"node(tag, {', '.join('xyz'[:nd])})")
+        rest = list(args[nd:])
+        self.nodes[tag] = tuple(float(c) for c in coords)
         if rest:
-            if rest[0] != "-mass" or len(rest) != 4:
-                refuse(f"{what} {rest[0]!r}", "the option is not in the subset", "node(tag, x, y, '-mass', mx, my, mz)")
+            if rest[0] != "-mass" or len(rest) != 1 + nf:
+                refuse(f"{what} {rest[0]!r}", "the option is not in the subset",
+                       f"node(tag, {', '.join('xyz'[:nd])}, '-mass', {nf} masses)")
             self.mass(tag, *rest[1:])
         self._changed()
 
@@ -89,9 +89,10 @@ class Domain:
         tag = _tag(what, tag)
         if tag not in self.nodes:
             refuse(what, f"node {tag} is not defined", "define the node first")
-        if len(flags) != 3 or any(f not in (0, 1) for f in flags):
-            refuse(what, f"the flags {flags!r} must be three 0 or 1", "fix(tag, 1, 1, 1)")
-        old = self.fixes.get(tag, (0, 0, 0))
+        self._need_model(what)
+        if len(flags) != self.ndf or any(f not in (0, 1) for f in flags):
+            refuse(what, f"the flags {flags!r} must be {self.ndf} 0 or 1", f"fix(tag, {', '.join(['1'] * self.ndf)})")
+        old = self.fixes.get(tag, (0,) * self.ndf)
         self.fixes[tag] = tuple(int(a or b) for a, b in zip(old, flags))
         self._changed()
 
@@ -101,8 +102,9 @@ class Domain:
         tag = _tag(what, tag)
         if tag not in self.nodes:
             refuse(what, f"node {tag} is not defined", "define the node first")
-        if len(values) != 3:
-            refuse(what, f"{len(values)} values; a 2-D node has 3 DOFs", "mass(tag, mx, my, mz)")
+        self._need_model(what)
+        if len(values) != self.ndf:
+            refuse(what, f"{len(values)} values; a node has {self.ndf} DOFs", f"mass(tag, {self.ndf} values)")
         values = tuple(float(v) for v in values)
         if min(values) < 0:
             refuse(what, f"negative mass {values}", "masses >= 0")
@@ -116,35 +118,77 @@ class Domain:
         for node in (master, slave):
             if node not in self.nodes:
                 refuse(what, f"node {node} is not defined", "define the nodes first")
-        if master == slave or not dofs or any(d not in (1, 2, 3) for d in dofs):
-            refuse(what, f"the DOFs {dofs!r} must be among 1, 2, 3 of two different nodes", "equalDOF(r, c, 1, 2)")
+        if master == slave or not dofs or any(d not in range(1, self.ndf + 1) for d in dofs):
+            refuse(what, f"the DOFs {dofs!r} must be among 1..{self.ndf} of two different nodes", "equalDOF(r, c, 1, 2)")
         self.ties.append((master, slave, tuple(int(d) for d in dofs)))
         self._changed()
 
+    def rigidLink(self, kind, master, slave):
+        """``rigidLink('beam' | 'bar', rNode, cNode)``: ``beam`` moves ``cNode`` with ``rNode`` as a rigid
+        body (all DOFs); ``bar`` makes their translations equal (an equalDOF of the translations)."""
+        what = f"rigidLink({kind!r}, {master!r}, {slave!r})"
+        self._need_model(what)
+        master, slave = _tag(what, master), _tag(what, slave)
+        for node in (master, slave):
+            if node not in self.nodes:
+                refuse(what, f"node {node} is not defined", "define the nodes first")
+        if kind == "bar":
+            self.equalDOF(master, slave, *range(1, self.ndm + 1))
+            return
+        if kind != "beam":
+            refuse(what, f"the kind {kind!r} is not 'beam' or 'bar'", "rigidLink('beam', r, c)")
+        self.rigid.append(("link", master, (slave,)))
+        self._changed()
+
+    def rigidDiaphragm(self, perp, master, *slaves):
+        """``rigidDiaphragm(3, rNode, *cNodes)``: a rigid floor in the plane z = z of ``rNode``."""
+        what = f"rigidDiaphragm({perp!r}, {master!r}, ...)"
+        self._need_model(what)
+        if self.ndm != 3 or perp != 3:
+            refuse(what, "only floors perpendicular to z (perpDirn 3) of a 3-D model are in the subset",
+                   "rigidDiaphragm(3, ...) in model('basic', '-ndm', 3, '-ndf', 6); equalDOF in 2-D")
+        tags = [_tag(what, t) for t in (master, *slaves)]
+        for node in tags:
+            if node not in self.nodes:
+                refuse(what, f"node {node} is not defined", "define the nodes first")
+        self.rigid.append(("diaphragm", tags[0], tuple(tags[1:])))
+        self._changed()
+
     def geomTransf(self, kind, tag, *args):
-        """``geomTransf('Linear', tag)``; ``PDelta`` and ``Corotational`` are refused."""
+        """``geomTransf('Linear', tag)`` (3-D: ``tag, vecxz_x, vecxz_y, vecxz_z``); ``PDelta`` and
+        ``Corotational`` are refused."""
         what = f"geomTransf({kind!r}, {tag!r})"
+        self._need_model(what)
         if kind == "PDelta":
-            refuse(what, "OpenSees's P-Delta geometric stiffness follows the current axial force of each "
-                   "element (it changes with the response, e.g. under overturning), while the model here is "
-                   "linear: its P-Delta (Frame2D.p_delta) is the consistent geometric stiffness of the constant "
-                   "axial forces of gravity, not the same equations", "geomTransf('Linear', tag), or build the "
-                   "frame with unilateral.structure.Frame2D and use Frame2D.p_delta")
+            refuse(what, "OpenSees's P-Delta adds to each element the string stiffness N/L of its current axial "
+                   "force N, which follows the response (overturning changes it; OpenSees iterates on it), while "
+                   "the structure here is linear: its P-Delta (Frame2D.p_delta) is the consistent geometric "
+                   "stiffness (6/5 N/L, N L/10, ...) of the constant axial forces of gravity, other equations even "
+                   "where N stays the gravity's", "geomTransf('Linear', tag), or build the frame with "
+                   "unilateral.structure.Frame2D and use Frame2D.p_delta")
         if kind == "Corotational":
             refuse(what, "large rotations (corotational kinematics) make the structure geometrically nonlinear; "
                    "the method needs a linear structure", "geomTransf('Linear', tag)")
         if kind != "Linear":
             refuse(what, "only the Linear transformation is in this slice", "geomTransf('Linear', tag)")
+        vecxz = None
+        if self.ndm == 3:
+            if len(args) < 3 or any(isinstance(a, str) for a in args[:3]):
+                refuse(what, "a 3-D transformation needs its vecxz", "geomTransf('Linear', tag, vx, vy, vz)")
+            vecxz, args = tuple(float(a) for a in args[:3]), args[3:]
         if args:
-            refuse(f"{what} {args[0]!r}", "joint offsets (rigid end zones) are not in this slice",
-                   "geomTransf('Linear', tag) and model the offset by a stiff beam")
-        self.transforms[_tag(what, tag)] = kind
+            refuse(f"{what} {args[0]!r}", "joint offsets (rigid end zones) are not in the subset",
+                   "geomTransf('Linear', tag) and a rigidLink('beam', ...) for an offset")
+        self.transforms[_tag(what, tag)] = (kind, vecxz)
 
     def uniaxialMaterial(self, kind, tag, *args):
         """``uniaxialMaterial(kind, tag, ...)``: Elastic, ENT, ElasticPP, ElasticPPGap."""
         what = f"uniaxialMaterial({kind!r}, {tag!r})"
         tag = _tag(what, tag)
-        self.materials[tag] = parse_material(kind, args)
+        if kind in COMPOSITES:
+            self.materials[tag] = parse_composite(kind, args, self.materials)
+        else:
+            self.materials[tag] = parse_material(kind, args)
 
     def element(self, kind, tag, *args):
         """``element(kind, tag, ...)``: elasticBeamColumn, zeroLength."""
@@ -169,7 +213,11 @@ class Domain:
         tag = _tag(what, tag)
         if tag in self.patterns:
             refuse(what, f"pattern {tag} is already defined", "a new tag")
-        self.patterns[tag] = parse_pattern(kind, args, self.series)
+        pattern = parse_pattern(kind, args, self.series)
+        if pattern.direction is not None and pattern.direction > self.ndm:
+            refuse(f"{what} direction {pattern.direction}", "a ground rotation is not a rigid ground translation",
+                   f"a direction 1..{self.ndm}")
+        self.patterns[tag] = pattern
         self.current = tag
         self._changed(loads=True)
 
@@ -181,8 +229,8 @@ class Domain:
             refuse(what, "nodal loads belong to a Plain pattern", "pattern('Plain', tag, tsTag) before load()")
         if tag not in self.nodes:
             refuse(what, f"node {tag} is not defined", "define the node first")
-        if len(values) != 3 or any(isinstance(v, str) for v in values):
-            refuse(what, f"{values!r}: a 2-D node takes (Fx, Fy, Mz)", "load(node, Fx, Fy, Mz)")
+        if len(values) != self.ndf or any(isinstance(v, str) for v in values):
+            refuse(what, f"{values!r}: a node takes {self.ndf} values", f"load(node, {self.ndf} values)")
         self.patterns[self.current].loads.append((tag, np.array([float(v) for v in values])))
         self._changed(loads=True)
 

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .elements3d import parse_beam3d
 from .refusals import refuse
 
 __all__ = ["BeamColumn", "ZeroLength", "parse_element", "beam_stiffness"]
@@ -94,6 +95,8 @@ def _nodes(what, args, domain):
 
 def _beam(what, args, domain):
     i, j = _nodes(what, args, domain)
+    if domain.ndm == 3:
+        return parse_beam3d(what, i, j, args[2:], domain)
     numbers = [a for a in args[2:] if not isinstance(a, str)]
     flags = [a for a in args[2:] if isinstance(a, str)]
     if len(numbers) < 4 or (numbers and isinstance(args[2], str)):
@@ -143,7 +146,7 @@ def _zero_length(what, args, domain):
             vals = []
             while rest and not isinstance(rest[0], str):
                 vals.append(float(rest.pop(0)))
-            if len(vals) != 6 or not np.allclose(vals, [1, 0, 0, 0, 1, 0]):
+            if len(vals) not in (3, 6) or not np.allclose(vals, [1, 0, 0, 0, 1, 0][:len(vals)]):
                 refuse(f"{what} -orient {vals}", "a rotated zeroLength is not in this slice",
                        "the default orientation (local x = global X) or '-orient', 1, 0, 0, 0, 1, 0")
         else:
@@ -153,8 +156,9 @@ def _zero_length(what, args, domain):
     for m, d in zip(mats, dirs):
         if m not in domain.materials:
             refuse(what, f"uniaxialMaterial {m} is not defined", "define the material first")
-        if d not in (1, 2, 3):
-            refuse(f"{what} -dir {d}", "a 2-D node with 3 DOFs has the directions 1, 2, 3", "-dir 1, 2 or 3")
+        if d not in range(1, domain.ndf + 1):
+            refuse(f"{what} -dir {d}", f"a node with {domain.ndf} DOFs has the directions 1..{domain.ndf}",
+                   f"-dir 1..{domain.ndf}")
         if rayleigh and domain.materials[m].kind != "Elastic":
             refuse(f"{what} -doRayleigh 1 with {domain.materials[m].kind}", "stiffness-proportional damping of "
                    "a contact or yield spring would act across an open contact or a plastic slip (its tangent "

@@ -17,13 +17,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..structure import Frame3D
 from ..structure import elements as el
 from .refusals import REFUSED_MATERIALS, refuse
 
 __all__ = ["Material", "parse_material", "DIRECTIONS"]
 
-#: The ``-dir`` of a 2-D zeroLength element and the DOF it acts on.
-DIRECTIONS = {1: "ux", 2: "uy", 3: "rz"}
+#: The ``-dir`` of a zeroLength element and the DOF it acts on, by the number of DOFs per node.
+DIRECTIONS = {3: {1: "ux", 2: "uy", 3: "rz"}, 6: {1: "ux", 2: "uy", 3: "uz", 4: "rx", 5: "ry", 6: "rz"}}
 
 
 @dataclass
@@ -39,6 +40,8 @@ class Material:
         force of an ``ElasticPPGap``
     gap : float, the signed gap of an ``ElasticPPGap``
     eps0 : float, the initial strain of an ``ElasticPP``
+    parts : tuple of Material, the laws in parallel of a composite (``Steel01``, ``Hardening``,
+        ``ElasticBilin``, ``Parallel``); empty for an elementary law
     """
 
     kind: str
@@ -47,9 +50,10 @@ class Material:
     Fy: object = None
     gap: float = 0.0
     eps0: float = 0.0
+    parts: tuple = ()
 
     # ------------------------------------------------------------------ into the frame
-    def add(self, fr, name, i, j, direction) -> int:
+    def add(self, fr, name, i, j, dof) -> list:
         """Add the element(s) of this material to a frame.
 
         Parameters
@@ -57,56 +61,71 @@ class Material:
         fr : Frame2D
         name : str, the element's name
         i, j : node tags (the zeroLength's nodes)
-        direction : int, 1, 2 or 3 (``ux``, ``uy``, ``rz``)
+        dof : str, the DOF name of the direction (``ux``, ``uy``, ``rz``, ...)
 
         Returns
         -------
-        int
-            The sign (+1 or -1) that makes the element's stress OpenSees's force.
+        list of (str, int)
+            The elements whose stress is read (none for an ``Elastic``) and the sign (+1 or -1) that
+            makes each stress OpenSees's force.
         """
-        dof = DIRECTIONS[direction]
+        if self.parts:
+            return [read for k, part in enumerate(self.parts) for read in part.add(fr, f"{name}.{k}", i, j, dof)]
         if self.kind == "Elastic":
             fr.spring(name, i, self.E, j=j, direction=dof)
             if self.eta:
                 fr.dashpot(f"{name}.eta", i, self.eta, j=j, direction=dof)
-            return 1
+            return []
         if self.kind == "ENT":
             fr.gap(name, i, j, self.E, gap=0.0, direction=dof)
-            return 1
+            return [(name, 1)]
         if self.kind == "ElasticPPGap":
             if self.Fy < 0:                   # compression gap: contact once e <= gap
                 fr.gap(name, i, j, self.E, gap=-self.gap, direction=dof)
-                return 1
+                return [(name, 1)]
             fr.gap(name, j, i, self.E, gap=self.gap, direction=dof)    # tension gap: on -e
-            return -1
+            return [(name, -1)]
         Fy_t, Fy_c = self.Fy
         if not self.eps0:
             fr.yield_link(name, i, j, k=self.E, Fy_t=Fy_t, Fy_c=Fy_c, direction=dof)
-            return 1
+            return [(name, 1)]
         # an imposed strain eps0: the element of yield_link with theta = eps0
+        if isinstance(fr, Frame3D):
+            refuse("uniaxialMaterial('ElasticPP') with eps0 in a 3-D model", "an imposed strain of a 3-D yield "
+                   "link is not in the subset", "eps0 = 0 (the default)")
         where = fr._label("yield_link", name)
         fr._two_nodes(where, i, j)
         terms = el.direction_terms(where, dof)
         fr._add(el.directional(name, "yield", i, j, terms, self.E, theta=self.eps0,
                                unknowns=el.pair(name, 0, "yield", r=(Fy_t, Fy_c), k=self.E)))
-        return 1
+        return [(name, 1)]
 
-    def force(self, e, edot, sigma, sign) -> float:
+    def force(self, e, edot, forces) -> float:
         """OpenSees's force of the material.
 
         Parameters
         ----------
         e, edot : float, the deformation ``u_j - u_i`` and its rate
-        sigma : float, the stress of the element built
-        sign : int, as returned by :meth:`add`
+        forces : list of float, the signed stresses of the elements :meth:`add` returned, in order
 
         Returns
         -------
         float, tension positive
         """
+        if self.parts:
+            total, at = 0.0, 0
+            for part in self.parts:
+                n = part.reads()
+                total += part.force(e, edot, forces[at:at + n])
+                at += n
+            return total
         if self.kind == "Elastic":
             return self.E * e + self.eta * edot
-        return sign * sigma
+        return forces[0]
+
+    def reads(self) -> int:
+        """The number of element stresses :meth:`force` reads."""
+        return sum(part.reads() for part in self.parts) if self.parts else int(self.kind != "Elastic")
 
 
 def _number(what, name, value, bound=None):
@@ -138,10 +157,12 @@ def parse_material(kind, args) -> Material:
     """
     what = f"uniaxialMaterial({kind!r})"
     if kind in REFUSED_MATERIALS:
-        refuse(what, REFUSED_MATERIALS[kind], "ElasticPP (elastic-perfectly plastic), ENT (compression-only "
-               "contact), ElasticPPGap (gap) or Elastic, whose laws are piecewise linear with fixed faces")
+        refuse(what, REFUSED_MATERIALS[kind], "ElasticPP (elastic-perfectly plastic), Steel01 or Hardening "
+               "(bilinear kinematic hardening), ENT (compression-only contact), ElasticPPGap (gap), ElasticBilin, "
+               "Elastic or a Parallel of these, whose laws are piecewise linear with fixed faces")
     if kind not in ("Elastic", "ENT", "ElasticPP", "ElasticPPGap"):
-        refuse(what, "only Elastic, ENT, ElasticPP and ElasticPPGap are in this slice (piecewise-linear laws "
+        refuse(what, "only Elastic, ENT, ElasticPP, ElasticPPGap, Steel01, Hardening, ElasticBilin and Parallel "
+               "are in the subset (piecewise-linear laws "
                "that are contacts or yield faces)", "ElasticPP for yielding, ENT for a compression-only "
                "contact, ElasticPPGap for a gap, Elastic for a linear spring")
     if any(isinstance(a, str) for a in args if not (kind == "ElasticPPGap" and a in ("damage", "noDamage"))):

@@ -21,9 +21,13 @@ from __future__ import annotations
 import numpy as np
 
 from .elements import BeamColumn
+from .elements3d import BeamColumn3D, beam_stiffness3d
 from .refusals import refuse
 
 __all__ = ["nodal", "element_force", "material_forces", "element_response", "nodal_reactions"]
+
+
+_NODAL = {"u": "nodeDisp", "ud": "nodeVel", "udd": "nodeAccel"}
 
 
 def _pick(values, dof, what):
@@ -55,41 +59,65 @@ def nodal(analysis, which, tag, dof=-1):
     -------
     float or list of 3 floats
     """
-    what = f"node{ {'u': 'Disp', 'ud': 'Vel', 'udd': 'Accel'}[which] }({tag})".replace(" ", "")
+    what = _Label(_NODAL[which], tag)
     tag = int(tag)
     if tag not in analysis.domain.nodes:
         refuse(what, f"node {tag} is not defined", "a defined node")
     b = _ready(analysis, what)
-    U = b.nodal(getattr(analysis, which))
-    return _pick(U[b.row[tag]:b.row[tag] + 3], dof, what)
+    U = _state(analysis)[which]
+    return _pick(U[b.row[tag]:b.row[tag] + b.ndf], dof, what)
+
+
+class _Label:
+    """The name of a query in a refusal, formatted only if one is raised."""
+
+    def __init__(self, command, tag, args=()):
+        self.command, self.tag, self.args = command, tag, args
+
+    def __str__(self):
+        return f"{self.command}({', '.join(map(repr, (self.tag, *self.args)))})"
+
+    __format__ = lambda self, spec: format(str(self), spec)
 
 
 def _element(analysis, tag, what):
     tag = int(tag)
-    if tag not in analysis.domain.elements:
+    e = analysis.domain.elements.get(tag)
+    if e is None:
         refuse(what, f"element {tag} is not defined", "a defined element")
-    return tag, analysis.domain.elements[tag]
+    return tag, e
 
 
 def material_forces(analysis, tag):
     """``[(e, f), ...]``: deformation and force of each material of the zeroLength ``tag``."""
     b = analysis.built
     e = analysis.domain.elements[tag]
-    U, Ud = b.nodal(analysis.u), b.nodal(analysis.ud)
-    st = b.structure
-    u_st = np.asarray(_structure_u(b, analysis.u)).ravel()
-    sigma = st.natural.stresses(np.zeros(1), u_st[None, :], analysis.v[None, :])[0]
+    state = _state(analysis)
+    U, Ud, sigma = state["u"], state["ud"], state["sigma"]
     out = []
-    for material, direction, _, sign, strain, damp in b.springs[tag]:
+    for material, direction, reads, damp in b.springs[tag]:
         ri, rj = b.row[e.i] + direction - 1, b.row[e.j] + direction - 1
         de, dv = U[rj] - U[ri], Ud[rj] - Ud[ri]
-        out.append((de, material.force(de, dv, sigma[strain], sign) + damp * material.E * dv))
+        forces = [sign * sigma[strain] for strain, sign in reads]
+        out.append((de, material.force(de, dv, forces) + damp * material.E * dv))
     return out
 
 
-def _structure_u(b, u):
-    """The DOFs of the built structure (before the ties) of the reduced ``u``."""
-    return b.ties @ u
+def _state(analysis) -> dict:
+    """The nodal ``u``, ``ud``, ``udd`` and the element stresses of the current state, computed once
+    per state (the queries of one step share them)."""
+    b = analysis.built
+    cache = getattr(analysis, "_query_cache", None)
+    if cache is not None:
+        key = cache[0]
+        if (key[0] is b and key[1] is analysis.u and key[2] is analysis.ud and key[3] is analysis.udd
+                and key[4] is analysis.v):
+            return cache[1]
+    key = (b, analysis.u, analysis.ud, analysis.udd, analysis.v)
+    sigma = b.stresses(analysis.u, analysis.v)
+    state = {"u": b.nodal(analysis.u), "ud": b.nodal(analysis.ud), "udd": b.nodal(analysis.udd), "sigma": sigma}
+    analysis._query_cache = (key, state)                  # (holding the arrays: their identity is the key)
+    return state
 
 
 def element_force(analysis, tag, dof=-1):
@@ -105,21 +133,41 @@ def element_force(analysis, tag, dof=-1):
     -------
     float or list of 6 floats (``i`` then ``j``, global axes)
     """
-    what = f"eleForce({tag})"
+    what = _Label("eleForce", tag)
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
     return _pick(_global_force(analysis, b, tag, e), dof, what)
 
 
 def _global_force(analysis, b, tag, e):
-    if isinstance(e, BeamColumn):
+    if isinstance(e, (BeamColumn, BeamColumn3D)):
         rows, Ke, _ = b.beams[tag]
-        return Ke @ b.nodal(analysis.u)[rows]
-    out = np.zeros(6)
+        return Ke @ _state(analysis)["u"][rows]
+    out = np.zeros(2 * b.ndf)
     for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):
         out[direction - 1] -= f
-        out[3 + direction - 1] += f
+        out[b.ndf + direction - 1] += f
     return out
+
+
+def _beam_response(analysis, b, tag, e, name):
+    """``'localForce'`` or ``'basicForce'`` of a beam (2-D: ``N, M_i, M_j``; 3-D: ``N, Mz_i, Mz_j, My_i,
+    My_j, T``), or None for another response."""
+    f = _global_force(analysis, b, tag, e)
+    if isinstance(e, BeamColumn3D):
+        local = beam_stiffness3d(analysis.domain, e)[1] @ f
+        basic = local[[6, 5, 11, 4, 10, 9]]
+    else:
+        xi, xj = np.array(analysis.domain.nodes[e.i]), np.array(analysis.domain.nodes[e.j])
+        c, s = (xj - xi) / np.hypot(*(xj - xi))
+        R = np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]])
+        local = np.r_[R @ f[:3], R @ f[3:]]
+        basic = local[[3, 2, 5]]
+    if name in ("localForce", "localForces"):
+        return [float(x) for x in local]
+    if name in ("basicForce", "basicForces"):
+        return [float(x) for x in basic]
+    return None
 
 
 def element_response(analysis, tag, *args):
@@ -135,23 +183,17 @@ def element_response(analysis, tag, *args):
     -------
     list of floats
     """
-    what = f"eleResponse({tag}, {', '.join(map(repr, args))})"
+    what = _Label("eleResponse", tag, args)
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
     name = args[0] if args else None
-    if name in ("force", "forces", "globalForce", "globalForces") and (isinstance(e, BeamColumn)
-                                                                       or name in ("force", "forces")):
+    beam = isinstance(e, (BeamColumn, BeamColumn3D))
+    if name in ("force", "forces", "globalForce", "globalForces") and (beam or name in ("force", "forces")):
         return [float(x) for x in _global_force(analysis, b, tag, e)]
-    if isinstance(e, BeamColumn):
-        f = _global_force(analysis, b, tag, e)
-        xi, xj = np.array(analysis.domain.nodes[e.i]), np.array(analysis.domain.nodes[e.j])
-        c, s = (xj - xi) / np.hypot(*(xj - xi))
-        R = np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]])
-        local = np.r_[R @ f[:3], R @ f[3:]]
-        if name in ("localForce", "localForces"):
-            return [float(x) for x in local]
-        if name in ("basicForce", "basicForces"):
-            return [float(local[3]), float(local[2]), float(local[5])]
+    if beam:
+        values = _beam_response(analysis, b, tag, e, name)
+        if values is not None:
+            return values
     else:
         pairs = material_forces(analysis, tag)
         if name in ("deformation", "deformations", "basicDeformation", "basicDeformations"):
@@ -181,14 +223,15 @@ def nodal_reactions(analysis, *args):
     b = _ready(analysis, "reactions")
     d = analysis.domain
     R = np.zeros(b.mass.size)
+    nf = b.ndf
     for tag, e in d.elements.items():
         f = _global_force(analysis, b, tag, e)
-        R[b.row[e.i]:b.row[e.i] + 3] += f[:3]
-        R[b.row[e.j]:b.row[e.j] + 3] += f[3:]
+        R[b.row[e.i]:b.row[e.i] + nf] += f[:nf]
+        R[b.row[e.j]:b.row[e.j] + nf] += f[nf:]
     for p in d.patterns.values():
         if p.kind != "Plain":
             continue
         factor = p.frozen if p.frozen is not None else p.factor * float(d.series[p.series](np.array([d.time]))[0])
         for node, values in p.loads:
-            R[b.row[node]:b.row[node] + 3] -= factor * values
-    return {tag: R[b.row[tag]:b.row[tag] + 3] for tag in d.nodes}
+            R[b.row[node]:b.row[node] + nf] -= factor * values
+    return {tag: R[b.row[tag]:b.row[tag] + nf] for tag in d.nodes}

@@ -7,7 +7,7 @@ represent it and what comes nearest. Nothing outside the subset is approximated 
 
 from __future__ import annotations
 
-__all__ = ["OpenSeesRefused", "refuse", "NOT_NEEDED"]
+__all__ = ["OpenSeesRefused", "refuse", "refused_command", "NOT_NEEDED", "REFUSED_COMMANDS"]
 
 
 class OpenSeesRefused(ValueError):
@@ -30,7 +30,7 @@ class OpenSeesRefused(ValueError):
 
 def refuse(what, why, instead):
     """Raise :class:`OpenSeesRefused` for ``what`` with the reason ``why`` and the alternative ``instead``."""
-    raise OpenSeesRefused(what, why, instead)
+    raise OpenSeesRefused(str(what), why, instead)
 
 
 #: The commands accepted without effect, and why they are not needed.
@@ -44,8 +44,8 @@ NOT_NEEDED = {
 
 #: The elements, materials and commands refused by name: (why, instead).
 REFUSED_MATERIALS = {
-    "Steel01": "a bilinear steel with isotropic hardening is not a piecewise-linear law with constant "
-               "yield forces",
+    "Series": "materials in series share one force: a composition of contacts and yield laws in series needs "
+              "an internal deformation, not in the subset (use two zeroLength elements through a node between)",
     "Steel02": "the Giuffre-Menegotto-Pinto law is smooth (curved), not piecewise linear",
     "Concrete01": "concrete softening and degrading unloading are not a convex piecewise-linear law",
     "Concrete02": "concrete softening and degrading unloading are not a convex piecewise-linear law",
@@ -53,3 +53,39 @@ REFUSED_MATERIALS = {
     "Bilin": "deteriorating (IMK) laws degrade along the history",
     "ModIMKPeakOriented": "deteriorating (IMK) laws degrade along the history",
 }
+
+
+#: OpenSeesPy commands outside the subset, with why and what instead.
+REFUSED_COMMANDS = {
+    "section": ("fibre and other sections integrate nonlinear stress-strain laws", "elasticBeamColumn with "
+                "zeroLength ElasticPP hinges"),
+    "fiber": ("fibre sections integrate nonlinear stress-strain laws", "zeroLength ElasticPP hinges"),
+    "patch": ("fibre sections integrate nonlinear stress-strain laws", "zeroLength ElasticPP hinges"),
+    "layer": ("fibre sections integrate nonlinear stress-strain laws", "zeroLength ElasticPP hinges"),
+    "beamIntegration": ("force- and displacement-based fibre elements are not in the subset",
+                        "elasticBeamColumn"),
+    "eigen": ("eigenvalue analysis is not in this slice", "unilateral.structure.modes on the built model"),
+    "sp": ("imposed displacements are not in this slice", "a load, or a stiff support spring in the model"),
+    "eleLoad": ("element loads are not in this slice", "equivalent nodal loads (load(node, ...))"),
+    "imposedMotion": ("multi-support excitation is not in this slice", "pattern('UniformExcitation', ...)"),
+    "groundMotion": ("multi-support excitation is not in this slice", "pattern('UniformExcitation', ...)"),
+    "nDMaterial": ("multi-dimensional materials are not in this slice", "uniaxial ENT, ElasticPP, ElasticPPGap"),
+    "region": ("regions (for damping by region) are not in this slice", "rayleigh() for the whole model"),
+    "modalDamping": ("modal damping is not in this slice of the OpenSees layer", "rayleigh(), or "
+                     "unilateral.structure.Frame2D.modal_damping directly"),
+    "printModel": ("printing the OpenSees domain is not in this slice", "getNodeTags, getEleTags, nodeCoord"),
+}
+
+
+
+def refused_command(name):
+    """A function that refuses the OpenSees command ``name`` when called (:class:`OpenSeesRefused`)."""
+    why, instead = REFUSED_COMMANDS.get(name, ("the command is not in the supported subset",
+                                               "see docs/opensees.md for the supported commands"))
+
+    def refused(*args, **kwargs):
+        """Refuse the command (:class:`OpenSeesRefused`)."""
+        refuse(f"{name}()", why, instead)
+
+    refused.__name__ = name
+    return refused

@@ -224,9 +224,9 @@ def parse_pattern(kind, args, series_tags) -> Pattern:
                        "'-accel', tsTag with the ground acceleration")
         if "-accel" not in opts:
             refuse(what, "the ground acceleration series is missing", "'-accel', tsTag")
-        if direction not in (1, 2):
+        if direction not in (1, 2, 3):
             refuse(f"{what} direction {direction}", "a ground rotation is not a rigid ground translation",
-                   "direction 1 (x) or 2 (y)")
+                   "direction 1 (x), 2 (y) or, in 3-D, 3 (z)")
         factor = float((opts.get("-fact") or opts.get("-factor") or [1.0])[0])
         pattern = Pattern("UniformExcitation", int(opts["-accel"][0]), factor, direction)
     else:

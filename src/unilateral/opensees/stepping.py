@@ -31,6 +31,7 @@ from ..lcp import get_lcp_solver
 from ..rules import Newmark
 from ..solve import Simulation
 from .build import build
+from .control import DisplacementPath, parse_displacement_control
 from .queries import material_forces
 from .refusals import OpenSeesRefused, refuse
 
@@ -47,6 +48,7 @@ class Analysis:
 
     def __init__(self, domain):
         self.domain = domain
+        self.on_commit = None                        # called with the time after each step (recorders)
         self.wipe()
 
     def wipe(self):
@@ -60,7 +62,7 @@ class Analysis:
     def wipe_analysis(self):
         """Forget the analysis settings (``wipeAnalysis``); the state is kept."""
         self.integrator, self.kind = None, None
-        self.sim = None
+        self.sim = self.path = None
 
     # ------------------------------------------------------------------ settings
     def set_integrator(self, kind, *args):
@@ -87,13 +89,17 @@ class Analysis:
                 refuse(what, "an automatic load increment (minLambda, maxLambda different from dLambda) is not in "
                        "the subset", "integrator('LoadControl', dLambda)")
             self.integrator = ("LoadControl", d)
+        elif kind == "DisplacementControl":
+            self.integrator = ("DisplacementControl", *parse_displacement_control(what, args))
         elif kind in ("HHT", "GeneralizedAlpha", "CentralDifference", "TRBDF2", "ExplicitDifference"):
             refuse(what, "the direct stepping here is Newmark's (with gamma, beta); this integrator is another "
                    "rule", "integrator('Newmark', 0.5, 0.25)")
         else:
-            refuse(what, "only Newmark (transient) and LoadControl (static) are in the subset",
+            refuse(what, "only Newmark (transient), LoadControl and DisplacementControl (static) are in the subset",
                    "integrator('Newmark', 0.5, 0.25) or integrator('LoadControl', 1.0)")
         self.sim = None
+        if kind != "DisplacementControl":            # a new increment goes on along the same path
+            self.path = None
 
     def set_analysis(self, kind, *args):
         """``analysis('Static')`` or ``analysis('Transient')``."""
@@ -144,10 +150,10 @@ class Analysis:
             f = np.zeros(mass.size)
             if p.kind == "Plain":
                 for node, values in p.loads:
-                    f[b.row[node]:b.row[node] + 3] += values
+                    f[b.row[node]:b.row[node] + b.ndf] += values
                 _check_loaded(b, d, p, f)
             else:
-                f[p.direction - 1::3] = -mass[p.direction - 1::3]
+                f[p.direction - 1::b.ndf] = -mass[p.direction - 1::b.ndf]
             factor = np.full(times.size, p.frozen) if p.frozen is not None else p.factor * d.series[p.series](times)
             q += np.outer(factor, b.reduced(f))
         return q
@@ -172,8 +178,11 @@ class Analysis:
         if self.kind == "Static":
             if self.integrator is None:
                 self.integrator = ("LoadControl", 1.0)
+            if self.integrator[0] == "DisplacementControl":
+                return self._displacement_control(steps)
             if self.integrator[0] != "LoadControl":
-                refuse("analyze", "a Static analysis takes the LoadControl integrator", "integrator('LoadControl', 1.0)")
+                refuse("analyze", "a Static analysis takes the LoadControl or DisplacementControl integrator",
+                       "integrator('LoadControl', 1.0)")
             return self._static(steps)
         if self.integrator is None:
             self.integrator = ("Newmark", 0.5, 0.25)
@@ -205,6 +214,27 @@ class Analysis:
                        "then a transient analysis")
             self.u, self.v = state.u, state.v
             self._check_gaps()
+            if self.on_commit is not None:
+                self.on_commit(d.time)
+        self.sim = None
+        return 0
+
+    def _displacement_control(self, steps):
+        """Steps of ``DisplacementControl`` on the monotonic static path (:mod:`.control`)."""
+        self.current()
+        _, node, dof, incr = self.integrator
+        d = self.domain
+        path = self.path
+        if path is None or path.key != (self.built_version, d.load_version, node, dof):
+            self.path = path = DisplacementPath(self, node, dof, incr)
+        path.incr = incr                             # (a new increment on the same path)
+        for _ in range(steps):
+            state = path.step()
+            self.u, self.v, d.time = state["u"], state["v"], state["time"]
+            self.ud, self.udd = np.zeros_like(self.u), np.zeros_like(self.u)
+            self._check_gaps()
+            if self.on_commit is not None:
+                self.on_commit(d.time)
         self.sim = None
         return 0
 
@@ -234,6 +264,8 @@ class Analysis:
                 self.u, self.ud, self.v = state.u, state.udot, state.v
                 d.time = sim["times"][s.n]
                 self._check_gaps()
+                if self.on_commit is not None:
+                    self.on_commit(d.time)
                 done += 1
         return 0
 
@@ -289,8 +321,8 @@ def _check_loaded(b, d, p, f):
     """Refuse a nodal load on a DOF that is neither a DOF of the model nor fixed."""
     moved = np.asarray(abs(b.P).sum(axis=1)).ravel() > 0
     for node, values in p.loads:
-        for k in range(3):
-            fixed = d.fixes.get(node, (0, 0, 0))[k]
+        for k in range(b.ndf):
+            fixed = d.fixes.get(node, (0,) * b.ndf)[k]
             if values[k] and not moved[b.row[node] + k] and not fixed:
                 refuse(f"load({node})", f"DOF {k + 1} of node {node} is not a DOF of the model: nothing stiffens "
                        "it (a rotation without a beam or a rotational spring)", "a load on a DOF an element "

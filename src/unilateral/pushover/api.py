@@ -9,6 +9,7 @@ import time
 import numpy as np
 
 from .control import as_structure_and_model, control_vector
+from .geometry import with_p_delta
 from .path import follow_path
 from .patterns import direction_vector, load_pattern
 from .problem import parametric_lcp
@@ -20,7 +21,7 @@ CONTROLS = ("displacement", "load")
 
 
 def pushover(structure_or_model, pattern, *, node, dof="ux", target, gravity=None, control="displacement",
-             max_events=200, lcp="bpp") -> PushoverResult:
+             p_delta=None, max_events=200, lcp="bpp") -> PushoverResult:
     """Static pushover: gravity first, then ``lambda`` times a lateral pattern, followed exactly.
 
     The static problem ``K u = q_g + lambda p + F v``, ``psi = F^T u - H v - g`` with the model's
@@ -37,14 +38,17 @@ def pushover(structure_or_model, pattern, *, node, dof="ux", target, gravity=Non
     node : the control node (a bare Model: a DOF index or name, see :mod:`unilateral.pushover.control`)
     dof : ``"ux"``, ``"uy"`` or ``"rz"``: the control DOF of ``node`` and the direction of a named
         pattern and of the base shear
-    target : float
+    target : float, or a sequence of floats (a cyclic history: the path reverses at each)
         ``control="displacement"``: the control DOF's displacement to reach (length or rad, total:
-        gravity's part included), beyond the gravity state in the sense the pattern pushes it;
-        ``control="load"``: the load factor to reach (> 0)
+        gravity's part included), the first beyond the gravity state in the sense the pattern
+        pushes it; ``control="load"``: the load factor to reach (the first > 0)
     gravity : None, a float ``g`` (a structure: :meth:`Structure.gravity` on its masses, length/time^2)
         or a load vector (n,) (force): the static state the pattern starts from
     control : ``"displacement"`` (the load factor is free and the control DOF prescribed: plateaus
         and softening are followed) or ``"load"`` (stops at a mechanism)
+    p_delta : None (the structure's ``K`` as built, with ``Frame2D.p_delta`` if it was set),
+        ``False`` (without), ``"consistent"`` or ``"string"``: the geometric stiffness of the
+        axial forces of ``gravity`` (:mod:`unilateral.pushover.geometry`)
     max_events : int, the most event points before giving up (> 0)
     lcp : str or LCPSolver, the LCP solver of the gravity state and of the rate problems
 
@@ -63,17 +67,46 @@ def pushover(structure_or_model, pattern, *, node, dof="ux", target, gravity=Non
         raise ValueError(f"control={control!r} is not valid; use 'displacement' or 'load'")
     if not isinstance(max_events, numbers.Integral) or isinstance(max_events, bool) or max_events < 1:
         raise ValueError(f"max_events={max_events!r} is not valid; give a positive integer")
-    target = _real("target", target)
+    targets = _targets(target)
     structure, model = as_structure_and_model(structure_or_model)
+    q_g = _gravity(structure, model, gravity)
+    if p_delta is not None:
+        if structure is None:
+            raise ValueError(f"p_delta={p_delta!r} needs the beams' axial forces: give a structure (Frame2D or "
+                             "Structure), not a bare Model (or put the geometric stiffness in the model's K)")
+        structure = with_p_delta(structure, p_delta, q_g)
+        model = structure.to_model()
     e, label = control_vector(structure, model, node, dof)
     p = load_pattern(structure, model, pattern, dof)
-    q_g = _gravity(structure, model, gravity)
     problem = parametric_lcp(model, p, q_g, e, solver=lcp)
-    t_end, sense = _path_end(problem, control, target, label)
-    outcome = follow_path(problem, rate_form(problem, control, sense), t_end, control=control,
-                          max_events=int(max_events), solver=lcp)
-    r = direction_vector(structure, model, dof) if dof in ("ux", "uy") else np.ones(model.n)
+    outcome, state = None, None
+    for k, (t_end, sense) in enumerate(_segments(problem, control, targets, label)):
+        outcome = follow_path(problem, rate_form(problem, control, sense), t_end, control=control,
+                              max_events=int(max_events), solver=lcp, state=state, out=outcome)
+        state = outcome.state
+        if not outcome.success:
+            break
+    if outcome.success and len(targets) > 1:
+        outcome.message = f"history of {len(targets)} targets followed ({len(outcome.events)} events)"
+    elif not outcome.success and len(targets) > 1:
+        outcome.message = f"target {k} of {len(targets)} ({targets[k]:.6g}) not reached: {outcome.message}"
+    r = direction_vector(structure, model, dof) if dof in ("ux", "uy", "uz") else np.ones(model.n)
     return _result(problem, outcome, float(r @ p), label, start, control)
+
+
+def _targets(target) -> list:
+    """``target`` as a list of finite floats (one, or a cyclic history)."""
+    if np.ndim(target) == 0:
+        return [_real("target", target)]
+    values = list(np.asarray(target, dtype=object).ravel()) if np.ndim(target) == 1 else None
+    if not values:
+        raise ValueError(f"target={target!r} is not valid; give a number or a nonempty list of numbers")
+    out = [_real(f"target[{k}]", value) for k, value in enumerate(values)]
+    for k in range(1, len(out)):
+        if out[k] == out[k - 1]:
+            raise ValueError(f"target[{k}]={out[k]!r} repeats target[{k - 1}]: consecutive targets of a history "
+                             "must differ")
+    return out
 
 
 def _real(name, value) -> float:
@@ -103,24 +136,31 @@ def _gravity(structure, model, gravity) -> np.ndarray:
     return q
 
 
-def _path_end(problem, control, target, label) -> tuple[float, float]:
-    """``(t_end, sense)``: the path parameter of the target and the sense of the control DOF."""
+def _segments(problem, control, targets, label) -> list:
+    """``[(t_end, sense), ...]``: the cumulative path parameter at each target and the sense of
+    each segment (``+-1``: of the control displacement, or of the load factor)."""
     if control == "load":
-        if not target > 0.0:
-            raise ValueError(f"target={target!r} is not valid under control='load': give the load factor to reach, "
-                             "> 0 (reverse the pattern to push the other way)")
-        return target, 1.0
-    if problem.dp == 0.0:
-        raise ValueError(f"the pattern does not move the control DOF {label} (its elastic displacement is 0); "
-                         "choose another control DOF or use control='load'")
-    start = problem.control(problem.u0)
-    sense = math.copysign(1.0, problem.dp)
-    if not (target - start) * sense > 0.0:
-        side = ">" if sense > 0 else "<"
-        raise ValueError(f"target={target!r} is of the wrong sign: the pattern pushes {label} in the "
-                         f"{'positive' if sense > 0 else 'negative'} sense from its gravity value {start:.6g}; "
-                         f"give a target {side} {start:.6g} (or reverse the pattern)")
-    return abs(target - start), sense
+        if not targets[0] > 0.0:
+            raise ValueError(f"target={targets[0]!r} is not valid under control='load': give the load factor to "
+                             "reach, > 0 (reverse the pattern to push the other way)")
+        start, sense = 0.0, 1.0
+    else:
+        if problem.dp == 0.0:
+            raise ValueError(f"the pattern does not move the control DOF {label} (its elastic displacement is 0); "
+                             "choose another control DOF or use control='load'")
+        start = problem.control(problem.u0)
+        sense = math.copysign(1.0, problem.dp)
+        if not (targets[0] - start) * sense > 0.0:
+            side = ">" if sense > 0 else "<"
+            raise ValueError(f"target={targets[0]!r} is of the wrong sign: the pattern pushes {label} in the "
+                             f"{'positive' if sense > 0 else 'negative'} sense from its gravity value {start:.6g}; "
+                             f"give a target {side} {start:.6g} (or reverse the pattern)")
+    out, t, here = [], 0.0, start
+    for value in targets:
+        t += abs(value - here)
+        out.append((t, math.copysign(1.0, value - here)))
+        here = value
+    return out
 
 
 def _result(problem, outcome, resultant, label, start, control) -> PushoverResult:
@@ -132,7 +172,7 @@ def _result(problem, outcome, resultant, label, start, control) -> PushoverResul
     psi = np.array([problem.phi(uk, vk) for uk, vk in zip(u, v)])
     d = u @ problem.e
     names = problem.names
-    events = [Event(float(lam[k]), float(d[k]), names[i], kind) for k, i, kind in outcome.events]
+    events = [Event(float(lam[k]), float(d[k]), names[i], kind, int(k)) for k, i, kind in outcome.events]
     stats = {"events": len(events), "points": len(t), "rate_problems": outcome.rate_problems,
              "lcp_iterations": outcome.iterations + problem.gravity_iterations,
              "max_residual": max(problem.residual(lk, uk, vk) for lk, uk, vk in zip(lam, u, v)),

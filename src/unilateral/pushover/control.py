@@ -14,19 +14,20 @@ import numpy as np
 
 from ..model import Model
 
-#: The DOFs of a node of a plane frame.
+#: The DOFs of a node of a plane frame (a 3-D frame: ``ux, uy, uz, rx, ry, rz``).
 PLANE_DOFS = ("ux", "uy", "rz")
 
 
 def as_structure_and_model(target):
-    """``(structure or None, model)`` of a ``Frame2D`` (built here), a ``Structure`` or a ``Model``.
+    """``(structure or None, model)`` of a ``Frame2D`` or ``Frame3D`` (built here), a ``Structure`` (2-D
+    or 3-D) or a ``Model``.
 
     Raises
     ------
     TypeError
         Anything else.
     ValueError
-        A 3-D frame, footings on a soil medium, or a law this pushover does not follow.
+        Footings on a soil medium, or a law this pushover does not follow.
     """
     structure = target
     if not isinstance(target, Model) and hasattr(target, "build") and not hasattr(target, "to_model"):
@@ -34,9 +35,6 @@ def as_structure_and_model(target):
     if isinstance(structure, Model):
         structure, model = None, structure
     elif hasattr(structure, "to_model") and hasattr(structure, "dofs"):
-        if tuple(structure.dofs.dof_names) != PLANE_DOFS:
-            raise ValueError("structure_or_model: the pushover takes plane frames (Frame2D); a 3-D frame "
-                             "(Frame3D) is not supported yet")
         if getattr(structure, "foundation", None) is not None:
             raise ValueError("structure_or_model: footings on a soil medium (Frame2D.foundation) are not supported "
                              "by the pushover; model the soil by springs (Frame2D.soil)")
@@ -61,8 +59,9 @@ def control_vector(structure, model, node, dof) -> tuple[np.ndarray, str]:
     """
     if structure is None:
         return _model_control(model, node, dof)
-    if dof not in PLANE_DOFS:
-        raise ValueError(f"dof={dof!r} is not valid; use one of {', '.join(map(repr, PLANE_DOFS))}")
+    names = tuple(structure.dofs.dof_names)
+    if dof not in names:
+        raise ValueError(f"dof={dof!r} is not valid; use one of {', '.join(map(repr, names))}")
     nodes = structure.dofs.nodes
     if node not in nodes:
         listed = ", ".join(map(repr, nodes[:12])) + (" ..." if len(nodes) > 12 else "")

@@ -41,6 +41,9 @@ class PathState:
     v : (m,) constraint unknowns
     touch : (m,) bool, constraints on their surface (``phi = 0``)
     opened : (m,) bool, open contacts (``v > 0``; ``touch`` too)
+    was_open, was_loading : (m,) bool or None, the open contacts and loading multipliers of the last
+        segment (None at the start: the events of the next point are those against them)
+    just_touched : (m,) bool or None, the constraints that reached their surface at this point
     """
 
     t: float
@@ -48,6 +51,9 @@ class PathState:
     v: np.ndarray
     touch: np.ndarray
     opened: np.ndarray
+    was_open: np.ndarray | None = None
+    was_loading: np.ndarray | None = None
+    just_touched: np.ndarray | None = None
 
 
 @dataclass
@@ -63,6 +69,7 @@ class PathOutcome:
     mechanism : bool, the path ended at a mechanism (load control) or a singular tangent
     iterations : int, pivots of all rate LCPs
     rate_problems : int, rate LCPs solved
+    state : PathState or None, the state at the last point
     """
 
     points: list = field(default_factory=list)
@@ -72,6 +79,7 @@ class PathOutcome:
     mechanism: bool = False
     iterations: int = 0
     rate_problems: int = 0
+    state: PathState | None = None
 
 
 def initial_state(problem, tol=1e-9) -> PathState:
@@ -90,34 +98,41 @@ def initial_state(problem, tol=1e-9) -> PathState:
 
 
 def follow_path(problem, form: RateForm, t_end: float, *, control: str, max_events: int,
-                solver="bpp") -> PathOutcome:
-    """Follow the path from the gravity state to ``t = t_end`` (> 0), event by event.
+                solver="bpp", state: PathState | None = None, out: PathOutcome | None = None) -> PathOutcome:
+    """Follow the path from the gravity state (or from ``state``) to ``t = t_end``, event by event.
 
     Parameters
     ----------
     problem : ParametricLCP
     form : RateForm, the rates per unit ``t``
-    t_end : float, the target's path parameter (load factor, or distance of the control DOF)
+    t_end : float, the path parameter to reach (load factor, or distance travelled by the control
+        DOF), ``> state.t``
     control : ``"load"`` or ``"displacement"`` (for the message of a singular tangent)
-    max_events : int, the most event points followed before giving up
+    max_events : int, the most event points followed (in all) before giving up
     solver : str or LCPSolver, the solver of the rate LCPs
+    state, out : a :class:`PathState` and the :class:`PathOutcome` it ends, to go on from (a
+        reversal of a cyclic history: ``form`` then has the other sense); None: the gravity state
 
     Returns
     -------
-    PathOutcome
+    PathOutcome (``out`` extended, with the final state in ``out.state``)
     """
-    state = initial_state(problem)
-    out = PathOutcome(points=[(0.0, 0.0, state.v.copy())])
+    if state is None:
+        state = initial_state(problem)
+        out = PathOutcome(points=[(0.0, 0.0, state.v.copy())])
     rate = problem.rate
-    was_open, was_loading = state.opened.copy(), np.zeros(rate.size, dtype=bool)
-    just_touched = np.zeros(rate.size, dtype=bool)
+    m = rate.size
+    was_open = state.opened.copy() if state.was_open is None else state.was_open
+    was_loading = np.zeros(m, dtype=bool) if state.was_loading is None else state.was_loading
+    just_touched = np.zeros(m, dtype=bool) if state.just_touched is None else state.just_touched
+    out.state = state
     while True:
         rates = solve_rates(form, state.opened, state.touch & ~state.opened, solver)
         out.iterations += rates.iterations
         out.rate_problems += 1
         if rates.singular or rates.failure:
             _record(out, just_touched & ~was_loading, rate, kinds=problem.model.law.kinds)
-            out.mechanism = True
+            out.mechanism, out.success = True, False
             out.message = _singular_message(problem, state, rates, control)
             return out
         now_open = ~rate & rates.active
@@ -126,11 +141,13 @@ def follow_path(problem, form: RateForm, t_end: float, *, control: str, max_even
         was_open, was_loading = now_open, now_loading
         ds, hits, end = _next_event(problem, state, rates, t_end)
         just_touched = _advance(state, rates, ds, hits, rate)
+        state.was_open, state.was_loading, state.just_touched = was_open, was_loading, just_touched
         out.points.append((state.t, state.lam, state.v.copy()))
         if end:
             out.success, out.message = True, f"target reached at t = {state.t:.6g} ({len(out.events)} events)"
             return out
         if len(out.points) - 1 >= max_events:
+            out.success = False
             out.message = (f"max_events={max_events} reached at load factor {state.lam:.6g} before the target; "
                            "give a larger max_events")
             return out
@@ -204,6 +221,6 @@ def _singular_message(problem, state, rates, control) -> str:
     if control == "load":
         return (f"mechanism at load factor {state.lam:.10g}: the tangent stiffness with the constraints on their "
                 f"surface ({listed}) is singular ({rates.failure}); the load cannot increase. Use "
-                "control='displacement' to follow the plateau")
+                "control='displacement' to follow the plateau or the softening branch")
     return (f"the tangent is singular at load factor {state.lam:.10g} with the constraints {listed} on their "
             f"surface ({rates.failure}): the control DOF does not move in the mechanism; control another DOF")

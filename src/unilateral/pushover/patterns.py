@@ -5,7 +5,7 @@ translations along it, 0 elsewhere) and the mass matrix ``M``:
 
 * ``"uniform"``: ``p = M r``, the masses times the direction;
 * ``"triangular"``: ``p_k = (M r)_k h_k``, proportional to the height ``h`` of the DOF's node above the
-  lowest node times its mass;
+  lowest node (along y in 2-D, z in 3-D) times its mass;
 * ``"mode"``: ``p = r * (M phi_1)``, the first mode shape of the bilateral structure
   (``K phi = omega^2 M phi``, DOFs without mass condensed statically) times the masses, on the
   translations along the direction, signed so that its resultant is positive.
@@ -76,9 +76,10 @@ def _named(structure, model, pattern: str, dof: str) -> np.ndarray:
     if pattern not in PATTERNS:
         raise ValueError(f"pattern={pattern!r} is not valid; use a load vector (n,) or one of "
                          f"{', '.join(map(repr, PATTERNS))}")
-    if dof not in ("ux", "uy"):
+    translations = ("ux", "uy", "uz") if structure is not None and len(structure.dofs.dof_names) == 6 else ("ux", "uy")
+    if dof not in translations:
         raise ValueError(f"pattern={pattern!r} acts along dof={dof!r}, which is not a translation; "
-                         "use dof='ux' or 'uy' (or give the pattern as a load vector)")
+                         f"use dof={' or '.join(map(repr, translations))} (or give the pattern as a load vector)")
     if pattern == "triangular" and structure is None:
         raise ValueError("pattern='triangular' needs the heights of the nodes: give a structure "
                          "(Frame2D or Structure), not a bare Model, or give the pattern as a load vector")
@@ -102,10 +103,16 @@ def _named(structure, model, pattern: str, dof: str) -> np.ndarray:
 
 
 def _heights(structure) -> np.ndarray:
-    """Height (n,) of each free DOF's node above the lowest node (length)."""
+    """Height (n,) of each free DOF's node above the lowest node (length; along y in 2-D, z in 3-D)."""
     coords = structure.coords
-    base = min(float(xy[1]) for xy in coords.values())
-    return np.array([float(coords[node][1]) - base for node, _ in structure.dofs.free])
+    up = vertical_axis(structure)
+    base = min(float(xy[up]) for xy in coords.values())
+    return np.array([float(coords[node][up]) - base for node, _ in structure.dofs.free])
+
+
+def vertical_axis(structure) -> int:
+    """The index of the vertical coordinate of a structure's nodes: 1 (y) in 2-D, 2 (z) in 3-D."""
+    return 2 if len(structure.dofs.dof_names) == 6 else 1
 
 
 def first_mode(model) -> np.ndarray:

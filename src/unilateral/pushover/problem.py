@@ -122,6 +122,9 @@ def parametric_lcp(model, p, q_gravity, e, solver="bpp") -> ParametricLCP:
     ValueError
         No static equilibrium under gravity (the static LCP has no solution).
     """
+    if not (model.g_is_constant and model.q_imposed_is_constant):
+        raise ValueError("pushover: the model's gaps or imposed-strain loads vary in time (support motions); "
+                         "a pushover needs them constant")
     q0 = np.asarray(q_gravity, dtype=float) + model.q_imposed(0.0)
     lcp = get_lcp_solver(solver)
     state = static_state(model, q0, lcp)

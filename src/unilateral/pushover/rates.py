@@ -5,7 +5,8 @@ distance from the gravity state under displacement control) the rates per unit `
 
     psi' = b - W v',        lambda' = alpha - beta . v',
 
-with, under load control, ``b = F^T K^-1 p``, ``W = Lambda0``, ``lambda' = 1``, and under
+with, under load control (``lambda' = s``, the sense ``s = +-1``), ``b = s F^T K^-1 p``,
+``W = Lambda0``, and under
 displacement control (``u_c' = s``, the sense ``s = +-1``, ``u_c' = lambda' dp + c . v'``)
 
     lambda' = (s - c . v') / dp,    b = s F^T K^-1 p / dp,    W = Lambda0 + (F^T K^-1 p) c^T / dp.
@@ -62,13 +63,14 @@ def rate_form(problem, control: str, sense: float) -> RateForm:
     ----------
     problem : ParametricLCP
     control : ``"load"`` or ``"displacement"``
-    sense : +1.0 or -1.0, the sense of the control displacement (displacement control)
+    sense : +1.0 or -1.0, the sense of the control displacement (displacement control) or of the
+        load factor (load control)
     """
     m = problem.Lambda0.shape[0]
     size = np.abs(problem.model.H) + np.abs(problem.flexibility)
     identity = np.array_equal(problem.P, np.eye(m))
     if control == "load":
-        b, W, alpha, beta = problem.psiP, problem.Lambda0, 1.0, np.zeros(m)
+        b, W, alpha, beta = sense * problem.psiP, problem.Lambda0, sense, np.zeros(m)
     else:
         coupling = np.outer(problem.psiP, problem.c) / problem.dp
         b, W = sense * problem.psiP / problem.dp, problem.Lambda0 + coupling

@@ -24,12 +24,14 @@ class Event(NamedTuple):
     kind : str, ``"yield"`` (a plastic multiplier starts to grow), ``"unload"`` (it stops: elastic
         unloading, or a slip that sticks), ``"uplift"`` (a contact opens: its force has vanished),
         ``"contact"`` (an open contact closes) or ``"slip"`` (a friction slip starts)
+    point : int, the index of the event's point along the path (-1: not given)
     """
 
     load_factor: float
     displacement: float
     name: str
     kind: str
+    point: int = -1
 
 
 @dataclass
@@ -113,6 +115,6 @@ class PushoverResult:
         lines = [f"{'point':>5} {'load factor':>14} {self.control_dof + ' disp.':>14} {'base shear':>14}  events"]
         for k, (lam, d, V) in enumerate(zip(self.load_factor, self.displacement, self.base_shear)):
             here = [f"{e.kind} {e.name}" for e in self.events
-                    if e.load_factor == lam and e.displacement == d]
+                    if e.point == k or (e.point < 0 and e.load_factor == lam and e.displacement == d)]
             lines.append(f"{k:>5} {lam:>14.6g} {d:>14.6g} {V:>14.6g}  {', '.join(here)}")
         return "\n".join(lines)

@@ -16,8 +16,9 @@ Modules (one concept each):
 * :mod:`.cones` - Wolf (1994) cone models and cone-type coupled flexibility of patches.
 * :mod:`.fit` - AAA rational fits of tabulated data (``fit_rational``, ``read_table``).
 * :mod:`.timedomain` - step responses of soil kernels by convolution quadrature (``step_response``).
+* :mod:`.flexibility` - ``SoilFlexibility`` (``Phi(s)`` of the contact points from any of the above).
 * :mod:`.foundation_model` - ``FoundationModel``: a structure on the soil through unilateral contacts,
-  ``SoilFlexibility`` (``Phi(s)`` from any of the above), ``FoundationKernel`` (the dual kernel).
+  ``FoundationKernel`` (the dual kernel).
   Its solution route (``method="cq"`` and ``"modal"``) is :mod:`unilateral.methods.foundation_solve`.
 
 Sign convention: vertical forces and displacements positive downward (into the soil); kernels are
@@ -31,7 +32,8 @@ from importlib import import_module
 #: scipy.interpolate.
 _LAZY = {
     **dict.fromkeys(("Cone", "cone", "cone_flexibility"), "cones"),
-    **dict.fromkeys(("FoundationKernel", "FoundationModel", "SoilFlexibility", "SoilPoles"), "foundation_model"),
+    **dict.fromkeys(("FoundationKernel", "FoundationModel"), "foundation_model"),
+    **dict.fromkeys(("SoilFlexibility", "SoilPoles"), "flexibility"),
     **dict.fromkeys(("RationalFit", "fit_rational", "read_table"), "fit"),
     "HalfSpace": "halfspace",
     "Layered": "layered",

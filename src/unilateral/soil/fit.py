@@ -75,6 +75,38 @@ def _design(s, real_poles, pair_poles, linear):
     return np.column_stack(cols)
 
 
+def _stable_conjugate_poles(poles, smax, pole_limit, report) -> tuple[np.ndarray, np.ndarray]:
+    """The poles of an AAA fit made fit for a real, stable rational function: those beyond
+    ``pole_limit * smax`` dropped, unstable ones reflected into ``Re p < 0``, and the rest split into
+    distinct real poles and upper-half-plane poles of conjugate pairs (a lower one without its
+    partner becomes an upper one). Counts ``removed`` and ``flipped`` in ``report``.
+    Returns ``(real_poles, pair)``."""
+    far = np.abs(poles) > pole_limit * smax
+    report["removed"] = int(far.sum())
+    poles = poles[~far]
+    unstable = poles.real >= 0
+    report["flipped"] = int(unstable.sum())
+    poles = np.where(unstable, -np.abs(poles.real) - 1e-6 * smax + 1j * poles.imag, poles)
+    tol = 1e-8 * smax
+    real_poles = np.unique(np.round(poles[np.abs(poles.imag) <= tol].real, 12))
+    upper = poles[poles.imag > tol]
+    lower = poles[poles.imag < -tol]
+    # pair every lower pole with an upper one (symmetrise); unmatched lower poles become upper ones
+    pair = list(upper)
+    for p in lower:
+        if not pair or np.min(np.abs(np.array(pair) - np.conj(p))) > 1e-6 * max(abs(p), smax):
+            pair.append(np.conj(p))
+    pair = np.array(pair, dtype=complex)
+    if pair.size:
+        keep = np.ones(pair.size, bool)
+        for i in range(pair.size):
+            for j in range(i):
+                if keep[j] and abs(pair[i] - pair[j]) < 1e-6 * max(abs(pair[i]), smax):
+                    keep[i] = False
+        pair = pair[keep]
+    return real_poles, pair
+
+
 def fit_rational(samples, values, *, frequency=True, linear=True, passive=False, rtol=1e-9,
                  max_terms=40, pole_limit=10.0) -> RationalFit:
     """Stable, real, optionally passive rational fit of sampled data.
@@ -115,29 +147,7 @@ def fit_rational(samples, values, *, frequency=True, linear=True, passive=False,
     smax = np.max(np.abs(s))
     report = {"aaa_terms": int(len(aaa.support_points)), "removed": 0, "flipped": 0,
               "passivity_shift": 0.0, "passivity_violation": 0.0}
-    far = np.abs(poles) > pole_limit * smax
-    report["removed"] = int(far.sum())
-    poles = poles[~far]
-    unstable = poles.real >= 0
-    report["flipped"] = int(unstable.sum())
-    poles = np.where(unstable, -np.abs(poles.real) - 1e-6 * smax + 1j * poles.imag, poles)
-    tol = 1e-8 * smax
-    real_poles = np.unique(np.round(poles[np.abs(poles.imag) <= tol].real, 12))
-    upper = poles[poles.imag > tol]
-    lower = poles[poles.imag < -tol]
-    # pair every lower pole with an upper one (symmetrise); unmatched lower poles become upper ones
-    pair = list(upper)
-    for p in lower:
-        if not pair or np.min(np.abs(np.array(pair) - np.conj(p))) > 1e-6 * max(abs(p), smax):
-            pair.append(np.conj(p))
-    pair = np.array(pair, dtype=complex)
-    if pair.size:
-        keep = np.ones(pair.size, bool)
-        for i in range(pair.size):
-            for j in range(i):
-                if keep[j] and abs(pair[i] - pair[j]) < 1e-6 * max(abs(pair[i]), smax):
-                    keep[i] = False
-        pair = pair[keep]
+    real_poles, pair = _stable_conjugate_poles(poles, smax, pole_limit, report)
     A = _design(s, real_poles, pair, linear)
     w = 1.0 / np.maximum(np.abs(y), 1e-300)
     Aw = A * w[:, None]

@@ -309,6 +309,78 @@ def check_stick_stiffness(name, kind, k, kt) -> None:
             f"{STICK_STIFFNESS_MIN_RATIO * k:.6g}, or leave mu out for a frictionless contact")
 
 
+#: The largest clearance of a contact (soil, gap) relative to the size of its frame (the span of
+#: the node coordinates). A clearance is the paper's imposed strain ``theta = -gap``: an open contact
+#: carries ``v = e + gap``, and the structure sees ``F (v - gap)``, so its response moves by about
+#: ``eps gap k / K`` (eps = 2.2e-16) whether or not the gap ever closes (measured on the pounding
+#: example: 5e-12 m at gap 1e3 m, 5e-9 m at 1e6 m, 1.5 m at 1e15 m, against 0.025 m of response).
+CLEARANCE_MAX_RATIO = 10.0
+#: The size given to a frame whose nodes are all at the origin (no length of its own), length: its
+#: clearances are refused above 1e5 length units (a round-off of 2.2e-11 units times k/K).
+POINT_FRAME_SIZE = 1e4
+
+
+def check_clearances(elements, coords):
+    """``elements``, checked: refuse a contact clearance that double precision cannot carry beside
+    the frame's size.
+
+    Parameters
+    ----------
+    elements : the frame's elements (those with an imposed strain on a contact's strain are checked)
+    coords : dict node -> coordinates (2,) or (3,), length
+
+    Raises
+    ------
+    ValueError
+        Naming the element, its ``gap``, the frame's size and the largest ``gap`` that is valid
+        (:data:`CLEARANCE_MAX_RATIO` times the span of the node coordinates; for nodes that all
+        coincide, their largest coordinate, or at the origin :data:`POINT_FRAME_SIZE`).
+    """
+    points = np.array(list(coords.values()), dtype=float).reshape(len(coords), -1) if coords else np.zeros((1, 2))
+    span = float(np.max(points.max(axis=0) - points.min(axis=0)))
+    largest = float(np.abs(points).max())
+    size, basis = ((span, "the span of its nodes") if span > 0 else
+                   (largest, "its nodes' largest coordinate") if largest > 0 else
+                   (POINT_FRAME_SIZE, "a frame whose nodes are all at the origin"))
+    bound = CLEARANCE_MAX_RATIO * size
+    for e in elements:
+        if e.kind not in ("soil", "gap", "cable"):
+            continue
+        what, gap = ("slack", float(e.theta[0])) if e.kind == "cable" else ("gap", -float(e.theta[0]))
+        if abs(gap) > bound:
+            raise ValueError(
+                f"{e.kind} {e.name!r}: {what} = {gap!r} exceeds {CLEARANCE_MAX_RATIO:g} times the size of the frame "
+                f"({size:.6g}, {basis}): a clearance is an imposed strain that an open contact "
+                f"cancels (v = e + gap), and double precision carries the response only to about 2.2e-16 * gap; "
+                f"give |{what}| <= {bound:.6g}, or leave the element out if it never closes")
+    return elements
+
+
+#: The largest friction coefficient of a contact element (soil, gap). A friction row of the step
+#: LCP is ``psi_slip + mu psi_normal``: it adds ``mu`` times the contact's row, so the round-off of the
+#: contact row (its scale ``k`` times the opening) reaches the tangential force ``mu`` times over.
+#: An open gap must carry no tangential force; measured on the pounding example (kt = 1e5 kN/m,
+#: direct): 1e-11 kN at mu = 1, 1.5e-10 at mu = 10, 1.5e-9 at 100, 2.7e-5 kN (cq) at 1e4 and a
+#: positive slip function, and on a frame of two columns the step LCP fails at mu = 100.
+FRICTION_MU_MAX = 10.0
+
+
+def check_friction_coefficient(name, kind, mu) -> None:
+    """Refuse a friction coefficient ``mu`` above :data:`FRICTION_MU_MAX` on a contact element.
+
+    Raises
+    ------
+    ValueError
+        Naming the contact, ``mu`` and the largest ``mu`` that is valid.
+    """
+    if mu > FRICTION_MU_MAX:
+        raise ValueError(
+            f"{kind} {name!r}: mu = {mu!r} is above {FRICTION_MU_MAX:g}: the friction rows of the step LCP add mu "
+            "times the contact row, whose round-off then gives an open contact a tangential force and the "
+            "step LCP an ill-conditioned matrix (docs/theory.md, section 13); friction coefficients of "
+            f"real interfaces are below about 2. Give mu <= {FRICTION_MU_MAX:g}")
+
+
 def frictional(name, kind, i, j, terms, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, capacity=0.0) -> Element:
     """A contact along ``d`` (``terms``) with Coulomb friction along ``t``, ``d`` turned clockwise.
 
@@ -318,6 +390,7 @@ def frictional(name, kind, i, j, terms, *, k, kt, mu, c=0.0, ct=0.0, theta=0.0, 
     coefficient ``mu`` on the compression of ``name``).
     """
     check_stick_stiffness(name, kind, k, kt)
+    check_friction_coefficient(name, kind, mu)
     dofs, a = _relative(i, j, (terms, tangent_terms(f"{kind} {name!r}", terms)))
     E_v = np.diag([c, ct]) if c > 0 or ct > 0 else None
     unknowns = (Unknown(name, 0, 1.0, capacity), *pair(name, 1, "friction", normal=name, mu=mu, k=kt))

@@ -35,7 +35,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .elements import Element, Unknown, _relative, check_stick_stiffness, length, unit
+from .elements import Element, Unknown, _relative, check_friction_coefficient, check_stick_stiffness, length, unit
 from .elements import vector as _vector
 
 DOF_NAMES = ("ux", "uy", "uz", "rx", "ry", "rz")
@@ -234,6 +234,7 @@ def frictional(name, kind, i, j, terms, axes, *, k, kt, mu, c=0.0, ct=0.0, theta
     ``name.slip2-`` along ``t2`` (row 2), ``|T1| <= mu N``, ``|T2| <= mu N``.
     """
     check_stick_stiffness(name, kind, k, kt)
+    check_friction_coefficient(name, kind, mu)
     rows = (terms, *(tuple((dof, float(x)) for dof, x in zip(TRANSLATIONS, t) if x != 0.0) for t in axes))
     dofs, a = _relative(i, j, rows, DOF_NAMES)
     unknowns = (Unknown(name, 0, 1.0, capacity), *facet_unknowns(name, facets, mu=mu, k=kt))

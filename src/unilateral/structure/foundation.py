@@ -161,7 +161,7 @@ def soil_flexibility(soil, patches, where="soil", components="z"):
     soil : SoilFlexibility
     spec : SoilSpec or None
     """
-    from ..soil.foundation_model import SoilFlexibility
+    from ..soil.flexibility import SoilFlexibility
 
     rows = len(components) * patches.m
     if isinstance(soil, SoilFlexibility):
@@ -175,25 +175,7 @@ def soil_flexibility(soil, patches, where="soil", components="z"):
         raise ValueError(f"{where}: model={spec.model!r} is not valid; valid: {', '.join(map(repr, SOIL_MODELS))}")
     m = patches.m
     if spec.model == "winkler-kelvin":
-        for key in ("G", "Vs", "nu", "rho"):
-            if getattr(spec, key) is not None:
-                raise ValueError(f"{where}: {key}={getattr(spec, key)!r} is not used by model='winkler-kelvin' "
-                                 "(give k and c per patch), remove it")
-        if spec.damping:
-            raise ValueError(f"{where}: damping={spec.damping!r} is not used by model='winkler-kelvin' (give c)")
-        if spec.k is None:
-            raise ValueError(f"{where}: model='winkler-kelvin' needs k, the spring of each patch [force/length]")
-        k = _per_patch(where, "k", spec.k, m, ">0")
-        c = _per_patch(where, "c", spec.c, m, ">=0")
-        if components == "xz":
-            if spec.kx is None:
-                raise ValueError(f"{where}: a footing that slides on model='winkler-kelvin' needs kx, the horizontal "
-                                 "spring of each patch [force/length] (and cx, its dashpot)")
-            k = np.concatenate([_per_patch(where, "kx", spec.kx, m, ">0"), k])
-            c = np.concatenate([_per_patch(where, "cx", spec.cx, m, ">=0"), c])
-        elif spec.kx is not None or spec.cx not in (None, 0, 0.0):
-            raise ValueError(f"{where}: kx and cx are for a footing with horizontal='soil'; remove them")
-        return SoilFlexibility.kelvin(k, c), spec
+        return _winkler_kelvin(spec, m, where, components), spec
     if spec.kx is not None or spec.cx not in (None, 0, 0.0):
         raise ValueError(f"{where}: kx and cx are for model='winkler-kelvin'; remove them for model={spec.model!r}")
     if spec.model == "layered":
@@ -212,23 +194,56 @@ def soil_flexibility(soil, patches, where="soil", components="z"):
         if damping:
             raise ValueError(f"{where}: damping={damping!r}: the cones have no material damping; use "
                              "model='halfspace' for a damped soil, or damping = 0")
-        from ..soil.cones import Cone, cone
-
-        areas = patches.areas
-        share = areas / areas.sum()
-        r0 = float(np.sqrt(areas.sum() / np.pi))
-        motions = ("horizontal", "vertical") if components == "xz" else ("vertical",)
-        cones = []
-        for motion in motions:
-            whole = cone(motion, G, nu, rho, r0)
-            cones += [Cone(motion, whole.K * w, whole.C * w, whole.dM * w, 0.0, whole.z0, whole.c) for w in share]
-        flex = SoilFlexibility.impedances(cones)
-        flex.description = (f"the footing's {' and '.join(motions)} cones (G={G:g}, nu={nu:g}, rho={rho:g}) over "
-                            f"{m} patches by area")
-        return flex, spec
+        return _cones(patches, G, nu, rho, components), spec
     from ..soil.halfspace import HalfSpace
 
     return SoilFlexibility.halfspace(HalfSpace(G, nu, rho, float(damping)), patches, components=components), spec
+
+
+def _winkler_kelvin(spec, m, where, components):
+    """The Kelvin springs of a ``"winkler-kelvin"`` soil spec (``k``, ``c`` per patch; with
+    ``components="xz"`` also ``kx``, ``cx``, the x rows first)."""
+    from ..soil.flexibility import SoilFlexibility
+
+    for key in ("G", "Vs", "nu", "rho"):
+        if getattr(spec, key) is not None:
+            raise ValueError(f"{where}: {key}={getattr(spec, key)!r} is not used by model='winkler-kelvin' "
+                             "(give k and c per patch), remove it")
+    if spec.damping:
+        raise ValueError(f"{where}: damping={spec.damping!r} is not used by model='winkler-kelvin' (give c)")
+    if spec.k is None:
+        raise ValueError(f"{where}: model='winkler-kelvin' needs k, the spring of each patch [force/length]")
+    k = _per_patch(where, "k", spec.k, m, ">0")
+    c = _per_patch(where, "c", spec.c, m, ">=0")
+    if components == "xz":
+        if spec.kx is None:
+            raise ValueError(f"{where}: a footing that slides on model='winkler-kelvin' needs kx, the horizontal "
+                             "spring of each patch [force/length] (and cx, its dashpot)")
+        k = np.concatenate([_per_patch(where, "kx", spec.kx, m, ">0"), k])
+        c = np.concatenate([_per_patch(where, "cx", spec.cx, m, ">=0"), c])
+    elif spec.kx is not None or spec.cx not in (None, 0, 0.0):
+        raise ValueError(f"{where}: kx and cx are for a footing with horizontal='soil'; remove them")
+    return SoilFlexibility.kelvin(k, c)
+
+
+def _cones(patches, G, nu, rho, components):
+    """Wolf's cones of the whole footing (vertical; with ``components="xz"`` horizontal first),
+    shared among the patches by area."""
+    from ..soil.cones import Cone, cone
+    from ..soil.flexibility import SoilFlexibility
+
+    areas = patches.areas
+    share = areas / areas.sum()
+    r0 = float(np.sqrt(areas.sum() / np.pi))
+    motions = ("horizontal", "vertical") if components == "xz" else ("vertical",)
+    cones = []
+    for motion in motions:
+        whole = cone(motion, G, nu, rho, r0)
+        cones += [Cone(motion, whole.K * w, whole.C * w, whole.dM * w, 0.0, whole.z0, whole.c) for w in share]
+    flex = SoilFlexibility.impedances(cones)
+    flex.description = (f"the footing's {' and '.join(motions)} cones (G={G:g}, nu={nu:g}, rho={rho:g}) over "
+                        f"{patches.m} patches by area")
+    return flex
 
 
 def layered_soil(spec: SoilSpec, where="soil"):
@@ -517,7 +532,7 @@ def shared_medium(footings, elevation: str) -> bool:
 
 def _group_soil(footings):
     """One flexibility of all the footings' patches (see :class:`Footings`)."""
-    from ..soil.foundation_model import SoilFlexibility
+    from ..soil.flexibility import SoilFlexibility
 
     if len(footings) == 1:
         return footings[0].soil

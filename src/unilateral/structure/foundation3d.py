@@ -17,7 +17,7 @@ force ``(fx, fy)`` through the soil's x-y-z flexibility (the half-space's or lay
 tensor, ``components="xyz"``; Wolf's horizontal cone spread over the patches by area for
 ``"cones"``; springs ``kx`` and dashpots ``cx`` along x and along y per patch for
 ``"winkler-kelvin"``), limited by a polygonal Coulomb cone of ``facets`` facets (facet ``k`` of
-unit normal ``d_k`` keeps ``d_k . f <= mu c``, :func:`unilateral.soil.foundation_model.facet_normals`).
+unit normal ``d_k`` keeps ``d_k . f <= mu c``, :func:`unilateral.soil.flexibility.facet_normals`).
 The footing's horizontal displacement at a patch includes its twist ``rz`` about its node (its base
 is at the node's elevation, as in 2-D, so rocking does not move it horizontally):
 
@@ -288,7 +288,7 @@ def plan_soil(soil, patches, where):
     Wolf's horizontal cone of the footing's area spread over the patches by area along x and along
     y, its vertical cone along z; Kelvin springs ``kx``, dashpots ``cx`` along x and along y.
     """
-    from ..soil.foundation_model import SoilFlexibility
+    from ..soil.flexibility import SoilFlexibility
 
     if isinstance(soil, SoilFlexibility):
         if soil.m != 3 * patches.m:
@@ -412,7 +412,7 @@ class Footings3D(Footings):
 
 def _plan_group_soil(footings):
     """One x-y-z flexibility of all the footings' patches: all x rows, all y rows, then all z rows."""
-    from ..soil.foundation_model import SoilFlexibility
+    from ..soil.flexibility import SoilFlexibility
 
     if len(footings) == 1:
         return footings[0].soil

@@ -32,9 +32,9 @@ import scipy.sparse as sp
 from ..loads.units import STANDARD_GRAVITY
 from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
-from . import bulk, elements as el, rigid
+from . import bulk, elements as el, rigid, support_motion
 from .dofs import DofMap, csr_of_entries, node_list
-from .modes import check_frequency_range
+from .modes import check_frequency_range, modal_damping_matrix
 
 _isfinite = math.isfinite
 _INF = math.inf
@@ -195,7 +195,7 @@ class _Frame(ABC):
         """
         if dofs.n == 0:
             raise ValueError("every DOF is supported or linked: the frame has no free DOF")
-        elements = self._elements
+        elements = el.check_clearances(self._elements, self._coords)
         G = _compatibility(elements, dofs)
         stiffness = [e.E for e in elements]
         E = _block_diagonal(stiffness)
@@ -374,7 +374,7 @@ class _Frame(ABC):
                                                                                self._axes)
 
 
-class Frame2D(rigid.RigidContacts, _Frame):
+class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
     """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
 
     Nodes have the DOFs ``ux``, ``uy`` (along global x, y) and ``rz`` (counter-clockwise). Define
@@ -778,7 +778,7 @@ class Frame2D(rigid.RigidContacts, _Frame):
             from .foundation import Footings
 
             footings = Footings(self._foundations, first=len(fields["constraint_names"]))
-        structure = Structure(**fields, foundation=footings)
+        structure = support_motion.attach(self, Structure(**fields, foundation=footings))
         if self._p_delta is None:
             return rigid.attach(self, structure)
         if self._foundations:
@@ -927,7 +927,7 @@ class Structure:
         nat = self.natural
         model = Model.from_natural(
             nat.G, nat.E, nat.B, M=self.M, A=_nonzero_interaction(nat.A, np.shape(nat.B)[1]), r=nat.r,
-            theta=nat.theta(0.0),                   # the builder's imposed strains are constant
+            theta=nat.theta.value if isinstance(nat.theta, ConstantStrain) else nat.theta, theta_rate=nat.theta_rate,
             C=self.C, E_v=nat.E_v, dof_names=self.dofs.names,
             constraint_names=list(self.constraint_names), families=self.families(),
             on_soil=self.foundation is not None,
@@ -1089,12 +1089,13 @@ class Structure:
             raise TypeError(f"a_g must be a time function a_g(t), got {a_g!r}")
         return -np.asarray(self.M @ self.influence(direction)).ravel(), a_g
 
-    def element_deformations(self, u, v) -> tuple[np.ndarray, np.ndarray]:
+    def element_deformations(self, u, v, t=None) -> tuple[np.ndarray, np.ndarray]:
         """Deformations of the strains of the constraint unknowns (:attr:`constraint_strains`).
 
         Parameters
         ----------
         u : (..., n) displacements;  v : (..., m) constraint unknowns
+        t : (N,) times of ``u`` (N, n); needed with support motions (imposed strains varying in time)
 
         Returns
         -------
@@ -1110,7 +1111,9 @@ class Structure:
         steps = int(np.prod(u.shape[:-1]))
         e = (Gu.T @ u.reshape(steps, self.n).T).T.reshape(u.shape[:-1] + (self.m,))
         Bv = (self.natural.B[rows] @ v.reshape(steps, self.m).T).T.reshape(e.shape)
-        return e, e - Bv - self.natural.theta(0.0)[rows]
+        if t is None and not isinstance(self.natural.theta, ConstantStrain):
+            raise ValueError("element_deformations: give the times t of u (the imposed strains vary in time)")
+        return e, e - Bv - self.natural.imposed_strains(t)[..., rows]
 
     def element_forces(self, t, u, v, udot=None, vdot=None) -> np.ndarray:
         """Forces (tension positive) of the strains of the constraint unknowns, ``sigma`` of
@@ -1133,48 +1136,16 @@ class Structure:
         return sigma[:, self.constraint_strains]
 
     def node_displacement(self, sol, node, dof) -> np.ndarray:
-        """History (N+1,) of DOF ``dof`` of ``node`` (supported and slave nodes included)."""
+        """History (N+1,) of DOF ``dof`` of ``node`` (supported, moving and slave nodes included)."""
         if sol.u is None or sol.u.shape[1] != self.n:
             shape = None if sol.u is None else sol.u.shape
             raise ValueError(f"sol.u must have shape (N+1, {self.n}) for this structure, got {shape}")
         row = self.dofs.T[self.dofs.full_index(node, dof)]
-        return np.asarray(row @ sol.u.T).ravel()
+        imposed = support_motion.support_displacement(self, node, dof, sol.t)
+        return np.asarray(row @ sol.u.T).ravel() + (0.0 if imposed is None else imposed)
 
 
 # ---------------------------------------------------------------------- assembly
-def modal_damping_matrix(K, M, zeta, modes=None) -> np.ndarray:
-    """``M_m Phi diag(2 zeta_i w_i) Phi^T M_m`` (n, n) on the DOFs with mass (massless DOFs condensed
-    statically, their rows and columns zero); see :meth:`Frame2D.modal_damping`."""
-    K = K.toarray() if sp.issparse(K) else np.asarray(K, dtype=float)
-    M = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
-    n = K.shape[0]
-    mass = np.flatnonzero(np.diag(M) > 0)
-    zero = np.setdiff1d(np.arange(n), mass)
-    C = np.zeros((n, n))
-    if mass.size == 0:
-        return C
-    Kmm = K[np.ix_(mass, mass)]
-    if zero.size:
-        K0m = K[np.ix_(zero, mass)]
-        try:
-            Kmm = Kmm - K0m.T @ np.linalg.solve(K[np.ix_(zero, zero)], K0m)
-        except np.linalg.LinAlgError:
-            raise ValueError("modal_damping: the massless DOFs cannot be condensed (their stiffness is "
-                             "singular); give them mass or support them") from None
-    Mmm = M[np.ix_(mass, mass)]
-    from scipy.linalg import eigh
-
-    w2, phi = eigh(0.5 * (Kmm + Kmm.T), Mmm)               # Phi^T M Phi = I
-    count = mass.size if modes is None and isinstance(zeta, float) else (
-        len(zeta) if modes is None else modes)
-    count = min(count, mass.size)
-    z = np.full(count, zeta) if isinstance(zeta, float) else np.asarray(zeta[:count], dtype=float)
-    w = np.sqrt(np.clip(w2[:count], 0.0, None))
-    MP = Mmm @ phi[:, :count]
-    C[np.ix_(mass, mass)] = (MP * (2 * z * w)) @ MP.T
-    return 0.5 * (C + C.T)
-
-
 def _compatibility(elements, dofs: DofMap) -> sp.csr_matrix:
     """``G = T^T L^T`` (n, ne) with ``e = L u_full`` the elements' strains of the nodal DOFs.
 

@@ -30,14 +30,14 @@ import scipy.sparse as sp
 
 from ..loads.units import STANDARD_GRAVITY
 from ..model import NaturalForm  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
-from . import elements as el
+from . import elements as el, support_motion
 from . import elements3d as el3
 from .dofs import DofMap  # noqa: F401  (likewise)
 from .dofs3d import IN_PLANE, DofMap3D
 from .frame import Structure, _Frame, _friction, _hardening, _real, _strength
 
 
-class Frame3D(_Frame):
+class Frame3D(support_motion.SupportMotions, _Frame):
     """Builder of a space frame with unilateral elements (foundation uplift, pounding, cables).
 
     Nodes have the DOFs ``ux``, ``uy``, ``uz`` (along global x, y, z) and ``rx``, ``ry``, ``rz``
@@ -197,26 +197,10 @@ class Frame3D(_Frame):
             ``tests/test_sliding_footings3d.py``'s tower at 0.5 rad). With 32 facets the pivoting
             solver failed at a step of that run.
         """
-        from .foundation3d import Footings3D, build_footing, check_plan_overlap, grid_nodes
+        from .foundation3d import Footings3D, build_footing, check_plan_overlap
 
         where = self._label("foundation", name)
-        if nodes is None:
-            if node is None:
-                raise ValueError(f"{where}: give node (a rigid footing's node) or nodes (a flexible footing's grid "
-                                 "of nodes)")
-            self._node(where, "node", node)
-        else:
-            for i, row in enumerate(grid_nodes(where, nodes)):
-                for j, other in enumerate(row):
-                    self._node(where, f"nodes[{i}][{j}]", other)
-            if node is not None:
-                self._node(where, "node", node)
-            if patches is not None:
-                raise ValueError(f"{where}: patches={patches!r}: a flexible footing has one patch per node of "
-                                 "nodes; remove patches")
-            if mass or Jx or Jy or Jz:
-                raise ValueError(f"{where}: mass={mass!r}, Jx={Jx!r}, Jy={Jy!r}, Jz={Jz!r} are for a rigid footing; "
-                                 "give a flexible footing's masses to its nodes with Frame3D.mass")
+        self._check_footing_nodes(where, node, nodes, patches, (mass, Jx, Jy, Jz))
         fnd = build_footing(name=name, node=node, width=width, length=length, soil=soil,
                             patches=(3, 3) if patches is None else patches, horizontal=horizontal, gap=gap,
                             coords=self._coords, mu=mu, facets=facets, nodes=nodes)
@@ -235,6 +219,30 @@ class Frame3D(_Frame):
             self.mass(node, mass, Jx=Jx, Jy=Jy, Jz=Jz)
         self._foundations.append(fnd)
         self._names.add(name)
+
+    def _check_footing_nodes(self, where, node, nodes, patches, inertia) -> None:
+        """The nodes of a new footing are defined: a rigid one's ``node``, or a flexible one's grid
+        ``nodes`` (then no ``patches`` and no own ``inertia`` = (mass, Jx, Jy, Jz))."""
+        from .foundation3d import grid_nodes
+
+        if nodes is None:
+            if node is None:
+                raise ValueError(f"{where}: give node (a rigid footing's node) or nodes (a flexible footing's grid "
+                                 "of nodes)")
+            self._node(where, "node", node)
+        else:
+            for i, row in enumerate(grid_nodes(where, nodes)):
+                for j, other in enumerate(row):
+                    self._node(where, f"nodes[{i}][{j}]", other)
+            if node is not None:
+                self._node(where, "node", node)
+            if patches is not None:
+                raise ValueError(f"{where}: patches={patches!r}: a flexible footing has one patch per node of "
+                                 "nodes; remove patches")
+            if any(inertia):
+                mass, Jx, Jy, Jz = inertia
+                raise ValueError(f"{where}: mass={mass!r}, Jx={Jx!r}, Jy={Jy!r}, Jz={Jz!r} are for a rigid footing; "
+                                 "give a flexible footing's masses to its nodes with Frame3D.mass")
 
     def _check_on_soil(self, where, fnd) -> None:
         """Raise if a DOF a footing moves on the soil is supported (rigid: or follows another node)."""
@@ -531,7 +539,7 @@ class Frame3D(_Frame):
             from .foundation3d import Footings3D
 
             fields["foundation"] = Footings3D(self._foundations, first=len(fields["constraint_names"]))
-        return Structure3D(**fields)
+        return support_motion.attach(self, Structure3D(**fields))
 
     # ------------------------------------------------------------------ helpers
     def _tied(self, node, dof) -> bool:

@@ -143,3 +143,36 @@ def _modes(model, count, influence) -> dict:
 
 def _dense(A) -> np.ndarray:
     return A.toarray() if sp.issparse(A) else np.asarray(A, dtype=float)
+
+
+def modal_damping_matrix(K, M, zeta, modes=None) -> np.ndarray:
+    """``M_m Phi diag(2 zeta_i w_i) Phi^T M_m`` (n, n) on the DOFs with mass (massless DOFs condensed
+    statically, their rows and columns zero); see :meth:`Frame2D.modal_damping`."""
+    K = K.toarray() if sp.issparse(K) else np.asarray(K, dtype=float)
+    M = M.toarray() if sp.issparse(M) else np.asarray(M, dtype=float)
+    n = K.shape[0]
+    mass = np.flatnonzero(np.diag(M) > 0)
+    zero = np.setdiff1d(np.arange(n), mass)
+    C = np.zeros((n, n))
+    if mass.size == 0:
+        return C
+    Kmm = K[np.ix_(mass, mass)]
+    if zero.size:
+        K0m = K[np.ix_(zero, mass)]
+        try:
+            Kmm = Kmm - K0m.T @ np.linalg.solve(K[np.ix_(zero, zero)], K0m)
+        except np.linalg.LinAlgError:
+            raise ValueError("modal_damping: the massless DOFs cannot be condensed (their stiffness is "
+                             "singular); give them mass or support them") from None
+    Mmm = M[np.ix_(mass, mass)]
+    from scipy.linalg import eigh
+
+    w2, phi = eigh(0.5 * (Kmm + Kmm.T), Mmm)               # Phi^T M Phi = I
+    count = mass.size if modes is None and isinstance(zeta, float) else (
+        len(zeta) if modes is None else modes)
+    count = min(count, mass.size)
+    z = np.full(count, zeta) if isinstance(zeta, float) else np.asarray(zeta[:count], dtype=float)
+    w = np.sqrt(np.clip(w2[:count], 0.0, None))
+    MP = Mmm @ phi[:, :count]
+    C[np.ix_(mass, mass)] = (MP * (2 * z * w)) @ MP.T
+    return 0.5 * (C + C.T)
