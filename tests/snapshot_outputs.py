@@ -29,7 +29,8 @@ ONE_THREAD = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THRE
 #: ... and with the engine chosen by the policy's steps rule, never by what numba's cache holds
 #: (:mod:`unilateral.march.policy`): the two engines agree to round-off, not bit for bit.
 PINNED = {**ONE_THREAD, "UNILATERAL_ENGINE_CHOICE": "steps"}
-SKIP_WORDS = ("time", "timing", "wall", "elapsed", "seconds", "version", "path", "file", "dir", "date")
+SKIP_WORDS = ("time", "timing", "wall", "elapsed", "seconds", "version", "path", "file", "dir", "date",
+              "output")                  # summary.json's "output": what was written, not a result
 
 CASES = {
     "liolios1990.toml": ["run", str(EXAMPLES / "liolios1990.toml")],
@@ -47,7 +48,8 @@ def run_case(name, out):
     """Run case ``name`` of :data:`CASES` into folder ``out`` with the CLI; return the wall time [s]."""
     if name not in CASES:
         raise ValueError(f"case={name!r} is not a snapshot case; valid: {sorted(CASES)}")
-    cmd = [sys.executable, "-m", "unilateral", *CASES[name], "--out", str(out), "--figures", "none"]
+    full = ["--histories", "full"] if CASES[name][0] == "run" else []     # every history, whatever its size
+    cmd = [sys.executable, "-m", "unilateral", *CASES[name], *full, "--out", str(out), "--figures", "none"]
     start = time.perf_counter()
     done = subprocess.run(cmd, capture_output=True, text=True, env={**os.environ, **PINNED})
     if done.returncode != 0:

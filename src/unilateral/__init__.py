@@ -11,7 +11,9 @@ by numerical Laplace inversion, :func:`invert_laplace`), and :func:`solve` (load
 arrays or a :class:`LoadHistory`). Structures are built with :class:`unilateral.structure.Frame2D`
 or read from model files (:func:`unilateral.modelfile.load_model_file`); :class:`Simulation` advances
 an analysis step by step (``step``, ``advance``, ``advance_to``, ``state``, ``solution``);
-:func:`run` analyses a model file and writes every output, as ``unilateral run`` does.
+:func:`run` analyses a model file in memory (an :class:`Analysis`: the summary, the solutions, every
+result as an xarray Dataset, the figures; ``save(folder)`` or ``out=`` writes what ``unilateral run``
+writes), and :func:`results_dataset` gives the results Dataset of solutions of a structure.
 
 The names are imported lazily, on first use: ``import unilateral`` (and the command line's
 ``--help``) does not import numpy, scipy, xarray or matplotlib.
@@ -45,9 +47,9 @@ _LAZY = {
     **dict.fromkeys(("BDF", "HHT", "Newmark", "get_rule"), "unilateral.rules"),
     **dict.fromkeys(("Simulation", "solve"), "unilateral.solve"),
     **dict.fromkeys(("SizePolicy", "size_policy"), "unilateral.march.policy"),
-    "run": "unilateral.analysis",
+    **dict.fromkeys(("Analysis", "results_dataset", "run"), "unilateral.analysis.memory"),
 }
-_ALIASES = {"run": "run_model_file"}
+_ALIASES: dict = {}
 
 __all__ = sorted(_LAZY)
 

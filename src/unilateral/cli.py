@@ -131,9 +131,14 @@ def example(name, method, rule, dt, t_end, lcp, out, formats):
 @click.argument("model_file", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @_analysis_options
 @click.option("--bilateral", is_flag=True, help="Hold every constraint bilateral (no uplift) only.")
-def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral):
+@click.option("--histories", type=click.Choice(("auto", "key", "full")), default=None,
+              help="What is written: every history (full), the key ones (key), or by the run's size (auto, the "
+                   "default); replaces [output] histories.")
+def run(model_file, method, rule, dt, t_end, lcp, out, formats, bilateral, histories):
     """Analyse the structure described by MODEL_FILE (TOML; see docs/model-file.md)."""
     overrides = dict(method=method, rule=rule, dt=dt, t_end=t_end, lcp=lcp)
+    if histories is not None:
+        overrides["output"] = {"histories": histories}
     target = out or Path(model_file.stem)
     try:
         check_model_file(model_file)

@@ -50,6 +50,7 @@ nor pandas; ``unilateral plot`` draws the same figures from the file read by xar
 from __future__ import annotations
 
 import json
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -57,7 +58,8 @@ import numpy as np
 from ..io.atomic import WriteError, to_jsonable, write_json_atomic, write_text_atomic
 from ..io.dataset import Variable, cases_dataset, save_netcdf
 from ..io.folder import OutputFolder
-from ..io.results import save_csv
+from ..io.recorders import Recorders, select, solution_view
+from ..io.results import csv_text, save_csv
 from ..io.summary import summary
 from ..result import Solution
 from ..solve import solve
@@ -95,7 +97,7 @@ def run_cases(model, load, *, dt, t_end, method="cq", rule="bdf2", lcp="bpp", in
 def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=None, title="",
                   meta=None, labels=None, model=None, load=None, rule=None, formats=("png",),
                   point=None, storeys=None, figure_process=None, extra_figures=None, summary_extra=None,
-                  spectra=None, model_figure=False) -> dict:
+                  spectra=None, model_figure=False, recorders=None) -> dict:
     """Write results, tables, summary and figures of solved cases; return the summary dict.
 
     The files replace those of the previous run in ``out_dir`` as a set (see the module's doc).
@@ -134,6 +136,10 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
     model_figure : bool
         With a frame: the figure ``model`` (:mod:`unilateral.figures.model`), the structure with its
         names and its first modes; ``results.nc`` keeps it in its attribute ``model_drawing``.
+    recorders : unilateral.io.recorders.Recorders or dict, optional
+        What of the results is written to ``results.nc`` and the CSV tables (default: every history
+        of a small run, the key histories of a large one); the summary and the figures are of every
+        result. ``summary.json``'s ``output`` says what was written.
     """
     folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir)
     try:
@@ -142,7 +148,8 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
             result = _write_all(staging, cases, structure=structure, units=units, figure=figure, title=title,
                                 meta=meta, labels=labels, model=model, load=load, rule=rule, formats=formats,
                                 point=point, storeys=storeys, figure_process=figure_process,
-                                summary_extra=summary_extra, spectra=spectra, model_figure=model_figure)
+                                summary_extra=summary_extra, spectra=spectra, model_figure=model_figure,
+                                recorders=recorders)
             if formats and extra_figures is not None:
                 result["figures"] += [str(p) for p in extra_figures(staging, formats)]
         except BaseException:
@@ -161,8 +168,48 @@ def write_outputs(out_dir, cases: dict, *, structure=None, units=None, figure=No
 
 
 def _write_all(out, cases: dict, *, structure, units, figure, title, meta, labels, model, load, rule, formats,
-               point, storeys, figure_process, summary_extra=None, spectra=None, model_figure=False) -> dict:
+               point, storeys, figure_process, summary_extra=None, spectra=None, model_figure=False,
+               recorders=None) -> dict:
     """:func:`write_outputs` into the folder ``out`` (the staging folder)."""
+    done = compute_results(cases, structure=structure, units=units, figure=figure, title=title, meta=meta,
+                           labels=labels, model=model, load=load, rule=rule, point=point, storeys=storeys,
+                           summary_extra=summary_extra, spectra=spectra, model_figure=model_figure)
+    return write_results(done, out, formats=formats, figure_process=figure_process, recorders=recorders)
+
+
+@dataclass
+class ComputedResults:
+    """Every result of solved cases, in memory (:func:`compute_results`), before anything is written.
+
+    Attributes
+    ----------
+    ds : unilateral.io.dataset.Dataset
+        Every history and static result (what ``histories = "full"`` writes to ``results.nc``).
+    solutions : dict of str to Solution
+        The cases as solved (a case that stopped early: up to where it stopped).
+    summary : dict
+        ``summary.json`` but its ``output`` (what is written) and ``figures``.
+    responses : list of dict
+        The response spectra (:func:`unilateral.analysis.spectra.run_spectra`), none without.
+    """
+
+    ds: object
+    solutions: dict
+    summary: dict
+    responses: list
+    structure: object = None
+    units: dict | None = None
+    figure: dict | None = None
+    title: str = ""
+    main_name: str = "unilateral"
+    tables: bool = False
+    model_figure: bool = False
+
+
+def compute_results(cases: dict, *, structure=None, units=None, figure=None, title="", meta=None, labels=None,
+                    model=None, load=None, rule=None, point=None, storeys=None, summary_extra=None, spectra=None,
+                    model_figure=False) -> ComputedResults:
+    """The Dataset, spectra and summary of solved ``cases`` (see :func:`write_outputs` for the parameters)."""
     labels = labels or {}
     computed = cases
     cases = _on_common_axis(cases)
@@ -180,39 +227,32 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
     if structure is None and model is not None:
         ds = _with_model_kinds(ds, model)
     three_d = is_3d(structure)
+    rule = rule or main.stats.get("rule", "bdf2")
     if structure is not None:
         ds = _with_node_displacements(ds, cases, structure, units)
         ds = _with_constraint_coords(ds, structure)
         if model is not None:
             results_of = structure_results_3d if three_d else _structure_results
-            extra_results = results_of(structure, model, computed, load=load, units=units,
-                                       rule=rule or main.stats.get("rule", "bdf2"), point=point, storeys=storeys)
+            extra_results = results_of(structure, model, computed, load=load, units=units, rule=rule, point=point,
+                                       storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))
         ds = with_constraint_units(ds, structure, units)
     ds, responses = _with_spectra(ds, structure, extra_results, spectra, dt=_time_step(main), units=units,
                                   names=list(cases), three_d=three_d)
-    response = responses[0] if responses else None
     if model_figure and structure is not None and not three_d:
         ds.attrs["model_drawing"] = _model_drawing(structure, extra_results, units, title).to_json()
-    if formats and figure_process is not None:
-        figure_process.submit(figure_view(ds), out, formats)
-    save_netcdf(ds, out / "results.nc")
-    for name, sol in computed.items():
-        save_csv(sol, out, prefix="" if name == main_name else f"{name}_", column_units=csv_units(sol, units, structure))
-    if extra_results is not None:
-        _save_result_tables(ds, out, main_name=main_name, rows={name: len(sol.t) for name, sol in computed.items()},
-                            units=units)
-    if response is not None:
-        from .spectra import spectra_columns
-
-        columns = {}
-        for each in responses:              # a 3-D frame: every column names its direction
-            columns |= _with_direction(spectra_columns(each, {}), each["direction"], units) if three_d else \
-                spectra_columns(each, units)
-        write_text_atomic(out / "spectra.csv", _csv(columns))
-
     extra = {key: value for key, value in meta.items() if key not in ("figure_node", "figure_dof", "figure_text")}
-    extra |= summary_extra or {}
+    result = _summary_of(ds, computed, main_name, extra | (summary_extra or {}), structure=structure, units=units,
+                         figure=figure, labels=labels, extra_results=extra_results, rule=rule, responses=responses)
+    return ComputedResults(ds, computed, result, responses, structure=structure, units=units, figure=figure,
+                           title=title, main_name=main_name, tables=extra_results is not None,
+                           model_figure=model_figure)
+
+
+def _summary_of(ds, computed, main_name, extra, *, structure, units, figure, labels, extra_results, rule,
+                responses) -> dict:
+    """``summary.json`` of the cases (:func:`compute_results`), without ``output`` and ``figures``."""
+    main = computed[main_name]
     if figure is not None and structure is not None:
         histories = {name: structure.node_displacement(sol, figure["node"], figure["dof"])
                      for name, sol in computed.items()}
@@ -222,29 +262,41 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
             "peak": {label: float(np.max(y)) for label, y in histories.items()},
             "minimum": {label: float(np.min(y)) for label, y in histories.items()},
         }
-    if len(cases) > 1 or not main.success:
+    if len(computed) > 1 or not main.success:
         extra["cases"] = {name: {"success": sol.success, "message": sol.message,
                                  "steps_computed": len(sol.t) - 1, "t_reached": float(sol.t[-1])}
                           for name, sol in computed.items()}
     kinds = ds["constraint_kind"].values.tolist() if "constraint_kind" in ds.coords else None
-    result = summary(computed[main_name], units=units, extra=extra, kinds=kinds)
+    result = summary(main, units=units, extra=extra, kinds=kinds)
     if any(labels.get(name, name) != name for name in computed):
         result["case_labels"] = {name: labels.get(name, name) for name in computed}
     if extra_results is not None:
         result["results"] = to_jsonable(extra_results["peaks"])
         warnings = energy_warnings({case_name(name, labels): p for name, p in result["results"].items()},
-                                   rule=rule or main.stats.get("rule", "bdf2"),
-                                   dt=main.stats.get("dt"))
+                                   rule=rule, dt=main.stats.get("dt"))
         if warnings:
             result["warnings"] = warnings
-    if response is not None:
+    if responses:
         from .spectra import spectra_summary
 
-        result["spectra"] = spectra_summary(response)
-        if three_d:
+        result["spectra"] = spectra_summary(responses[0])
+        if is_3d(structure):
             result["spectra"]["by_direction"] = {each["direction"]: spectra_summary(each) for each in responses}
-    if three_d:
+    if is_3d(structure):
         result["notes"] = [NOT_IN_3D]
+    return result
+
+
+def write_results(done: ComputedResults, out, *, formats=("png",), figure_process=None, recorders=None) -> dict:
+    """Write ``results.nc``, the CSV tables, ``summary.json`` and the figures of ``done`` into the folder ``out``
+    (a staging folder: :func:`write_outputs` swaps it in); return the summary with ``output`` and ``figures``."""
+    ds, structure = done.ds, done.structure
+    if formats and figure_process is not None:
+        figure_process.submit(figure_view(ds), out, formats)
+    output_info = _write_files(ds, out, done.solutions, done.responses, main_name=done.main_name,
+                               structure=structure, units=done.units, recorders=recorders, figure=done.figure,
+                               tables=done.tables)
+    result = dict(done.summary) | {"output": output_info}
     write_json_atomic(out / "summary.json", result)
     result["figures"] = []
     if formats and figure_process is not None:
@@ -253,13 +305,41 @@ def _write_all(out, cases: dict, *, structure, units, figure, title, meta, label
         from ..figures.results import draw_figures
 
         result["figures"] = [str(p) for p in draw_figures(figure_view(ds), out, formats)]
-    if formats and model_figure and three_d:    # drawn here: results.nc holds no 3-D drawing to redraw it from
+    if formats and done.model_figure and is_3d(structure):    # drawn here: results.nc holds no 3-D drawing
         from ..figures.model import draw_model
         from ..figures.model3d import model_drawing_3d
 
-        drawing = model_drawing_3d(structure, units=units, title=title)
+        drawing = model_drawing_3d(structure, units=done.units, title=done.title)
         result["figures"] += [str(p) for p in draw_model(drawing, out, formats)]
     return result
+
+
+def _write_files(ds, out, computed, responses, *, main_name, structure, units, recorders, figure, tables) -> dict:
+    """``results.nc`` and the CSV tables of what ``recorders`` write (:func:`unilateral.io.recorders.select`) of
+    the Dataset ``ds`` of every result; returns the choice made (``summary.json``'s ``output``)."""
+    recorders = Recorders.of(recorders)
+    written, info = select(ds, recorders, figure_node=None if figure is None else figure["node"])
+    save_netcdf(written, out / "results.nc")
+    if not recorders.csv:
+        return info
+    digits = recorders.precision
+    for name, sol in computed.items():
+        view = solution_view(written.sel(case=name) if "case" in written.dims else written, sol)
+        save_csv(view, out, prefix="" if name == main_name else f"{name}_", precision=digits,
+                 column_units=csv_units(view, units, structure))
+    if tables:
+        every = info["every"]
+        _save_result_tables(written, out, main_name=main_name, units=units, precision=digits,
+                            rows={name: -(-len(sol.t) // every) for name, sol in computed.items()})
+    if responses:
+        from .spectra import spectra_columns
+
+        columns = {}
+        for each in responses:              # a 3-D frame: every column names its direction
+            columns |= _with_direction(spectra_columns(each, {}), each["direction"], units) \
+                if is_3d(structure) else spectra_columns(each, units)
+        write_text_atomic(out / "spectra.csv", csv_text(columns))
+    return info
 
 
 def _with_direction(columns: dict, direction: str, units) -> dict:
@@ -510,7 +590,7 @@ INELASTIC_COLUMNS = {"yield_element": ("plastic_deformation", "yield_force", "yi
                      "friction_element": ("slip", "friction_force", "normal_force")}
 
 
-def _save_result_tables(ds, out, *, main_name, rows=None, units=None):
+def _save_result_tables(ds, out, *, main_name, rows=None, units=None, precision="float64"):
     """``element_forces.csv``, ``base.csv`` and ``yield_and_slip.csv`` of every case: the main case's
     without prefix, the others' as ``<case>_<file>`` (``bilateral_base.csv``), as the displacements.
     ``rows``: case -> the number of time steps it computed (a case that stopped early ends there)."""
@@ -519,10 +599,11 @@ def _save_result_tables(ds, out, *, main_name, rows=None, units=None):
         d = ds.sel(case=name) if "case" in ds.dims else ds
         if rows and name in rows:
             d = d.isel(time=slice(0, rows[name]))
-        _save_case_tables(d, out, prefix="" if name == main_name else f"{name}_", units=units or {})
+        _save_case_tables(d, out, prefix="" if name == main_name else f"{name}_", units=units or {},
+                          precision=precision)
 
 
-def _save_case_tables(d, out, *, prefix, units):
+def _save_case_tables(d, out, *, prefix, units, precision="float64"):
     force, length, time = (units.get(k, "") for k in ("force", "length", "time"))
     moment = f"{force} {length}".strip()
     t = d["time"].values
@@ -532,7 +613,7 @@ def _save_case_tables(d, out, *, prefix, units):
         for k, name in enumerate(d["element"].values):
             for c, comp in enumerate(d["end_component"].values):
                 columns[_head(f"{name}:{comp}", moment if str(comp).startswith(("M", "T")) else force)] = end[:, k, c]
-        write_text_atomic(out / f"{prefix}element_forces.csv", _csv(columns))
+        write_text_atomic(out / f"{prefix}element_forces.csv", csv_text(columns, precision))
     columns = {_head("time", time): t}
     for name, unit in (("base_shear", force), ("base_vertical", force), ("overturning_moment", moment)):
         if name in d:
@@ -554,7 +635,7 @@ def _save_case_tables(d, out, *, prefix, units):
         if f"drift_ratio_{axis}" in d:
             for k, label in enumerate(d["storey"].values):
                 columns[_head(f"drift_ratio_{axis}:{label}", "1")] = d[f"drift_ratio_{axis}"].values[:, k]
-    write_text_atomic(out / f"{prefix}base.csv", _csv(columns))
+    write_text_atomic(out / f"{prefix}base.csv", csv_text(columns, precision))
     columns = {_head("time", time): t}
     for dim, names in INELASTIC_COLUMNS.items():
         for name in (name for name in names if name in d):
@@ -570,7 +651,7 @@ def _save_case_tables(d, out, *, prefix, units):
                         head = f"{name}:{label}:{part}" if sum(map(bool, parts)) > 1 else f"{name}:{label}"
                         columns[_head(head, unit)] = values[:, k, j]
     if len(columns) > 1:
-        write_text_atomic(out / f"{prefix}yield_and_slip.csv", _csv(columns))
+        write_text_atomic(out / f"{prefix}yield_and_slip.csv", csv_text(columns, precision))
 
 
 def _head(name: str, unit: str) -> str:
@@ -608,17 +689,6 @@ def csv_units(sol, units, structure=None) -> dict:
         for key in ("psi", "psiL"):
             out[f"{key}:{c}"] = f"{force} {length}".strip() if hinge else force
     return out
-
-
-def _csv(columns) -> str:
-    import csv
-    import io
-
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(columns)
-    writer.writerows(np.column_stack(list(columns.values())).astype(float).tolist())
-    return buffer.getvalue()
 
 
 def _with_unit(label, units, dof):

@@ -32,7 +32,7 @@ def settings_of(defaults: dict, **given) -> dict:
 
 
 def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progress=None, point=None,
-                   storeys=None, figure_process=None, **overrides) -> dict:
+                   storeys=None, figure_process=None, output=None, **overrides) -> dict:
     """Analyse a model file and write every output, as ``unilateral run`` does.
 
     Parameters
@@ -46,6 +46,9 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
     figure_process : :class:`unilateral.figures.background.BackgroundFigures`, optional
         A forked process that draws the figures while this one writes the other outputs (the
         command line starts one as it starts); by default the figures are drawn in process.
+    output : dict or unilateral.io.recorders.Recorders, optional
+        What is written (``histories``, ``variables``, ``nodes``, ``elements``, ``every``,
+        ``precision``, ``csv``): these keys replace those of the file's ``[output]``.
     **overrides : ``dt``, ``t_end``, ``method``, ``rule``, ``lcp``, ``initial``
 
     Returns
@@ -56,23 +59,40 @@ def run_model_file(path, out=None, *, bilateral=False, figures=("png",), progres
 
     path = Path(path)
     spec = load_model_file(path)
-    a = spec.analysis
-    if a.get("type") == "pushover":                 # [pushover]: unilateral.pushover.files
+    if spec.analysis.get("type") == "pushover":     # [pushover]: unilateral.pushover.files
         from ..pushover.files import run_file
 
         return run_file(spec, Path(out) if out is not None else Path(path.stem), figures=figures,
                         bilateral=bilateral, **overrides)
-    settings = settings_of(a, **overrides)
+    job = model_file_job(spec, bilateral=bilateral, point=point, storeys=storeys, output=output, **overrides)
+    return analyse(**job, out=Path(out) if out is not None else Path(path.stem), formats=figures,
+                   progress=progress, figure_process=figure_process)
+
+
+def model_file_job(spec, *, bilateral=False, point=None, storeys=None, output=None, **overrides) -> dict:
+    """The arguments of :func:`analyse` (but ``out``, ``formats``, ``progress``, ``figure_process``) for the
+    model file read as ``spec`` (:func:`unilateral.modelfile.load_model_file`); see :func:`run_model_file`."""
+    a = spec.analysis
+    source = Path(spec.source)
     if point is None and spec.document.output.overturning_about is not None:
         point = tuple(spec.document.output.overturning_about)
-    spectra = spectra_settings(spec)
-    return analyse(spec.model, spec.load, settings, Path(out) if out is not None else Path(path.stem),
-                   structure=spec.structure, units=spec.units, figure=spec.figure,
-                   title=a.get("title") or path.stem, meta={"model_file": str(path)},
-                   cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
-                   labels=case_labels(_kinds(spec)), formats=figures, progress=progress, point=point,
-                   storeys=storeys, figure_process=figure_process, spectra=spectra,
-                   model_figure=spec.structure is not None)
+    return dict(model=spec.model, load=spec.load, settings=settings_of(a, **overrides), structure=spec.structure,
+                units=spec.units, figure=spec.figure, title=a.get("title") or source.stem,
+                meta={"model_file": str(source)},
+                cases=_cases(bool(a.get("bilateral_reference", True)) and not bilateral, not bilateral),
+                labels=case_labels(_kinds(spec)), point=point, storeys=storeys, spectra=spectra_settings(spec),
+                model_figure=spec.structure is not None, recorders=recorders_of(spec.document.output, output))
+
+
+def recorders_of(table, output=None):
+    """The :class:`~unilateral.io.recorders.Recorders` of a model file's ``[output]`` ``table`` with the keys of
+    ``output`` (a dict, a ``Recorders`` or None) in place of the file's."""
+    from ..io.recorders import FIELDS, Recorders
+
+    if isinstance(output, Recorders):
+        return output
+    given = {key: getattr(table, key) for key in FIELDS if getattr(table, key, None) is not None}
+    return Recorders.of(given | dict(output or {}))
 
 
 def spectra_settings(spec):
@@ -220,7 +240,7 @@ def _cases(bilateral_reference: bool, unilateral: bool) -> tuple:
 
 def analyse(model, load, settings, out, *, structure, units, figure, title, meta, cases, labels,
             formats=("png",), progress=None, point=None, storeys=None, figure_process=None, spectra=None,
-            model_figure=False) -> dict:
+            model_figure=False, recorders=None) -> dict:
     """Solve ``cases`` (``"unilateral"``, ``"bilateral"``) and write every output to ``out``.
 
     With ``model_figure`` a frame (``structure``) also gets the model figure ``model.png``, and with
@@ -238,35 +258,49 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
     ``figure_process`` (a :class:`~unilateral.figures.background.BackgroundFigures`, optional)
     draws the figures while this process writes the other outputs (:func:`write_outputs`).
     """
-    from .._validate import positive_float
-    from ..discretization import step_count
     from ..io.folder import OutputFolder
-    from ..solve import solve
     from .outputs import write_outputs
 
-    dt = positive_float("dt", settings["dt"])
-    t_end = positive_float("t_end", settings["t_end"])
-    N = max(step_count(t_end, dt), 1)
-    total = N * (len(cases) + 1)
-    kw = {key: settings[key] for key in SETTINGS}
+    _steps(settings)                            # dt and t_end checked before the folder
     folder = OutputFolder(out)
     folder.prepare()
     try:
-        solved = {}
-        for k, name in enumerate(cases):
-            done = k * N
-            callback = None if progress is None else (lambda step, _N, done=done: progress(done + step, total))
-            solved[name] = solve(model, load, callback=callback, bilateral=(name == "bilateral"), **kw)
-            if progress is not None:
-                progress((k + 1) * N, total)
+        solved = solve_cases(model, load, settings, cases, progress=progress)
         result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
                                meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
                                formats=formats, point=point, storeys=storeys, figure_process=figure_process,
-                               spectra=spectra, model_figure=model_figure)
+                               spectra=spectra, model_figure=model_figure, recorders=recorders)
     finally:
         folder.close()
     if progress is not None:
+        total = _steps(settings) * (len(cases) + 1)
         progress(total, total)
     result["success_all"] = all(sol.success for sol in solved.values())
     return result
+
+
+def _steps(settings) -> int:
+    from .._validate import positive_float
+    from ..discretization import step_count
+
+    dt = positive_float("dt", settings["dt"])
+    return max(step_count(positive_float("t_end", settings["t_end"]), dt), 1)
+
+
+def solve_cases(model, load, settings, cases, *, progress=None) -> dict:
+    """Solve ``cases`` (``"unilateral"``, ``"bilateral"``) of ``model`` under ``load`` with ``settings``
+    (:func:`settings_of`); ``progress(done, total)`` in steps over the cases and the writing after them."""
+    from ..solve import solve
+
+    N = _steps(settings)
+    total = N * (len(cases) + 1)
+    kw = {key: settings[key] for key in SETTINGS}
+    solved = {}
+    for k, name in enumerate(cases):
+        done = k * N
+        callback = None if progress is None else (lambda step, _N, done=done: progress(done + step, total))
+        solved[name] = solve(model, load, callback=callback, bilateral=(name == "bilateral"), **kw)
+        if progress is not None:
+            progress((k + 1) * N, total)
+    return solved
 

@@ -377,7 +377,8 @@ def open_results(path: str | os.PathLike) -> xr.Dataset:
         said = f"source = {source!r}" if source else "no source attribute"
         raise ResultsFileError(path, f"it is a netCDF file another program wrote ({said}; unilateral writes "
                                      "source = 'unilateral <version>')")
-    missing = [name for name in ("time", "v", "psi") if name not in ds.variables]
+    selected = ds.attrs.get("output_histories", "full") != "full"     # [output]: not every history written
+    missing = [name for name in (("time",) if selected else ("time", "v", "psi")) if name not in ds.variables]
     if missing:
         raise ResultsFileError(path, f"it lacks {', '.join(missing)}")
     return ds
@@ -395,7 +396,7 @@ def _not_hdf5(path: Path, head: bytes) -> str:
 
 
 def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "",
-             column_units: dict | None = None) -> list[Path]:
+             column_units: dict | None = None, precision: str = "float64") -> list[Path]:
     """Write the histories as CSV tables with a header row, atomically and at full precision.
 
     Files, in ``directory`` (created if missing):
@@ -405,7 +406,9 @@ def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "",
     - ``<prefix>constraints.csv``: ``time``, ``v:<name>`` and ``psi:<name>`` per constraint, and
       ``psiL:<name>`` if present.
 
-    Numbers are written as the shortest decimal that reads back to the same float. With
+    Numbers are written as the shortest decimal that reads back to the same float (``precision =
+    "float32"``: 9 significant digits, which read back to the same float32). A solution without
+    ``v``, ``psi`` and ``psiL`` (None: not recorded) has no ``constraints.csv``. With
     ``column_units`` (column name -> unit), a header states its column's unit: ``time [s]``,
     ``3.ux [m]``, ``psi:soil2 [kN]``.
 
@@ -424,20 +427,30 @@ def save_csv(sol: Solution, directory: str | os.PathLike, *, prefix: str = "",
         values = getattr(sol, name)
         if values is not None:
             columns |= {f"{name}:{c}": col for c, col in zip(sol.constraint_names, np.asarray(values).T)}
-    tables["constraints.csv"] = columns
+    if any(getattr(sol, name) is not None for name in ("v", "psi", "psiL")):
+        tables["constraints.csv"] = columns
     if column_units:
         tables = {filename: {(f"{name} [{column_units[name]}]" if column_units.get(name) else name): values
                              for name, values in table.items()} for filename, table in tables.items()}
-    return [write_text_atomic(directory / f"{prefix}{filename}", _csv_text(table))
+    return [write_text_atomic(directory / f"{prefix}{filename}", csv_text(table, precision))
             for filename, table in tables.items()]
 
 
-def _csv_text(columns: dict[str, np.ndarray]) -> str:
+def csv_text(columns: dict[str, np.ndarray], precision: str = "float64") -> str:
+    """A CSV table: a header row of the column names, then one row per sample of the columns (each (N,)).
+
+    Each row is formatted by one ``%`` of a row format on the row's floats (no Python call per
+    number): ``%r``, the shortest decimal that reads back to the same float (``precision =
+    "float64"``), or ``%.9g`` (``"float32"``: reads back to the same float32).
+    """
     buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(columns)
-    writer.writerows(np.column_stack(list(columns.values())).astype(float).tolist())   # str(float) == repr
-    return buffer.getvalue()
+    csv.writer(buffer, lineterminator="\n").writerow(columns)
+    if not columns:
+        return buffer.getvalue()
+    rows = np.column_stack([np.asarray(c, dtype=float) for c in columns.values()]).tolist()
+    fmt = ",".join(["%r" if precision == "float64" else "%.9g"] * len(columns))
+    body = "\n".join([fmt % tuple(row) for row in rows])
+    return buffer.getvalue() + body + ("\n" if rows else "")
 
 
 def _var_attrs(long_name: str, units: dict, quantity: str | None) -> dict:

@@ -19,7 +19,6 @@ import scipy.sparse as sp
 
 from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Rectangular, Tabulated,
                      Triangular, length_factor, read_record)
-from ..loads.site_response import free_field
 from ..model import Model
 from ..structure import Frame2D, Frame3D, Structure
 from .checks import check_document, consistent_mass_factor, is_3d, read_document, validate_document
@@ -320,7 +319,9 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
         with _at(key_path((*parts, "file"))):
             record = read_record(folder / motion.file, **options)
         acceleration = record.acceleration
-        if motion.at != "surface":              # the free-field surface motion of [site]
+        if motion.at != "surface":              # the free-field surface motion of [site] (scipy.fft: imported here)
+            from ..loads.site_response import free_field
+
             wave = motion.wave or ("P" if motion.direction == ("uz" if is_3d(document) else "uy") else "S")
             layers, base = _site_profile(document)
             with _at(key_path((*parts, "at"))):

@@ -29,6 +29,7 @@ from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
 from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
                      translate, value_problem)
 from .pushover_table import pushover_problems
+from .recorders import recorder_problems
 from .schema import (DOFS_3D, FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Beam3D, Gap, Hinge, ModelFile,
                      Node, Node3D, Soil, YieldLink, iter_fields, model_class)
 
@@ -696,7 +697,7 @@ def _output_problems(document: ModelFile) -> list[str]:
                             + did_you_mean(node, ids))
         elif node in spectra[:k]:
             problems.append(value_problem(("output", "floor_spectra", k), node, "node given twice"))
-    return problems + _overturning_problems(document)
+    return problems + _overturning_problems(document) + recorder_problems(document)
 
 
 #: How far ``[output] overturning_about`` may lie from the nodes, in sizes of the structure.

@@ -22,12 +22,11 @@ from typing import Annotated, ClassVar, Literal, Union
 from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
-from .. import _LCP_NAMES as LCP_SOLVERS
-from .. import _RULE_NAMES as RULES
-from .. import _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES
+from .. import _LCP_NAMES as LCP_SOLVERS, _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES, _RULE_NAMES as RULES
 from .pushover_table import PushoverTable, needs_time_step
 from .rigid import rigid_tables
 from .walk import iter_fields  # noqa: F401 (the walk of a validated document, re-exported)
+from .recorders import OutputRecorders
 
 LENGTH_UNITS = ("m", "cm", "mm", "in", "ft")
 FORCE_UNITS = ("N", "kN", "MN", "lbf", "kip")
@@ -616,8 +615,8 @@ class SpectraPeriods(Table):
         return self
 
 
-class Output(Table):
-    """[output]: what to draw."""
+class Output(OutputRecorders, Table):
+    """[output]: what to draw and what to write (:class:`~unilateral.modelfile.recorders.OutputRecorders`)."""
 
     figure: Figure | None = None
     overturning_about: Annotated[list[float], Field(min_length=2, max_length=2)] | None = Field(None, description=(

@@ -144,14 +144,18 @@ def _bdf(y, past, rate0, order, dt):
 
 
 def _trapezoidal(y, yd0, dt):
-    """``y'_n = 2 (y_n - y_{n-1}) / dt - y'_{n-1}``, ``y'_0 = yd0`` (a recursive filter)."""
+    """``y'_n = 2 (y_n - y_{n-1}) / dt - y'_{n-1}``, ``y'_0 = yd0`` (a recursive filter).
+
+    With ``s_n = (-1)^n y'_n`` the recursion is ``s_n = s_{n-1} + (-1)^n dy_n``, a cumulative sum
+    (sequential, so each step rounds as the recursion does; no scipy.signal, which takes a second
+    to import)."""
     dy = np.diff(y, axis=0) * (2.0 / dt)
     out = np.empty_like(y)
     out[0] = yd0
     if len(dy):
-        from scipy.signal import lfilter      # imported here: scipy.signal takes seconds to import
-
-        out[1:], _ = lfilter([1.0], [1.0, 1.0], dy, axis=0, zi=-yd0[None, :])
+        sign = np.where(np.arange(1, len(y)) % 2 == 0, 1.0, -1.0).reshape(-1, *([1] * (y.ndim - 1)))
+        s = np.concatenate([np.asarray(yd0, dtype=float)[None], sign * dy])
+        out[1:] = sign * np.cumsum(s, axis=0)[1:]
     return out
 
 
