@@ -86,7 +86,7 @@ def test_a_group_gives_each_analysis_its_own_result_and_a_failure_stays_with_its
     inputs = study_inputs(analyses)
     args = [runner._inputs_of(a, inputs.variants, inputs.records) for a in analyses]
     payloads = [a.payload for a in analyses]
-    broken = copy.deepcopy(payloads)
+    broken = [copy.deepcopy(p) for p in payloads]       # each its own (analyses share a settings dict)
     broken[1]["settings"]["t_end"] = math.nan           # an error in the middle of the group
     grouped = run_analyses(broken, [s for s, _ in args], [r for _, r in args], "group")
     alone = [run_analysis(p, s, r, "alone") for p, (s, r) in zip(broken, args)]

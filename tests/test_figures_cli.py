@@ -52,7 +52,7 @@ def test_a_bad_lcp_fails_at_once_naming_the_choices():
 
 
 def test_lazy_package_attributes():
-    assert callable(unilateral.solve) and unilateral.run is unilateral.analysis.run_model_file
+    assert callable(unilateral.solve) and unilateral.run is unilateral.analysis.memory.run
     assert "Model" in dir(unilateral)
     with pytest.raises(AttributeError):
         unilateral.no_such_name

@@ -48,7 +48,7 @@ def test_natural_form_errors():
     (dict(t_end=0.001), r"t_end=0.001 must be >= dt=0.01"),
     (dict(rule="rk4"), r"rule='rk4' is not valid; valid names: 'bdf1', 'bdf2', 'hht', 'newmark', 'trapezoidal'"),
     (dict(rule="hht"), r"rule='hht' has no convolution-quadrature form.*method='direct'"),
-    (dict(method="explicit"), r"method='explicit' is not valid; valid names: 'auto', 'cq', 'direct', 'event', 'modal', 'time-kernel'"),
+    (dict(method="explicit"), r"method='explicit' is not valid; valid names: 'auto', 'cq', 'direct', 'event', 'modal', 'moreau-jean', 'time-kernel'"),
     (dict(lcp="simplex"), r"lcp='simplex' is not a known LCP solver; valid names: .*'bpp'.*'lemke'"),
     (dict(initial="moving"), r"initial='moving' is not valid; valid names: 'rest', 'static'"),
     (dict(initial={"x0": 1}), r"initial has unknown keys \['x0'\]"),

@@ -141,7 +141,7 @@ def numerical_warning(case: str, share: float, *, rule=None, dt=None, period=Non
     except (TypeError, ValueError):
         order = ADVICE_ORDER
     target = dt * (0.5 * NUMERICAL_WARNING / share) ** (1.0 / order)
-    if isinstance(period, (int, float)) and period > 0:
+    if isinstance(period, (int, float)) and 0 < period < np.inf:
         k = int(np.ceil(period / target))
         return head + f" or --dt {period / k:.3g} or less (T1/{k}, T1 = {period:.4g}; now {dt:g} = T1/{period / dt:.0f})"
     return head + f" or --dt {target:.3g} or less (now {dt:g})"

@@ -1141,7 +1141,7 @@ class Structure:
             shape = None if sol.u is None else sol.u.shape
             raise ValueError(f"sol.u must have shape (N+1, {self.n}) for this structure, got {shape}")
         row = self.dofs.T[self.dofs.full_index(node, dof)]
-        imposed = support_motion.support_displacement(self, node, dof, sol.t)
+        imposed = support_motion.support_displacement(self, node, dof, sol)
         return np.asarray(row @ sol.u.T).ravel() + (0.0 if imposed is None else imposed)
 
 

@@ -199,13 +199,13 @@ def _strain_columns(structure, motions) -> sp.csr_matrix:
     return L_s
 
 
-def support_displacement(structure, node, dof, t) -> np.ndarray | None:
-    """The imposed history (N,) of ``(node, dof)`` at the times ``t``, or None if it does not move."""
+def support_displacement(structure, node, dof, sol) -> np.ndarray | None:
+    """The imposed history (N+1,) of ``(node, dof)`` at the times ``sol.t``, or None if it does not move."""
     theta = structure.natural.theta
     if not isinstance(theta, SupportStrains):
         return None
     for j, m in enumerate(theta.motions):
         if (m.node, m.dof) == (node, dof):
-            return np.asarray(theta.support_displacements(np.asarray(t, dtype=float)))[..., j]
+            return np.asarray(theta.support_displacements(np.asarray(sol.t, dtype=float)))[..., j]
     return None
 
