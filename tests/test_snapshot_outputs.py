@@ -31,7 +31,11 @@ CHANGES_RTOL = 0.1
 #: soil and march loops reassociate sums (fastmath), and what numba inlines depends on whether a
 #: callee was compiled in the same process or loaded from its cache: a clean CI run and a run
 #: after other cases differ by 1.2e-11 of the peak there (measured), chaos of 4 lifting patches.
-LOOSER = {"example-footings": 1e3}
+#: The 3-D building (contacts that switch, amplifying round-off) and the half-space example give
+#: results that differ by 1e-12 .. 1e-10 of their peaks between machines whose CPUs differ (one
+#: with AVX-512 against the machine the store was first frozen on: OpenBLAS's kernels and numba's
+#: code are chosen for the CPU): measured with the same code, so they are compared to 1e-9.
+LOOSER = {"example-footings": 1e3, "building3d.toml": 1e3, "example-halfspace": 1e3}
 SLOW = {"yielding_frame.toml", "building3d.toml", "example-footings"}
 
 
