@@ -95,13 +95,17 @@ def roof_drift(structure, u) -> tuple[np.ndarray, float] | None:
     return mean[1] - mean[0], float(levels[-1][0] - levels[0][0])
 
 
-def residual_peaks(structure, sol, q_static, t, storey_pairs=None, model=None) -> dict:
+def residual_peaks(structure, sol, t, static_load=None, load_samples=None, storey_pairs=None, model=None) -> dict:
     """The ``roof_drift_ratio`` (peak, last step, static residual) and ``residual_drift_static`` (the
     storeys' drifts in the static residual state: ``storey``, ``drift``, ``ratio``, ``storeys``) of one
-    case of a 2-D frame, or ``residual_drift_static_note`` with the reason it was not computed."""
+    case of a 2-D frame, or ``residual_drift_static_note`` with the reason it was not computed.
+
+    ``static_load`` (n,): the load with the excitation removed (default: ``load_samples[0]``, the load
+    the run's static state was under)."""
     from ..structure import forces as F
 
     out: dict = {}
+    q_static = static_load if static_load is not None else (None if load_samples is None else load_samples[0])
     roof = roof_drift(structure, sol.u)
     u_s, note = None, None
     if q_static is None:

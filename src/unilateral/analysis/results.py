@@ -191,8 +191,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         at the lowest level)
     storey_pairs : ``[(lower, upper)]`` nodes of the storeys; default: levels by elevation
     units : dict of the base units (for the attributes)
-    static_load : (n,) the load with the excitation removed (the gravity), for the static residual
-        (:mod:`unilateral.analysis.residual`); default: ``load_samples[0]``
+    static_load : (n,) the load without the excitation, for the static residual (default: ``load_samples[0]``)
 
     Returns
     -------
@@ -292,9 +291,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         if per_frame:
             peaks[case]["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
                                      for label, b in per_frame.items()}
-        peaks[case]["overturning_point"] = list(point)
-        q_static = static_load if static_load is not None else (None if load_samples is None else load_samples[0])
-        peaks[case] |= residual_peaks(structure, sol, q_static, t, storey_pairs)
+        peaks[case] |= {"overturning_point": list(point)} | residual_peaks(structure, sol, t, static_load, load_samples,
+                                                                          storey_pairs)
         if getattr(structure, "rigid", None) is not None:           # analysis/rigid.py
             peaks[case]["rigid_contacts"] = rigid_summary(structure, contact_sol)
         note = _linear_drift_note(structure, peaks[case])
