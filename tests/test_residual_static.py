@@ -90,3 +90,21 @@ def test_an_elastic_case_returns_to_the_gravity_state(free_vibration):
 def test_a_model_without_matrices_is_refused():
     with pytest.raises(ResidualUnavailable, match="not a matrix model"):
         static_residual(object(), np.zeros(1), np.zeros(0))
+
+
+@pytest.mark.parametrize("name", ["liolios1990.toml", "pounding.toml"])
+def test_with_contacts_and_nothing_frozen_it_is_the_initial_static_state(name):
+    """A model of contacts alone (nothing yields or slips): the static residual is the static state under
+    the gravity the run started from (:func:`unilateral.initial.static_state`, another code path), to
+    1e-9 of the peak displacement; the contacts are solved again, not frozen."""
+    from pathlib import Path
+
+    spec = load_model_file(Path(__file__).resolve().parent.parent / "examples" / name)
+    model = spec.model
+    assert not np.asarray(model.law.rate).any() and model.m > 0
+    sol = unilateral.solve(model, spec.load, dt=spec.analysis["dt"], t_end=min(spec.analysis["t_end"], 0.3))
+    k = int(np.argmax(np.abs(sol.v - sol.v[0]).sum(axis=1)))                 # a step with a contact open
+    assert sol.success and np.abs(sol.v[k] - sol.v[0]).max() > 0
+    np.testing.assert_array_equal(spec.load(0.0), spec.load.constant)
+    u_s = static_residual(model, spec.load.constant, sol.v[k])
+    assert np.abs(u_s - sol.u[0]).max() <= 1e-9 * np.abs(sol.u).max()

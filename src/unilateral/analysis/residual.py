@@ -37,7 +37,8 @@ def static_residual(model, q_static, v_end, solver=None) -> np.ndarray:
     Parameters
     ----------
     model : Model, the one the run solved (plain matrices; not a soil medium)
-    q_static : (n,) the load with the excitation removed [force]
+    q_static : (n,) the applied load with the excitation removed [force] (the load of the model's imposed
+        strains, ``q_imposed(0)``: gaps, prestrains, is added)
     v_end : (m,) the unknowns at the last step; its rate (yield, friction) entries are frozen
     solver : LCP solver for the contacts (default ``"bpp"``, Lemke as fallback)
 
@@ -55,18 +56,24 @@ def static_residual(model, q_static, v_end, solver=None) -> np.ndarray:
     if q_static.shape != (model.n,) or v_end.shape != (model.m,):
         raise ResidualUnavailable(f"q_static has shape {q_static.shape} and v_end {v_end.shape}: expected "
                                   f"({model.n},) and ({model.m},)")
-    law = model.law
-    if law.free.any():
+    if model.law.free.any():
         raise ResidualUnavailable("the model has unknowns of either sign (free rows): no static residual")
+    return _residual(model, q_static + np.asarray(model.q_imposed(0.0), dtype=float), v_end, solver)
+
+
+def _residual(model, q0, v_end, solver) -> np.ndarray:
+    """:func:`static_residual` under the total load ``q0`` (imposed strains' load included), in the
+    coordinates of the stiff split where the model has penalty-stiff elements (as :func:`unilateral.initial.static_state`)."""
+    law = model.law
     stiff = StiffCoordinates.of(model)
     if stiff is not None:
         T = stiff.split.T
-        return np.asarray(T @ static_residual(stiff.conditioned, T.T @ q_static, v_end, solver)).ravel()
+        return np.asarray(T @ _residual(stiff.conditioned, T.T @ q0, v_end, solver)).ravel()
     K = Factorization(model.K, what="K (the structure with every constraint held bilateral)")
     F, H = dense(model.F), dense(model.H)
     frozen = np.asarray(law.rate, dtype=bool)
     c = ~frozen
-    uq = K.solve(q_static + F[:, frozen] @ v_end[frozen])
+    uq = K.solve(q0 + F[:, frozen] @ v_end[frozen])
     if not c.any():
         return np.asarray(uq).ravel()
     Fc = F[:, c]
