@@ -82,7 +82,7 @@ def test_liolios1990_file_equals_the_builder():
         np.testing.assert_array_equal(spec.load(t), load(t))
     assert spec.units == {"length": "m", "force": "kN", "time": "s", "mass": "kN s^2/m"}
     assert spec.figure == {"node": 3, "dof": "uy", "label": "vertical displacement of node 3 (m)"}
-    assert spec.analysis == {"type": "transient", "dt": 1e-3, "t_end": 1.0, "method": "cq", "rule": "bdf2",
+    assert spec.analysis == {"type": "transient", "dt": 1e-3, "t_end": 1.0, "t_after": 0.0, "method": "cq", "rule": "bdf2",
                              "lcp": "bpp",
                              "initial": "static", "bilateral_reference": True, "p_delta": False,
                              "title": "Liolios (1990), Fig. 2: vertical displacement of node 3"}

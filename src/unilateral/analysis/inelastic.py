@@ -34,6 +34,10 @@ variable                       dims                    content
 ``yield_force``                time, yield_element     the force [F] of a link, the end moment(s)
                                [, yield_component]     [F L] of a hinge (on the beam; 2-D:
                                                        counter-clockwise)
+``yield_total_deformation``    time, yield_element     ``force / k + plastic``: the total deformation
+                               [, yield_component]     of the spring, a hinge spring's total rotation
+                                                       (rad; the plastic part for a rigid-plastic
+                                                       hinge), a link's elongation [L]
 ``yield_element_deformation``  time, yield_element     the total strain(s): a link's elongation, the
                                [, yield_component]     beam's end rotation(s) relative to its chord
                                                        at a hinge (elastic and plastic)
@@ -314,6 +318,10 @@ class Inelastic:
                                   "hinge (on the beam)" if wide else "force of each yield link, end moment of each "
                                   "hinge (on the beam, counter-clockwise)",
                                   f"{F} (yield links); {F} {L} (hinges, rotational links)")
+            out["yield_total_deformation"] = (dims, _squeezed(_total(force, y.vectors(h.v), y.k)), "total "
+                                              "deformation force / k + plastic of each yield element's spring "
+                                              "(elastic and plastic): a hinge spring's total rotation, a link's "
+                                              "elongation; the plastic part alone for a rigid-plastic hinge", lengths)
             out["yield_element_deformation"] = (dims, _squeezed(self._deformations(h, e, y)), "deformation of "
                                                 "each yield element: a link's elongation, the beam's end rotation "
                                                 "relative to its chord at a hinge (elastic and plastic)", lengths)
@@ -452,6 +460,14 @@ def _component_coords(family: str, polygons) -> dict:
     return {f"{family}_component": np.arange(1, polygons.width + 1),
             f"{family}_component_name": ((element, f"{family}_component"), polygons.components.astype(str)),
             f"{family}_facets": (element, polygons.counts)}
+
+
+def _total(force, plastic, k) -> np.ndarray:
+    """``force / k + plastic`` (N+1, p, c) of the yield elements (stiffness ``k`` (p,); NaN: rigid-plastic,
+    whose elastic part is 0)."""
+    k = np.asarray(k, dtype=float)[None, :, None]
+    elastic = np.divide(force, k, out=np.zeros_like(force), where=np.isfinite(k) & (k != 0))
+    return plastic + elastic
 
 
 def _squeezed(values) -> np.ndarray:

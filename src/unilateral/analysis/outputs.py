@@ -515,7 +515,7 @@ def _structure_results(structure, model, cases, *, load, units, rule, point, sto
     return structure_results(structure, model, cases, rule=rule, load_samples=samples,
                              ground_motions=ground_motion_samples(structure, load, main.t, main.stats.get("dt")),
                              point=point,
-                             storey_pairs=storeys, units=units)
+                             storey_pairs=storeys, units=units, static_load=getattr(load, "constant", None))
 
 
 def _with_results(ds, res, multi, names):

@@ -45,6 +45,7 @@ from ..structure import forces as F
 from .energy import energy_balance, unknown_kinds
 from .rigid import frame_solution, rigid_summary
 from .inelastic import Inelastic
+from .residual import residual_peaks
 from ..structure.modes import modes
 
 #: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
@@ -172,7 +173,7 @@ class _Scaled:
 
 
 def structure_results(structure, model, cases: dict, *, rule, load_samples=None, ground_motions=(),
-                      point=None, storey_pairs=None, units=None) -> dict:
+                      point=None, storey_pairs=None, units=None, static_load=None) -> dict:
     """Results of each solved case of a frame.
 
     Parameters
@@ -190,6 +191,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         at the lowest level)
     storey_pairs : ``[(lower, upper)]`` nodes of the storeys; default: levels by elevation
     units : dict of the base units (for the attributes)
+    static_load : (n,) the load without the excitation, for the static residual (default: ``load_samples[0]``)
 
     Returns
     -------
@@ -289,7 +291,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         if per_frame:
             peaks[case]["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
                                      for label, b in per_frame.items()}
-        peaks[case]["overturning_point"] = list(point)
+        peaks[case] |= {"overturning_point": list(point)} | residual_peaks(structure, sol, t, static_load, load_samples,
+                                                                          storey_pairs)
         if getattr(structure, "rigid", None) is not None:           # analysis/rigid.py
             peaks[case]["rigid_contacts"] = rigid_summary(structure, contact_sol)
         note = _linear_drift_note(structure, peaks[case])

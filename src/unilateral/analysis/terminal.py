@@ -243,6 +243,10 @@ def _family_lines(p: dict, units: dict) -> list[str]:
     if lines and drift:
         lines.append(f"residual drift ratio {100 * drift['ratio']:.2g} % (storey {drift['storey']}) at the last "
                      f"step, t = {drift['t']:.4g} {units.get('time', '')}".rstrip())
+        static = p.get("residual_drift_static")
+        if static:
+            lines.append(f"static residual drift ratio {100 * static['ratio']:.2g} % (storey {static['storey']}), "
+                         "plastic deformations frozen, gravity alone")
     return lines
 
 

@@ -48,7 +48,7 @@ NODE_VARIABLES = ("node_displacement", "node_acceleration", "node_absolute_accel
                   "acceleration", "absolute_acceleration")
 #: Histories along the elements or the constraint unknowns: written for ``elements``.
 ELEMENT_VARIABLES = ("end_force", "axial_force", "v", "psi", "psiL", "constraint_deformation", "plastic_deformation",
-                     "yield_force", "yield_element_deformation", "yield_ratio", "slip", "friction_force",
+                     "yield_force", "yield_total_deformation", "yield_element_deformation", "yield_ratio", "slip", "friction_force",
                      "normal_force", "tangential_deformation", "slip_path")
 #: Every history a run may write (``results.nc``; the energies: any ``energy_...``).
 HISTORY_VARIABLES = tuple(sorted({*KEY_VARIABLES, *NODE_VARIABLES, *ELEMENT_VARIABLES, "support_reaction",

@@ -21,6 +21,7 @@ from ..loads import (STANDARD_GRAVITY, Constant, HalfSine, LoadHistory, Ramp, Re
                      Triangular, length_factor, read_record)
 from ..model import Model
 from ..structure import Frame2D, Frame3D, Structure
+from .analysis_time import resolved_analysis
 from .checks import check_document, consistent_mass_factor, is_3d, read_document, validate_document
 from .checks import read_toml  # noqa: F401 (the reader of study files too)
 from .errors import ModelFileError, Problems, key_path
@@ -44,8 +45,9 @@ class ModelSpec:
     load : LoadHistory
         ``q(t) -> (n,)``, the total load in the model's force unit.
     analysis : dict
-        ``type`` (``"transient"`` or ``"pushover"``: ``document.pushover``), ``dt, t_end, method, rule, lcp,
-        initial, bilateral_reference, p_delta, title``.
+        ``type`` (``"transient"`` or ``"pushover"``: ``document.pushover``), ``dt, t_end, t_after, method, rule,
+        lcp, initial, bilateral_reference, p_delta, title`` (``t_end = "record"`` resolved to a number:
+        :mod:`~unilateral.modelfile.analysis_time`).
     units : dict
         ``length, force, time`` as declared and the derived ``mass``.
     figure : dict or None
@@ -109,11 +111,12 @@ def _build_spec(document: ModelFile, source: Path, path) -> ModelSpec:
             structure = None
             model = read_matrix_model(document.matrices, source.parent)
         load = _build_load(document, source.parent, model, structure)
+        analysis = resolved_analysis(document, load)
     except Problems as exc:
         raise ModelFileError(path, exc.problems) from None
     units = document.units.model_dump()
     units["mass"] = f"{units['force']} {units['time']}^2/{units['length']}"
-    return ModelSpec(structure=structure, model=model, load=load, analysis=document.analysis.model_dump(),
+    return ModelSpec(structure=structure, model=model, load=load, analysis=analysis,
                      units=units, figure=_figure(document), source=source, document=document)
 
 

@@ -580,7 +580,9 @@ class Analysis(Table):
     EXAMPLE: ClassVar[str] = "[analysis] dt = 0.001, t_end = 1.0"
     type: Literal["transient", "pushover"] = Field("transient", description='pushover: see [pushover].')
     dt: Positive | None = Field(None, description='Time step [time] (type = "transient").')
-    t_end: Positive | None = Field(None, description='End time [time] (type = "transient").')
+    t_end: Union[Positive, Literal["record"], None] = Field(None, description='End time [time] (type = "transient"), '
+                                                            'or "record": the longest ground motion plus t_after.')
+    t_after: NonNegative = Field(0.0, description='With t_end = "record": free vibration after the record [time].')
     _time_step = model_validator(mode="after")(needs_time_step)
     method: Literal[MATRIX_METHOD_NAMES] = Field("auto", title="method")
     rule: Literal[tuple(RULES)] = Field("bdf2", title="rule")
