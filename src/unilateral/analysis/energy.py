@@ -86,8 +86,8 @@ def energy_balance(structure, h, q, *, rule=None, contact=None) -> dict:
     from ..structure.forces import StateRows
 
     dt = float(h.t[1] - h.t[0]) if len(h.t) > 1 else None
-    return EnergyBalance(structure)(StateRows.of(h.u, h.udot, h.v, h.vdot), q, rule=rule, dt=dt, contact=contact,
-                                    t=h.t)
+    return EnergyBalance(structure)(StateRows.of(h.u, h.udot, h.v, h.vdot, t=h.t), q, rule=rule, dt=dt,
+                                    contact=contact)
 
 
 @dataclass(frozen=True)
@@ -170,9 +170,12 @@ class EnergyBalance:
         dt : the time step (needed by BDF2, whose start takes the state before ``t = 0``)
         contact : (N+1, n) the footings' contact load on a frame on a soil medium, or None: its work
             went into the soil and is counted in ``contact_dissipated``
-        t : (N+1,) the times of the steps (s); needed with support motions (``theta(t)`` varies)
+        t : (N+1,) the times of the steps (s), by default the state's (:attr:`StateRows.t`); needed
+            with support motions (``theta(t)`` varies)
         """
         from ..rules import EnergyPairing
+
+        t = getattr(state, "t", None) if t is None else t
 
         pairing = EnergyPairing(rule)
         offset, viscous_offset = self._offsets(t, state.x.shape[1], pairing)
