@@ -253,3 +253,28 @@ def test_base_force_operator_with_moving_supports_equals_the_reactions(c):
                                    reference["base_shear"], rtol=0, atol=1e-11 * np.abs(reference["base_shear"]).max())
     with pytest.raises(ValueError, match="state: the base forces with support motions need the"):
         operator(F.StateRows.of(h.u, h.udot, h.v, h.vdot))
+
+
+def test_model_file_support_motions_equal_the_library(tmp_path):
+    """examples/support_motion.toml ([[loads.support_motion]] with record tables) gives the run of
+    :func:`ours_pounding` (its records are the same samples) to round-off, and its energy balance
+    closes with the work of the moving supports."""
+    import unilateral.modelfile as mf
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "support_motion.toml"
+    spec = mf.load_model_file(example)
+    st, sol = ours_pounding()
+    ours = ul.solve(spec.structure.to_model(), t_end=3.0, dt=0.005, rule="trapezoidal", method="direct")
+    assert np.abs(ours.u - sol.u).max() <= 1e-12 * np.abs(sol.u).max()
+    summary = ul.run(example, tmp_path / "out", figures=())
+    assert summary["success"], summary["message"]
+    assert "support_work" in json.dumps(json.loads((tmp_path / "out" / "summary.json").read_text()))
+    import tomllib
+
+    data = tomllib.loads(example.read_text(encoding="utf-8"))
+    data["loads"]["support_motion"][0]["dof"] = "uz"
+    with pytest.raises(mf.ModelFileError, match=r"loads.support_motion\[0\]: .*dof='uz' is not a DOF"):
+        mf.build_model_spec(data, example)
+    data["loads"]["support_motion"][0].update(dof="ux", node=2)
+    with pytest.raises(mf.ModelFileError, match=r"loads.support_motion\[0\]: .*ux is a free DOF"):
+        mf.build_model_spec(data, example)
