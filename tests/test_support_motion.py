@@ -93,7 +93,15 @@ def pounding_on_a_moving_abutment():
     return dt, steps, t, base, abutment
 
 
-def ours_pounding(method="direct"):
+def ours_pounding(method="direct", *, rule="trapezoidal", c=0.0):
+    st = pounding_structure(c=c)
+    dt, steps = pounding_on_a_moving_abutment()[:2]
+    sol = ul.solve(st.to_model(), t_end=steps * dt, dt=dt, rule=rule, method=method)
+    assert sol.success
+    return st, sol
+
+
+def pounding_structure(*, c=0.0):
     dt, steps, t, base, abutment = pounding_on_a_moving_abutment()
     fr = Frame2D()
     fr.node(1, 0.0, 0.0); fr.node(2, 0.0, 3.0); fr.node(3, 0.0, 3.0)
@@ -101,14 +109,34 @@ def ours_pounding(method="direct"):
     fr.support(3, ux=True, uy=True, rz=True)
     fr.beam("col", 1, 2, E=30e6, A=0.09, I=6.75e-4)
     fr.mass(2, 10.0)
-    fr.gap("gap", 2, 3, 5e4, gap=0.01, direction="ux")
+    fr.gap("gap", 2, 3, 5e4, gap=0.01, direction="ux", c=c)
     fr.rayleigh(a0=0.2)
     fr.support_motion(1, "ux", Tabulated(t, base))
     fr.support_motion(3, "ux", Tabulated(t, abutment))
-    st = fr.build()
-    sol = ul.solve(st.to_model(), t_end=steps * dt, dt=dt, rule="trapezoidal", method=method)
-    assert sol.success
-    return st, sol
+    return fr.build()
+
+
+@pytest.mark.parametrize("rule", ["trapezoidal", "bdf2", "bdf1"])
+@pytest.mark.parametrize("c", [0.0, 300.0])
+def test_energy_balance_with_moving_supports_closes(rule, c):
+    """``W_in + W_s = dT + dU + D`` with the work of the moving supports ``W_s = -int theta'^T sigma dt``
+    (paired as the rule, ``theta`` at each step's time): an exact identity of the discrete equations,
+    also with a Kelvin gap (``c``) on the moving abutment (``sigma`` then has ``-E_v theta'``)."""
+    from unilateral.analysis.energy import energy_balance
+    from unilateral.structure import forces as F
+
+    st, sol = ours_pounding(rule=rule, c=c)
+    assert sol.stats["contact_changes"] >= 4
+    h = F.Histories.from_solution(st, sol, rule)
+    e = energy_balance(st, h, np.zeros((len(sol.t), st.n)), rule=rule)
+    assert e["exact"] and np.all(e["input_work"] == 0.0)           # no load: the supports do all the work
+    assert e["support_work"][-1] > 1.0                              # measured 3.8-4.3 (c=0)
+    assert np.abs(e["balance_error"]).max() <= 1e-9 * np.abs(e["support_work"]).max()      # measured <= 2e-13
+    if c:
+        assert e["contact_dissipated"][-1] > 0.1                   # the gap's dashpot dissipates
+    with pytest.raises(ValueError, match="t: the energy balance with support motions needs the 601 times"):
+        energy_balance(st, F.Histories(sol.t[:-1], *(getattr(h, k) for k in ("u", "udot", "uddot", "v", "vdot"))),
+                       np.zeros((len(sol.t), st.n)), rule=rule)
 
 
 OPENSEES = """
@@ -194,3 +222,92 @@ def test_bad_support_motions_are_refused_by_name():
     fr.rayleigh(a0=0.1, a1=0.01)
     with pytest.raises(ValueError, match="stiffness-proportional Rayleigh"):
         fr.build()
+
+
+@pytest.mark.parametrize("c", [0.0, 300.0])
+def test_base_force_operator_with_moving_supports_equals_the_reactions(c):
+    """``X x + X_d x' + c(t)`` with ``c(t) = -P^T (E theta(t) + E_v theta'(t))`` equals the summed
+    reactions (:func:`base_forces` of :func:`reactions`) at every step, moments about a point off the
+    supports; the pounding model (with a Kelvin gap on the moving abutment for ``c > 0``) and the
+    portal whose hinges yield as one support sways and the other settles."""
+    from unilateral.structure import forces as F
+
+    runs = [ours_pounding(c=c)]
+    fr = portal()
+    fr.support_motion(1, "ux", lambda t: 0.01 * np.sin(8.0 * np.asarray(t)))
+    fr.support_motion(2, "uy", lambda t: -0.02 * np.asarray(t))
+    st = fr.build()
+    runs.append((st, ul.solve(st.to_model(), t_end=0.6, dt=0.005, rule="trapezoidal", method="direct")))
+    for st, sol in runs:
+        assert sol.success
+        h = F.Histories.from_solution(st, sol, "trapezoidal")
+        point = (1.5, -2.0)
+        reference = F.base_forces(st, F.reactions(st, h), point)
+        operator = F.BaseForceOperator.of(st, point)
+        ours = operator(F.StateRows.of_solution(sol, "trapezoidal"))
+        assert np.abs(reference["base_shear"]).max() > 1.0
+        for key, value in reference.items():
+            scale = max(np.abs(value).max(), 1.0)
+            assert np.abs(ours[key] - value).max() <= 1e-11 * scale, key
+        np.testing.assert_allclose(operator.base_shear(F.StateRows.of_solution(sol, "trapezoidal")),
+                                   reference["base_shear"], rtol=0, atol=1e-11 * np.abs(reference["base_shear"]).max())
+    with pytest.raises(ValueError, match="state: the base forces with support motions need the"):
+        operator(F.StateRows.of(h.u, h.udot, h.v, h.vdot))
+
+
+def test_model_file_support_motions_equal_the_library(tmp_path):
+    """examples/support_motion.toml ([[loads.support_motion]] with record tables) gives the run of
+    :func:`ours_pounding` (its records are the same samples) to round-off, and its energy balance
+    closes with the work of the moving supports."""
+    import unilateral.modelfile as mf
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "support_motion.toml"
+    spec = mf.load_model_file(example)
+    st, sol = ours_pounding()
+    ours = ul.solve(spec.structure.to_model(), t_end=3.0, dt=0.005, rule="trapezoidal", method="direct")
+    assert np.abs(ours.u - sol.u).max() <= 1e-12 * np.abs(sol.u).max()
+    summary = ul.run(example, tmp_path / "out", figures=())
+    assert summary["success"], summary["message"]
+    assert "support_work" in json.dumps(json.loads((tmp_path / "out" / "summary.json").read_text()))
+    import tomllib
+
+    data = tomllib.loads(example.read_text(encoding="utf-8"))
+    data["loads"]["support_motion"][0]["dof"] = "uz"
+    with pytest.raises(mf.ModelFileError, match=r"loads.support_motion\[0\]: .*dof='uz' is not a DOF"):
+        mf.build_model_spec(data, example)
+    data["loads"]["support_motion"][0].update(dof="ux", node=2)
+    with pytest.raises(mf.ModelFileError, match=r"loads.support_motion\[0\]: .*ux is a free DOF"):
+        mf.build_model_spec(data, example)
+
+
+def test_study_worker_results_with_moving_supports():
+    """The study worker's operators (energy error, peak base shear from StateRows) take support motions."""
+    from unilateral.batch.worker import FrameOperators, FrameResults
+    from unilateral.loads import LoadHistory
+    from unilateral.structure import forces as F
+
+    st, sol = ours_pounding()
+    frame = FrameResults(sol, FrameOperators(st), LoadHistory(np.zeros(st.n), ()), "trapezoidal")
+    shear = np.abs(F.base_forces(st, F.reactions(st, F.Histories.from_solution(st, sol, "trapezoidal")))["base_shear"])
+    assert frame.energy_error() <= 1e-11                                # measured 4e-14
+    assert frame.peak_base_shear() == pytest.approx(shear.max(), rel=1e-12)       # 724 kN
+
+
+def test_model_file_3d_moving_base_follows_a_slow_ramp():
+    """``[[loads.support_motion]]`` of a 3-D frame: a column whose base is ramped 10 mm along y over
+    10 s (``type = "ramp"``, ``scale``) follows it quasi-statically."""
+    import unilateral.modelfile as mf
+
+    data = {"units": {"length": "m", "force": "kN", "time": "s"}, "frame": {"dimensions": 3},
+            "nodes": [{"id": 1, "x": 0.0, "y": 0.0, "z": 0.0}, {"id": 2, "x": 0.0, "y": 0.0, "z": 3.0}],
+            "supports": [{"node": 1, "ux": True, "uy": True, "uz": True, "rx": True, "ry": True, "rz": True}],
+            "elements": [{"type": "beam", "name": "col", "node_i": 1, "node_j": 2, "E": 2e8, "G": 8e7, "A": 0.01,
+                          "Iy": 1e-4, "Iz": 1e-4, "J": 1e-4, "vecxz": [1.0, 0.0, 0.0]}],
+            "masses": [{"node": 2, "m": 1.0}],
+            "loads": {"support_motion": [{"node": 1, "dof": "uy", "scale": 0.01,
+                                          "displacement": {"type": "ramp", "t_ramp": 10.0}}]},
+            "analysis": {"dt": 0.01, "t_end": 20.0}}
+    spec = mf.build_model_spec(data, Path("column.toml"))
+    sol = ul.solve(spec.structure.to_model(), t_end=20.0, dt=0.01)
+    assert sol.success
+    assert abs(spec.structure.node_displacement(sol, 2, "uy")[-1] - 0.01) <= 1e-5           # measured 5e-9

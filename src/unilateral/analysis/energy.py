@@ -3,7 +3,7 @@
 From the equations of motion in natural form, ``M u'' + C u' + G sigma = q`` with
 ``sigma = E eps + E_v eps'``, ``eps = G^T u - B v - theta``, and ``B^T sigma = psi + A v + r``:
 
-    W_in = (T - T_0) + (U - U_0) + D_damping + D_contact + W_plastic + W_friction + D_numerical
+    W_in + W_s = (T - T_0) + (U - U_0) + D_damping + D_contact + W_plastic + W_friction + D_numerical
 
 * ``T = u'^T M u' / 2``: kinetic energy (relative to the ground under a ground motion);
 * ``U = sum eps^T E eps / 2``: elastic energy, of the bilateral elements (``elastic_structure``,
@@ -24,6 +24,9 @@ From the equations of motion in natural form, ``M u'' + C u' + G sigma = q`` wit
     (Coulomb friction), dissipated;
 
 * ``W_in = int q^T u' dt``: the work of the applied loads (gravity, pulses, ``-M r a_g``);
+* ``W_s = -int theta'(t)^T sigma dt``: the work of the moving supports (multiple-support excitation,
+  :mod:`unilateral.structure.support_motion`: ``theta(t) = theta_0 - L_s u_s(t)``, taken at the
+  times of the steps; ``sigma`` the total stresses, Kelvin ones included), ``support_work``;
 * ``geometric = u^T K_G u / 2``: with P-Delta, the energy of the geometric stiffness of the constant
   gravity axial forces (negative where they compress: the gravity loads' work through the sway);
 * ``numerical_dissipation``: what the time-stepping rule dissipated, and ``numerical_storage``: the
@@ -71,9 +74,10 @@ def energy_balance(structure, h, q, *, rule=None, contact=None) -> dict:
     -------
     dict of (N+1,) arrays: ``kinetic``, ``elastic_structure``, ``elastic_unilateral``, ``geometric``
     (P-Delta), ``damping_dissipated``, ``contact_dissipated``, ``plastic_work``, ``friction_work``,
-    ``numerical_dissipation``, ``numerical_storage``, ``input_work``, ``balance_error`` (the residual
-    ``W_in - dT - dU - D``), ``relative_error`` (the residual over the largest energy of the run:
-    input work, kinetic, change of elastic, or dissipated); ``unknown_work`` (m,): the work on each
+    ``numerical_dissipation``, ``numerical_storage``, ``input_work`` (of the loads ``q``),
+    ``support_work`` (of the moving supports, zero without them), ``balance_error`` (the residual
+    ``W_in + W_s - dT - dU - D``), ``relative_error`` (the residual over the largest energy of the
+    run: input work ``W_in + W_s``, kinetic, change of elastic, or dissipated); ``unknown_work`` (m,): the work on each
     unknown's ``v'`` over the run (a yield pair's plastic work, a slip pair's friction work, summed
     over its two unknowns); the floats ``max_relative_error`` and ``numerical_share`` (the
     numerical dissipation at the end over the same scale); ``exact`` (bool): the rule's pairing is
@@ -82,7 +86,8 @@ def energy_balance(structure, h, q, *, rule=None, contact=None) -> dict:
     from ..structure.forces import StateRows
 
     dt = float(h.t[1] - h.t[0]) if len(h.t) > 1 else None
-    return EnergyBalance(structure)(StateRows.of(h.u, h.udot, h.v, h.vdot), q, rule=rule, dt=dt, contact=contact)
+    return EnergyBalance(structure)(StateRows.of(h.u, h.udot, h.v, h.vdot, t=h.t), q, rule=rule, dt=dt,
+                                    contact=contact)
 
 
 @dataclass(frozen=True)
@@ -129,16 +134,16 @@ class EnergyBalance:
         order = np.concatenate([np.setdiff1d(np.arange(ne), unilateral), unilateral])
         A = sp.hstack([sp.csr_matrix(nat.G).T, -sp.csr_matrix(nat.B)]).tocsr()[order]
         E = sp.csr_matrix(nat.E)[order][:, order]
-        if not isinstance(nat.theta, ConstantStrain):
-            raise ValueError("energy balance: not available with support motions (the work of the moving "
-                             "supports is not in the balance)")
+        self.natural, self.order, self.E = nat, order, E
+        self.moving = not isinstance(nat.theta, ConstantStrain)     # support motions: theta(t)
         theta = np.asarray(nat.theta(0.0), dtype=float)[order]
         zeros = sp.csr_matrix((n, m))
         rates = [sp.hstack([structure.M, zeros])]
         if structure.C is not None:
             rates.append(sp.hstack([structure.C, zeros]))
+        self.E_v = None if nat.E_v is None else sp.csr_matrix(nat.E_v)[order][:, order]
         if nat.E_v is not None:
-            rates.append(sp.csr_matrix(nat.E_v)[order][:, order] @ A)
+            rates.append(self.E_v @ A)
         self.n, self.ne, self.bilateral = n, ne, ne - unilateral.size
         self.damped, self.kelvin = structure.C is not None, nat.E_v is not None
         self.S = _prepared(sp.vstack([A, E @ A]))
@@ -153,7 +158,7 @@ class EnergyBalance:
         kinds = unknown_kinds(structure)
         self.families = {key: kinds == kind for key, kind in FAMILY_TERMS.items()}
 
-    def __call__(self, state, q, *, rule=None, dt=None, contact=None) -> dict:
+    def __call__(self, state, q, *, rule=None, dt=None, contact=None, t=None) -> dict:
         """The energies of :func:`energy_balance` of a run.
 
         Parameters
@@ -165,17 +170,24 @@ class EnergyBalance:
         dt : the time step (needed by BDF2, whose start takes the state before ``t = 0``)
         contact : (N+1, n) the footings' contact load on a frame on a soil medium, or None: its work
             went into the soil and is counted in ``contact_dissipated``
+        t : (N+1,) the times of the steps (s), by default the state's (:attr:`StateRows.t`); needed
+            with support motions (``theta(t)`` varies)
         """
         from ..rules import EnergyPairing
 
+        t = getattr(state, "t", None) if t is None else t
+
         pairing = EnergyPairing(rule)
-        x, xdot = self._extended(state, q, pairing, dt, contact)
+        offset, viscous_offset = self._offsets(t, state.x.shape[1], pairing)
+        x, xdot = self._extended(state, q, pairing, dt, contact, offset, viscous_offset)
         n, ne, nb, lead = self.n, self.ne, self.bilateral, pairing.lead
         strains = self.S @ x
-        if self.imposed:
-            strains -= self.offset
+        if offset is not None:
+            strains -= offset
         eps, Eeps = strains[:ne], strains[ne:]
         rates = self.R @ xdot
+        if viscous_offset is not None:                   # E_v eps' with eps' = A x' - theta'(t)
+            rates[(2 if self.damped else 1) * n:] -= viscous_offset
         energies = [pairing.quadratic(xdot[:n], rates[:n]), pairing.quadratic(eps[:nb], Eeps[:nb]),
                     pairing.quadratic(eps[nb:], Eeps[nb:])]     # E is block diagonal
         if self.Kg is not None:
@@ -185,16 +197,47 @@ class EnergyBalance:
         physical.append(now(x[:n], self.Kg @ x[:n]) if self.Kg is not None else np.zeros(x.shape[1] - lead))
         work = _cumulative(_work(q, x[:n], pairing))
         damping = rates[n:2 * n] if self.damped else None
-        terms = self._dissipated(pairing, x, eps, Eeps, rates[2 * n if self.damped else n:], damping)
+        viscous = rates[2 * n if self.damped else n:]
+        terms = self._dissipated(pairing, x, eps, Eeps, viscous, damping)
         if contact is not None:             # the work of the contact forces went into the soil
             terms["contact_dissipated"] -= pairing.pairs(np.asarray(contact, dtype=float).T, x[:n])
+        support = np.zeros_like(work)
+        if self.moving:                     # W_s = -int theta'^T sigma dt, sigma = E eps + E_v eps'
+            sigma = Eeps + viscous if self.kelvin else Eeps
+            support = -_cumulative(pairing.pairs(sigma[:, lead:], offset[:ne]))
         per_unknown = terms.pop("unknown_work")
         terms = {key: _cumulative(value) for key, value in terms.items()}
         numerical = _cumulative(sum(d for _, d in energies))
         storage = sum(e for e, _ in energies) - sum(physical)
-        return _balance(physical, work, terms, numerical, storage - storage[0], per_unknown, pairing.exact)
+        return _balance(physical, (work, support), terms, numerical, storage - storage[0], per_unknown,
+                        pairing.exact)
 
-    def _extended(self, state, q, pairing, dt, contact):
+    def _offsets(self, t, steps, pairing):
+        """The imposed strains ``[theta; E theta]`` (2 ne, N+1+lead) or (2 ne, 1), or None without
+        them, and the viscous ``E_v theta'`` (ne, N+1+lead) or None. With support motions ``theta``
+        is taken at the times ``t`` of the steps; before ``t = 0`` (BDF2) it is extrapolated
+        linearly, ``theta_{-1} = 2 theta_0 - theta_1`` (the pairing is an identity for any value)."""
+        if not self.moving:
+            return (self.offset if self.imposed else None), None
+        if t is None or len(t) != steps:
+            raise ValueError(f"t: the energy balance with support motions needs the {steps} times of the steps, "
+                             f"got {None if t is None else len(t)}")
+        t = np.asarray(t, dtype=float)
+        theta = np.asarray(self.natural.imposed_strains(t), dtype=float)[:, self.order].T      # (ne, N+1)
+        if pairing.lead:
+            before = 2 * theta[:, 0] - theta[:, 1] if steps > 1 else theta[:, 0]
+            theta = np.column_stack([before, theta])
+        offset = np.vstack([theta, self.E @ theta])
+        rate = self.natural.theta_rate
+        if not self.kelvin or rate is None:
+            return offset, None
+        theta_rate = np.array([np.asarray(rate(tk), dtype=float) for tk in t])[:, self.order].T
+        viscous = np.asarray(self.E_v @ theta_rate)
+        if pairing.lead:
+            viscous = np.column_stack([viscous[:, 0], viscous])
+        return offset, viscous
+
+    def _extended(self, state, q, pairing, dt, contact, offset, viscous_offset):
         """``[u; v]`` and ``[u'; v']`` (n + m, N+1+lead): for BDF2 the rule's start before ``t = 0``
         first, ``u_{-1} = u_0 - dt u'_0 + dt^2 a_0 / 2``, ``u'_{-1} = u'_0 - dt a_0``, ``v_{-1} = v_0``
         (``M a_0`` the residual of the equations at ``t = 0``, as the stepping starts)."""
@@ -204,9 +247,13 @@ class EnergyBalance:
         n = self.n
         if dt is None:
             raise ValueError("dt: the energy balance of a BDF2 run needs the time step (its start)")
-        sigma = self.S[self.ne:] @ x[:, :1] - self.offset[self.ne:]
+        sigma = self.S[self.ne:] @ x[:, :1]
+        if offset is not None:
+            sigma = sigma - offset[self.ne:, -x.shape[1]:][:, :1]
         if self.kelvin:
             sigma = sigma + self.R[(2 if self.damped else 1) * n:] @ xdot[:, :1]
+            if viscous_offset is not None:
+                sigma = sigma - viscous_offset[:, 1:2]
         q0 = q.at(0) if isinstance(q, LoadFactors) else np.asarray(q[0], dtype=float)
         residual = q0 - self.Gt.T @ sigma[:, 0] - (self.R[n:2 * n] @ xdot[:, 0] if self.damped else 0.0)
         if self.Kg is not None:
@@ -241,19 +288,22 @@ class EnergyBalance:
         return out
 
 
-def _balance(physical, work, terms, numerical, storage, per_unknown, exact) -> dict:
-    """The energy dict of :func:`energy_balance` from its terms (each (N+1,), from ``t = 0``)."""
+def _balance(physical, inputs, terms, numerical, storage, per_unknown, exact) -> dict:
+    """The energy dict of :func:`energy_balance` from its terms (each (N+1,), from ``t = 0``);
+    ``inputs``: the work of the loads and of the moving supports."""
     kinetic, elastic_s, elastic_u, geometric = physical
+    work, support = inputs
     dissipated = sum(terms.values())
     T0 = kinetic[0]
     elastic = elastic_s + elastic_u + geometric - (elastic_s[0] + elastic_u[0] + geometric[0])
-    residual = work - (kinetic - T0) - elastic - dissipated - numerical - storage
-    scale = max(np.abs(work).max(), kinetic.max(), np.abs(elastic).max(), (dissipated + numerical).max(), 0.0)
+    residual = work + support - (kinetic - T0) - elastic - dissipated - numerical - storage
+    scale = max(np.abs(work + support).max(), kinetic.max(), np.abs(elastic).max(), (dissipated + numerical).max(),
+                0.0)
     relative = np.abs(residual) / scale if scale > 0 else np.zeros_like(residual)
     return {"kinetic": kinetic, "elastic_structure": elastic_s, "elastic_unilateral": elastic_u,
             "geometric": geometric, "damping_dissipated": terms["damping_dissipated"],
             **{key: terms[key] for key in FAMILY_TERMS}, "numerical_dissipation": numerical,
-            "numerical_storage": storage, "input_work": work, "balance_error": residual,
+            "numerical_storage": storage, "input_work": work, "support_work": support, "balance_error": residual,
             "relative_error": relative, "unknown_work": per_unknown,
             "max_relative_error": float(relative.max()),
             "numerical_share": float(numerical[-1] / scale) if scale > 0 else 0.0, "exact": exact}

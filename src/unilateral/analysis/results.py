@@ -52,7 +52,7 @@ from ..structure.modes import modes
 MODES_MAX_N = 3000
 ENERGY_KEYS = ("kinetic", "elastic_structure", "elastic_unilateral", "geometric", "damping_dissipated",
                "contact_dissipated", "plastic_work", "friction_work", "numerical_dissipation",
-               "numerical_storage", "input_work", "balance_error", "relative_error")
+               "numerical_storage", "input_work", "support_work", "balance_error", "relative_error")
 #: The energy terms written only for a structure with unknowns of that family.
 FAMILY_ENERGY = {"plastic_work": "yield", "friction_work": "friction"}
 
@@ -397,8 +397,9 @@ def _energy_keys(structure) -> tuple:
     """:data:`ENERGY_KEYS` without the plastic and friction work of families the structure lacks."""
     kinds = set(unknown_kinds(structure).tolist()) if structure.m else set()
     p_delta = getattr(structure, "geometric", None) is not None         # the geometric energy: with P-Delta only
+    moving = getattr(structure.natural.theta, "motions", None) is not None    # support motions: their work
     return tuple(key for key in ENERGY_KEYS if (key not in FAMILY_ENERGY or FAMILY_ENERGY[key] in kinds)
-                 and (key != "geometric" or p_delta))
+                 and (key != "geometric" or p_delta) and (key != "support_work" or moving))
 
 
 def element_end_forces(coords, structure, ends, components, steps=0) -> np.ndarray:
@@ -539,7 +540,7 @@ def energy_peaks(t, energy, keys=()) -> dict:
            "kinetic_max": float(energy["kinetic"].max()),
            "numerical_dissipation": float(energy["numerical_dissipation"][-1]),
            "numerical_share": energy["numerical_share"], "rule_identity": bool(energy["exact"])}
-    return out | {key: float(energy[key][-1]) for key in (*FAMILY_ENERGY, "geometric") if key in keys}
+    return out | {key: float(energy[key][-1]) for key in (*FAMILY_ENERGY, "geometric", "support_work") if key in keys}
 
 
 def _residual_drift(t, drifts) -> dict:

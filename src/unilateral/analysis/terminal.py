@@ -224,7 +224,9 @@ def _energy_line(e: dict, head: str, force: str, length: str) -> str:
     terms = " + ".join(f"{e[key]:.4g} ({word})" for key, word in DISSIPATED
                        if key in e and (key != "numerical_dissipation" or e[key] > 0))
     return (f"{' ' * len(head)} energy balance: relative error {e['max_relative_error']:.2g}, "
-            f"input work {e['input_work']:.4g}, dissipated {terms} [{force} {length}]")
+            f"input work {e['input_work']:.4g}, "
+            + (f"support work {e['support_work']:.4g}, " if "support_work" in e else "")
+            + f"dissipated {terms} [{force} {length}]")
 
 
 #: The dissipation terms of the energy balance in the terminal summary.

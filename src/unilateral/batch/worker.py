@@ -389,7 +389,7 @@ class FrameResults:
         q = _load_samples(self.load, sol.u.shape[1], len(sol.t) - 1, float(sol.t[1] - sol.t[0]))
         contact = None if self.foundation is None else self.foundation.contact_load(self.operators.structure, sol)
         energy = self.operators.energy_balance(self.state, q, rule=self.rule, dt=float(sol.t[1] - sol.t[0]),
-                                               contact=contact)     # its work went into the soil
+                                               contact=contact, t=sol.t)     # contact: its work went into the soil
         return float(energy["max_relative_error"])
 
 

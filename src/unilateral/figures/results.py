@@ -688,7 +688,7 @@ def energy_figure(ds):
     unit = str(d["energy_input_work"].attrs.get("units", ""))
     fig, (top, low) = _figure((PAGE_WIDTH, 4.2), margins=(0.8, 1.9, 0.5, 0.35), gaps=(0.0, 0.15), nrows=2,
                               sharex=True, height_ratios=(2.2, 1))
-    for key, label in (("input_work", "input work"), ("kinetic", "kinetic"),
+    for key, label in (("input_work", "input work"), ("support_work", "support work"), ("kinetic", "kinetic"),
                        ("elastic_structure", "elastic Δ (structure)"),
                        ("elastic_unilateral", "elastic Δ (unilateral)"),
                        ("damping_dissipated", "damping dissipated"), ("contact_dissipated", "contact dissipated"),

@@ -104,10 +104,13 @@ def _build_spec(document: ModelFile, source: Path, path) -> ModelSpec:
     try:
         check_document(document, source.parent)
         if document.matrices is None:
-            structure = _build_structure(document)
+            structure = _build_structure(document, source.parent)
             with _at("structure"):
                 model = structure.to_model()
         else:
+            if document.loads.support_motion:
+                raise Problems(["loads.support_motion: a support motion needs a frame ([[nodes]], [[supports]]); "
+                                "a matrix-level model has no supports to move"])
             structure = None
             model = read_matrix_model(document.matrices, source.parent)
         load = _build_load(document, source.parent, model, structure)
@@ -151,9 +154,9 @@ def _each(document, section: str, action) -> None:
             action(table)
 
 
-def _build_structure(document: ModelFile) -> Structure:
+def _build_structure(document: ModelFile, folder: Path) -> Structure:
     if is_3d(document):
-        return _build_structure_3d(document)
+        return _build_structure_3d(document, folder)
     fr = Frame2D()
     to_mass = consistent_mass_factor(document.units)
     _each(document, "nodes", lambda node: fr.node(node.id, node.x, node.y))
@@ -174,6 +177,7 @@ def _build_structure(document: ModelFile) -> Structure:
         gravity = document.loads.gravity
         with _at("analysis.p_delta"):
             fr.p_delta(g=_gravity_value(document), direction=gravity.direction)
+    _support_motions(fr, document, folder)
     with _at("structure"):
         return fr.build()
 
@@ -204,7 +208,7 @@ def _damping(fr, document: ModelFile) -> None:
             fr.modal_damping(modal.zeta, modal.modes)
 
 
-def _build_structure_3d(document: ModelFile) -> Structure:
+def _build_structure_3d(document: ModelFile, folder: Path) -> Structure:
     """The :class:`~unilateral.structure.Frame3D` of a ``[frame] dimensions = 3`` document."""
     fr = Frame3D()
     to_mass = consistent_mass_factor(document.units)
@@ -225,8 +229,18 @@ def _build_structure_3d(document: ModelFile) -> Structure:
                           nodes=f.nodes, horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
                           Jx=f.Jx * to_mass, Jy=f.Jy * to_mass, Jz=f.Jz * to_mass, mu=f.mu, facets=f.facets)
     _damping(fr, document)
+    _support_motions(fr, document, folder)
     with _at("structure"):
         return fr.build()
+
+
+def _support_motions(fr, document: ModelFile, folder: Path) -> None:
+    """``[[loads.support_motion]]``: each displacement history (times ``scale``) on its supported DOF."""
+    for k, motion in enumerate(document.loads.support_motion):
+        parts = ("loads", "support_motion", k)
+        displacement = _time_function(motion.displacement, (*parts, "displacement"), folder, motion.scale)
+        with _at(key_path(parts)):
+            fr.support_motion(motion.node, motion.dof, displacement)
 
 
 def _add_element_3d(fr: Frame3D, e, to_mass=1.0) -> None:
@@ -376,24 +390,26 @@ def _frame_nodal_vector(structure: Structure, loads, indices) -> np.ndarray:
     return dofs.gather(np.bincount(np.asarray(rows, dtype=int), weights=values, minlength=dofs.T.shape[0]))
 
 
-def _time_function(spec, parts, folder: Path):
-    """The :mod:`unilateral.loads` time function (peak 1) of a ``time_function`` table."""
+def _time_function(spec, parts, folder: Path, peak: float = 1.0):
+    """The :mod:`unilateral.loads` time function (peak ``peak``, a table's values times it) of a
+    ``time_function`` table."""
     with _at(key_path(parts)):
         match spec:
             case RectangularPulse():
-                return Rectangular(1.0, t_start=spec.t_start, t_end=spec.t_end)
+                return Rectangular(peak, t_start=spec.t_start, t_end=spec.t_end)
             case HalfSinePulse():
-                return HalfSine(1.0, t_start=spec.t_start, duration=spec.duration)
+                return HalfSine(peak, t_start=spec.t_start, duration=spec.duration)
             case TriangularPulse():
-                return Triangular(1.0, t_start=spec.t_start, t_peak=spec.t_peak, t_end=spec.t_end)
+                return Triangular(peak, t_start=spec.t_start, t_peak=spec.t_peak, t_end=spec.t_end)
             case ConstantLoad():
-                return Constant(1.0)
+                return Constant(peak)
             case RampLoad():
-                return Ramp(spec.t_ramp, 1.0)
+                return Ramp(spec.t_ramp, peak)
             case TableLoad():
-                return Tabulated.from_csv(folder / spec.file, time_column=spec.time_column,
-                                          value_column=spec.value_column, outside=spec.outside,
-                                          skip_header=spec.skip_header)
+                table = Tabulated.from_csv(folder / spec.file, time_column=spec.time_column,
+                                           value_column=spec.value_column, outside=spec.outside,
+                                           skip_header=spec.skip_header)
+                return table if peak == 1.0 else Tabulated(table.t, peak * table.values, table.outside)
 
 
 def _figure(document: ModelFile) -> dict | None:

@@ -25,6 +25,7 @@ from pydantic_core import PydanticCustomError
 from .. import _LCP_NAMES as LCP_SOLVERS, _MATRIX_METHOD_NAMES as MATRIX_METHOD_NAMES, _RULE_NAMES as RULES
 from .pushover_table import PushoverTable, needs_time_step
 from .rigid import rigid_tables
+from .support_motion_table import support_motion_table
 from .walk import iter_fields  # noqa: F401 (the walk of a validated document, re-exported)
 from .recorders import OutputRecorders
 
@@ -516,6 +517,9 @@ class GroundMotion(Table):
         "sets it (ux: S, uy: P)."))
 
 
+SupportMotion = support_motion_table(Table, NodeRef, TimeFunction)      # modelfile/support_motion_table.py
+
+
 class Loads(Table):
     """[loads]: gravity, nodal loads and ground motions, added up."""
 
@@ -523,6 +527,7 @@ class Loads(Table):
     nodal: list[NodalLoad] = []
     distributed: list[DistributedLoad] = []
     ground_motion: list[GroundMotion] = []
+    support_motion: list[SupportMotion] = []
 
 
 class SiteBase(Table):
@@ -1039,6 +1044,7 @@ class Loads3D(Table):
     nodal: list[NodalLoad3D] = []
     distributed: list[DistributedLoad3D] = []
     ground_motion: list[GroundMotion3D] = []
+    support_motion: list[SupportMotion] = []
 
 
 class Figure3D(Figure):

@@ -216,17 +216,19 @@ class StateRows:
     x : (n + m, N+1) ``[u; v]``: displacements (relative to the ground) and unilateral deformations
     xdot : (n + m, N+1) ``[u'; v']``: their rates
     n : int, number of DOFs (``u = x[:n]``)
+    t : (N+1,) the times of the steps (s), or None; needed with support motions (``theta(t)``)
     """
 
     x: np.ndarray
     xdot: np.ndarray
     n: int
+    t: np.ndarray | None = None
 
     @classmethod
-    def of(cls, u, udot, v, vdot) -> StateRows:
-        """From histories ``u, udot`` (N+1, n) and ``v, vdot`` (N+1, m)."""
+    def of(cls, u, udot, v, vdot, t=None) -> StateRows:
+        """From histories ``u, udot`` (N+1, n) and ``v, vdot`` (N+1, m), at the times ``t`` (N+1,)."""
         n = u.shape[1]
-        return cls(x=_rows(u, v), xdot=_rows(udot, vdot), n=n)
+        return cls(x=_rows(u, v), xdot=_rows(udot, vdot), n=n, t=None if t is None else np.asarray(t, dtype=float))
 
     @classmethod
     def of_solution(cls, sol, rule) -> StateRows:
@@ -240,7 +242,7 @@ class StateRows:
         xdot = np.empty_like(x)
         xdot[:n] = sol.udot.T
         xdot[n:] = rate(x[n:].T, rule, float(sol.t[1] - sol.t[0])).T
-        return cls(x=x, xdot=xdot, n=n)
+        return cls(x=x, xdot=xdot, n=n, t=np.asarray(sol.t, dtype=float))
 
 
 def _rows(a, b) -> np.ndarray:
@@ -570,6 +572,9 @@ class BaseForceOperator:
         c = -P^T E theta
 
 (the Rayleigh part acts on the total strain rate, plastic hinge rotations of beams included).
+    With support motions (:mod:`~unilateral.structure.support_motion`) ``theta(t)`` and its rate
+    vary: ``c(t) = -P^T (E theta(t) + E_v theta'(t))`` at the times of the :class:`StateRows`
+    (:attr:`imposed`; the Rayleigh ``a1`` term is refused with them, so it has no ``theta'``).
 
     A run's base forces then cost two products of its :class:`StateRows` with (3, n + m)
     matrices instead of every element's forces at every step; they equal :func:`base_forces` of
@@ -580,12 +585,14 @@ class BaseForceOperator:
     Attributes
     ----------
     X, X_d : (3, n + m);  c : (3,) force unit (rows: base shear, base vertical force,
-    overturning moment about ``point``)
+    overturning moment about ``point``), at ``t = 0`` with support motions
+    imposed : :class:`ImposedBase` ``c(t)`` with support motions, else None
     """
 
     X: np.ndarray
     X_d: np.ndarray
     c: np.ndarray
+    imposed: object = None
 
     @classmethod
     def of(cls, structure, point=(0.0, 0.0)) -> BaseForceOperator:
@@ -593,8 +600,6 @@ class BaseForceOperator:
         from ..model import ConstantStrain
 
         nat = structure.natural
-        if not isinstance(nat.theta, ConstantStrain) or nat.theta_rate is not None:
-            raise ValueError("the base force operator needs imposed strains constant in time (as Frame2D builds)")
         P, P_d = _ground_weights(structure, point)
         strains = sp.hstack([sp.csr_matrix(nat.G).T, -sp.csr_matrix(nat.B)]).tocsr()     # [G^T, -B]
         EtP = np.asarray(nat.E.T @ P)
@@ -607,7 +612,10 @@ class BaseForceOperator:
             X_d[:, :structure.n] += a1 * np.asarray(nat.G @ (nat.E.T @ (P * bilateral[:, None]))).T
         for e, weights in zip(structure.dashpots, P_d):
             X_d[:, :structure.n] += (_free_a(structure, e).T @ (e.E.T @ weights[None])).T
-        return cls(X=np.asarray(strains.T @ EtP).T, X_d=X_d, c=-(nat.theta(0.0) @ EtP))
+        imposed = None
+        if not isinstance(nat.theta, ConstantStrain) or nat.theta_rate is not None:
+            imposed = ImposedBase(nat, EtP, None if nat.E_v is None else viscous)
+        return cls(X=np.asarray(strains.T @ EtP).T, X_d=X_d, c=-(nat.theta(0.0) @ EtP), imposed=imposed)
 
     def __call__(self, state: StateRows) -> dict:
         """Base forces (N+1,) each of a run's :class:`StateRows`.
@@ -616,12 +624,45 @@ class BaseForceOperator:
         -------
         dict ``base_shear``, ``base_vertical``, ``overturning_moment`` as :func:`base_forces`.
         """
-        base = self.X @ state.x + self.X_d @ state.xdot + self.c[:, None]
+        base = self.X @ state.x + self.X_d @ state.xdot + self._offset(state)
         return {"base_shear": base[0], "base_vertical": base[1], "overturning_moment": base[2]}
 
     def base_shear(self, state: StateRows) -> np.ndarray:
         """The base shear (N+1,) alone (one row of the products)."""
-        return self.X[0] @ state.x + self.X_d[0] @ state.xdot + self.c[0]
+        return self.X[0] @ state.x + self.X_d[0] @ state.xdot + self._offset(state)[0]
+
+    def _offset(self, state) -> np.ndarray:
+        """``c`` (3, 1), or ``c(t)`` (3, N+1) at the state's times with support motions."""
+        if self.imposed is None:
+            return self.c[:, None]
+        return self.imposed(state.t, state.x.shape[1])
+
+
+class ImposedBase:
+    """``c(t) = -P^T (E theta(t) + E_v theta'(t))`` (3, N+1): the part of the base forces of imposed
+    strains varying in time (support motions).
+
+    Parameters
+    ----------
+    natural : :class:`~unilateral.model.NaturalForm` with ``theta(t)`` (and ``theta'(t)``)
+    EtP : (ne, 3) ``E^T P``;  EvtP : (ne, 3) ``E_v^T P`` or None (no Kelvin elements)
+    """
+
+    def __init__(self, natural, EtP, EvtP):
+        self.natural, self.EtP, self.EvtP = natural, EtP, EvtP
+
+    def __call__(self, t, steps) -> np.ndarray:
+        """``c`` at the times ``t`` (``steps`` of them, the columns of the state)."""
+        if t is None or len(t) != steps:
+            raise ValueError(f"state: the base forces with support motions need the {steps} times of the steps "
+                             f"(StateRows.of(..., t=)), got {None if t is None else len(t)}")
+        t = np.asarray(t, dtype=float)
+        theta = np.broadcast_to(self.natural.imposed_strains(t), (len(t), self.EtP.shape[0]))
+        c = -(theta @ self.EtP)
+        rate = self.natural.theta_rate
+        if self.EvtP is not None and rate is not None:
+            c = c - np.array([np.asarray(rate(tk), dtype=float) for tk in t]) @ self.EvtP
+        return c.T
 
 
 def _ground_weights(structure, point) -> tuple[np.ndarray, np.ndarray]:
