@@ -84,7 +84,7 @@ def test_liolios1990_file_equals_the_builder():
     assert spec.figure == {"node": 3, "dof": "uy", "label": "vertical displacement of node 3 (m)"}
     assert spec.analysis == {"type": "transient", "dt": 1e-3, "t_end": 1.0, "t_after": 0.0, "method": "cq", "rule": "bdf2",
                              "lcp": "bpp",
-                             "initial": "static", "bilateral_reference": True, "p_delta": False,
+                             "initial": "static", "load_sampling": "average", "bilateral_reference": True, "p_delta": False,
                              "title": "Liolios (1990), Fig. 2: vertical displacement of node 3"}
     assert spec.source == EXAMPLES / "liolios1990.toml"
 

@@ -209,7 +209,7 @@ def analysis_load(spec, vector, record, scale: float):
     to_model = seconds ** 2 / length_factor(spec.units["length"])
     pairs = zip(vector, record, strict=True) if isinstance(vector, list) else [(vector, record)]
     terms = tuple((v, Tabulated(r.time / seconds, r.acceleration * (scale * to_model))) for v, r in pairs)
-    return LoadHistory(spec.load.constant, tuple(spec.load.terms) + terms)
+    return LoadHistory(spec.load.constant, tuple(spec.load.terms) + terms, sampling=spec.load.sampling)
 
 
 # ---------------------------------------------------------------------- peaks

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import _validate as V
+from .piecewise import SAMPLINGS
 
 
 @dataclass(frozen=True, eq=False)
@@ -31,6 +32,11 @@ class LoadHistory:
         Load patterns and their time functions; ``f(t)`` must accept an array of times and return
         an array of the same shape (every :class:`~unilateral.loads.TimeFunction` and
         :class:`~unilateral.loads.GroundMotion` does). A ground motion enters as ``(-M r, a_g)``.
+    sampling : {"hat", "box", "point"}, optional
+        How a time-stepping run samples the load on its grid (:meth:`grid_samples`): ``"hat"``
+        (default) hat-function averages, ``"point"`` the values at the step times, as OpenSees's
+        Path series are read (a model file's ``[analysis] load_sampling``). Every quantity derived
+        after the run (accelerations, base shear, input work) takes the same samples.
 
     Examples
     --------
@@ -45,8 +51,11 @@ class LoadHistory:
 
     constant: np.ndarray
     terms: tuple[tuple[np.ndarray, Callable], ...] = ()
+    sampling: str = "hat"
 
     def __post_init__(self):
+        if self.sampling not in SAMPLINGS:
+            raise ValueError(f"sampling={self.sampling!r} is not valid; valid: {', '.join(map(repr, SAMPLINGS))}")
         constant = V.as_vector("constant", self.constant, None)
         n = constant.size
         terms = []
@@ -96,7 +105,7 @@ class LoadHistory:
             out.append((vector, piecewise))
         return out
 
-    def grid_samples(self, dt: float, N: int, sampling: str = "hat") -> tuple[np.ndarray, np.ndarray]:
+    def grid_samples(self, dt: float, N: int, sampling: str | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Load samples for a dynamic run on ``t_k = k dt`` (k = 0..N) and the static preload.
 
         Parameters
@@ -106,7 +115,7 @@ class LoadHistory:
         N : int
             Number of steps.
         sampling : {"hat", "box", "point"}, optional
-            ``"hat"`` (default): hat-function averages ``(1/dt) int q phi_k``, which keep BDF2 and
+            Default: the history's own :attr:`sampling`. ``"hat"``: hat-function averages ``(1/dt) int q phi_k``, which keep BDF2 and
             the trapezoidal rule second order across jumps anywhere (measured, see
             ``tests/test_convergence.py`` and ``docs/theory.md``); ``"box"``: averages over
             ``[t_k - dt/2, t_k + dt/2]``; ``"point"``: point values, the mean of both sides at a
@@ -127,7 +136,7 @@ class LoadHistory:
         """The load patterns of the terms, (number of terms, n)."""
         return np.array([vector for vector, _ in self.terms], dtype=float).reshape(len(self.terms), self.n)
 
-    def grid_factors(self, dt: float, N: int, sampling: str = "hat") -> tuple[np.ndarray, np.ndarray]:
+    def grid_factors(self, dt: float, N: int, sampling: str | None = None) -> tuple[np.ndarray, np.ndarray]:
         """The time functions' samples of :meth:`grid_samples`, one column per term.
 
         ``Q = constant + factors @ vectors()``: for large models the load of a step is formed
@@ -145,6 +154,7 @@ class LoadHistory:
         if isinstance(N, bool) or not isinstance(N, (int, np.integer)) or N < 0:
             raise ValueError(f"N must be an integer >= 0, got {N!r}")
         N = int(N)
+        sampling = self.sampling if sampling is None else sampling
         key = (dt, N, sampling)
         if self._last_grid is not None and self._last_grid[0] == key:
             return self._last_grid[1]

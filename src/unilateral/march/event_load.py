@@ -89,6 +89,10 @@ def load_generator(model, load, t_grid) -> LoadGenerator:
     if isinstance(load, LoadHistory):
         if load.n != n:
             raise ValueError(f"load: the LoadHistory has n = {load.n} DOFs, the model {n}")
+        if load.sampling != "hat":
+            raise ValueError(f"load: sampling={load.sampling!r} (a model file's [analysis] load_sampling) cannot be "
+                             "honoured by method='event', which integrates the load exactly between events; "
+                             "use method='direct' (or 'cq', 'modal'), or the default sampling 'hat'")
         return LoadGenerator(load.constant + imposed, load.piecewise_terms("load"))
     if isinstance(load, np.ndarray) or (isinstance(load, (list, tuple)) and not callable(load)):
         Q = np.asarray(load, dtype=float)

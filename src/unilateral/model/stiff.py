@@ -71,7 +71,8 @@ class StiffCoordinates:
 
             if load.n != n:
                 raise ValueError(f"load has {load.n} DOFs but the model has n = {n}")
-            return LoadHistory(Tt @ load.constant, [(Tt @ vector, f) for vector, f in load.terms])
+            return LoadHistory(Tt @ load.constant, [(Tt @ vector, f) for vector, f in load.terms],
+                               sampling=getattr(load, "sampling", "hat"))
         if callable(load):
             def q(t):
                 value = np.asarray(load(t), dtype=float)

@@ -46,7 +46,7 @@ class ModelSpec:
         ``q(t) -> (n,)``, the total load in the model's force unit.
     analysis : dict
         ``type`` (``"transient"`` or ``"pushover"``: ``document.pushover``), ``dt, t_end, t_after, method, rule,
-        lcp, initial, bilateral_reference, p_delta, title`` (``t_end = "record"`` resolved to a number:
+        lcp, initial, load_sampling, bilateral_reference, p_delta, title`` (``t_end = "record"`` resolved to a number:
         :mod:`~unilateral.modelfile.analysis_time`).
     units : dict
         ``length, force, time`` as declared and the derived ``mass``.
@@ -348,7 +348,8 @@ def _build_load(document: ModelFile, folder: Path, model: Model, structure: Stru
         with _at(key_path((*parts, "direction"))):
             inertia = ground_inertia(structure, motion.direction)          # rigid blocks: every node's
         terms.append((-np.asarray(model.M @ r).ravel() if inertia is None else inertia, a_g))
-    return LoadHistory(constant, tuple(terms))
+    return LoadHistory(constant, tuple(terms), sampling={"average": "hat", "point": "point"}[
+        document.analysis.load_sampling])
 
 
 def _nodal_terms(loads, folder: Path, model: Model, structure: Structure | None) -> list:

@@ -593,6 +593,9 @@ class Analysis(Table):
     rule: Literal[tuple(RULES)] = Field("bdf2", title="rule")
     lcp: Literal[tuple(sorted(LCP_SOLVERS))] = Field("bpp", title="LCP solver")
     initial: Literal["static", "rest"] = Field("static", title="initial state")
+    load_sampling: Literal["average", "point"] = Field("average", description=(
+        'How the steps sample the loads: "average" (hat-function averages, second order across jumps) or '
+        '"point" (the values at the step times, as OpenSees reads a Path series; not with method = "event").'))
     bilateral_reference: bool = Field(True, description="Also run with every constraint bilateral.")
     p_delta: bool = Field(False, description=(
         "Frames: add the geometric stiffness of the axial forces of [loads.gravity] (P-Delta)."))
