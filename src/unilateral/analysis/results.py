@@ -43,6 +43,7 @@ from ..linalg import dense as _dense
 from ..model import Model
 from ..structure import forces as F
 from .energy import energy_balance, unknown_kinds
+from .footing_results import footing_histories, footing_peaks, footing_variables
 from .rigid import frame_solution, rigid_summary
 from .inelastic import Inelastic
 from .residual import residual_peaks
@@ -231,11 +232,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         axial = np.where(np.any(end[:, :, 3] != 0, axis=0), end[:, :, 3], end[:, :, 5])
         put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
             "(moment of a rotational spring)", Fu)
-        reaction = F.reactions(structure, h)
-        if foundation is not None:          # the soil's contact forces are ground reactions at the footing
-            forces, at = foundation.ground_reactions(structure, contact_sol)
-            reaction["ground_elements"].update(forces)
-            reaction["at"].update(at)
+        reaction, footings = _reactions(variables, coords, structure, h, case=case, foundation=foundation,
+                                        contact_sol=contact_sol, units=units)
         base = F.base_forces(structure, reaction, point)
         per_frame = F.base_forces_per_frame(structure, reaction, point)
         if per_frame:                       # several frames (pounding buildings): each its own
@@ -243,16 +241,6 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             put("frame_base_shear", ("time", "frame"), case,
                 np.column_stack([b["base_shear"] for b in per_frame.values()]),
                 "base shear of each separate frame: sum of the x forces of the ground on it", Fu)
-        if reaction["support"]:
-            coords["support"] = list(reaction["support"])
-            put("support_reaction", ("time", "support"), case, np.column_stack(list(reaction["support"].values())),
-                "force of the support on the structure at node.dof", f"{Fu} or {moment_unit}")
-        if reaction["ground_elements"]:
-            coords["ground_element"] = list(reaction["ground_elements"])
-            coords["force_component"] = ["fx", "fy", "mz"]
-            put("ground_reaction", ("time", "ground_element", "force_component"), case,
-                np.stack(list(reaction["ground_elements"].values()), axis=1),
-                "force of the ground on the structure through the element", f"{Fu} (fx, fy); {moment_unit} (mz)")
         put("base_shear", ("time",), case, base["base_shear"], "base shear: sum of the x forces of the ground", Fu)
         put("base_vertical", ("time",), case, base["base_vertical"], "sum of the y forces of the ground", Fu)
         put("overturning_moment", ("time",), case, base["overturning_moment"],
@@ -293,6 +281,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                                      for label, b in per_frame.items()}
         peaks[case] |= {"overturning_point": list(point)} | residual_peaks(structure, sol, t, static_load, load_samples,
                                                                           storey_pairs)
+        if footings is not None:
+            peaks[case]["footings"] = footing_peaks(t, footings)
         if getattr(structure, "rigid", None) is not None:           # analysis/rigid.py
             peaks[case]["rigid_contacts"] = rigid_summary(structure, contact_sol)
         note = _linear_drift_note(structure, peaks[case])
@@ -310,6 +300,40 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                 p["frame_periods"] = apart
     return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"overturning_point": list(point)}}
+
+
+def _reactions(variables, coords, structure, h, *, case, foundation, contact_sol, units) -> tuple[dict, dict | None]:
+    """The reactions of a case (:func:`~unilateral.structure.forces.reactions`, the soil's contact forces
+    added as ground reactions at the footings) and the footings' results
+    (:func:`~unilateral.analysis.footing_results.footing_histories`, None without footings on a soil),
+    with their variables ``support_reaction``, ``ground_reaction`` and ``footing_*`` of ``case`` put in
+    ``variables``."""
+    Fu = units.get("force", "")
+    moment_unit = f"{Fu} {units.get('length', '')}".strip()
+
+    def put(name, dims, array, long_name, unit):
+        _put(variables, name, dims, case, array, long_name, unit)
+
+    reaction, footings = F.reactions(structure, h), None
+    if foundation is not None:
+        forces, at = foundation.ground_reactions(structure, contact_sol)
+        reaction["ground_elements"].update(forces)
+        reaction["at"].update(at)
+        footings = footing_histories(foundation, structure, h.u, contact_sol)
+        coords["foundation"] = list(footings)
+        for name, (values, long_name, unit) in footing_variables(footings, units).items():
+            put(name, ("time", "foundation"), values, long_name, unit)
+    if reaction["support"]:
+        coords["support"] = list(reaction["support"])
+        put("support_reaction", ("time", "support"), np.column_stack(list(reaction["support"].values())),
+            "force of the support on the structure at node.dof", f"{Fu} or {moment_unit}")
+    if reaction["ground_elements"]:
+        coords["ground_element"] = list(reaction["ground_elements"])
+        coords["force_component"] = ["fx", "fy", "mz"]
+        put("ground_reaction", ("time", "ground_element", "force_component"),
+            np.stack(list(reaction["ground_elements"].values()), axis=1),
+            "force of the ground on the structure through the element", f"{Fu} (fx, fy); {moment_unit} (mz)")
+    return reaction, footings
 
 
 def bilateral_modes(structure, model, peaks: dict, coords: dict, *, time_unit="", directions=("x", "y")):

@@ -22,6 +22,7 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
     friction cones with the components ``roty``, ``rotz`` and ``t1``, ``t2``) and, with a load, the
     energy balance (``energy_*``), and their peaks."""
     from ..structure import forces3d as F3
+    from .footing_results import footing_histories, footing_peaks, footing_variables
     from .inelastic import Inelastic
     from .results import (_abs_peak, _energy_keys, _extreme, _put, acceleration_peaks, acceleration_results,
                           bilateral_modes, element_end_forces, energy_peaks, energy_results, ground_motion_samples,
@@ -57,21 +58,14 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
              "element force along its axis, tension positive (moment of a rotational spring)", force)
         reaction = F3.reactions(structure, h, sol)
         base = F3.base_forces(structure, reaction, point)
-        moment = f"{force} {length}".strip()
         if reaction["support"]:
             coords["support"] = list(reaction["support"])
             entry = variables.setdefault("support_reaction", (("time", "support"), {}, {
                 "long_name": "force (moment about rx, ry, rz) of the support on the structure at node.dof",
                 **({"units": f"{force} or {moment}"} if force else {})}))
             entry[1][case] = np.column_stack(list(reaction["support"].values()))
-        grounded = {**reaction["ground_elements"], **reaction.get("footings", {})}
-        if grounded:
-            coords["ground_element"] = list(grounded)
-            coords["force_component"] = list(F3.BASE_COMPONENTS)
-            entry = variables.setdefault("ground_reaction", (("time", "ground_element", "force_component"), {}, {
-                "long_name": "force and moment of the ground on the structure through the element or the footing "
-                             "patch, at its node", **({"units": f"{force} (F); {moment} (M)"} if force else {})}))
-            entry[1][case] = np.stack(list(grounded.values()), axis=1)
+        _ground_reactions(variables, coords, case, {**reaction["ground_elements"], **reaction.get("footings", {})},
+                          units)
         for key, values in base.items():
             unit = force if key.startswith("F") else f"{force} {length}".strip()
             entry = variables.setdefault(f"base_{key}", (("time",), {}, {
@@ -81,6 +75,12 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
         peaks[case] = {"base_forces": {key: _extreme(sol.t, values) for key, values in base.items()},
                        "end_forces": {name: {comp: _abs_peak(h.t, f[:, k]) for k, comp in enumerate(F3.END_COMPONENTS)
                                              if np.any(f[:, k])} for name, f in ends.items()}}
+        if structure.foundation is not None:
+            footings = footing_histories(structure.foundation, structure, h.u, sol, three_d=True)
+            coords["foundation"] = list(footings)
+            for name, (values, long_name, unit) in footing_variables(footings, units).items():
+                _put(variables, name, ("time", "foundation"), case, values, long_name, unit)
+            peaks[case]["footings"] = footing_peaks(h.t, footings)
         if motions:
             peaks[case]["absolute_acceleration"] = acceleration_peaks(structure, h, motions, ("ux", "uy", "uz"))
         energy = None
@@ -108,6 +108,22 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
     _, static = bilateral_modes(structure, model, peaks, coords, time_unit=units.get("time", ""))
     return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"base_point": list(point)}}
+
+
+def _ground_reactions(variables, coords, case, grounded: dict, units) -> None:
+    """The variable ``ground_reaction`` (time, ground_element, force_component) of ``case``: the force and
+    moment (N+1, 6) of the ground on the structure through each element or footing patch of ``grounded``."""
+    from ..structure.forces3d import BASE_COMPONENTS
+
+    if not grounded:
+        return
+    force, length = units.get("force", ""), units.get("length", "")
+    coords["ground_element"] = list(grounded)
+    coords["force_component"] = list(BASE_COMPONENTS)
+    entry = variables.setdefault("ground_reaction", (("time", "ground_element", "force_component"), {}, {
+        "long_name": "force and moment of the ground on the structure through the element or the footing "
+                     "patch, at its node", **({"units": f"{force} (F); {force} {length} (M)"} if force else {})}))
+    entry[1][case] = np.stack(list(grounded.values()), axis=1)
 
 
 def _node_accelerations(variables, structure, h, motions, *, case, unit):

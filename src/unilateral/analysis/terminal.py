@@ -241,6 +241,7 @@ def _family_lines(p: dict, units: dict) -> list[str]:
         lines.append(_yield_line(p["yield_elements"], units))
     if p.get("friction_elements"):
         lines.append(_friction_line(p["friction_elements"], units))
+    lines += _footing_lines(p.get("footings") or {}, units)
     drift = p.get("residual_drift")
     if lines and drift:
         lines.append(f"residual drift ratio {100 * drift['ratio']:.2g} % (storey {drift['storey']}) at the last "
@@ -249,6 +250,33 @@ def _family_lines(p: dict, units: dict) -> list[str]:
         if static:
             lines.append(f"static residual drift ratio {100 * static['ratio']:.2g} % (storey {static['storey']}), "
                          "plastic deformations frozen, gravity alone")
+    return lines
+
+
+#: At most this many footings get a line of their own in the terminal (all are in summary.json).
+FOOTING_LINES = 8
+
+
+def _footing_lines(footings: dict, units: dict) -> list[str]:
+    """``footing A: uplift 0.0012 m at t = 2.4 s, rz 0.0049 rad (final 1e-4), ...`` per footing."""
+    L, Fu, T = (units.get(k, "") for k in ("length", "force", "time"))
+    lines = []
+    for name, f in list(footings.items())[:FOOTING_LINES]:
+        lift = f["uplift"]
+        parts = [f"uplift {lift['max']:.3g} {L} at t = {lift['t_max']:.4g} {T}".replace("  ", " ")
+                 if lift["max"] > 0 else "no uplift"]
+        for q in ("rz", "rx", "ry", "slip", "slip_x", "slip_y"):
+            if q in f:
+                peak = max((f[q]["max"], f[q]["min"]), key=abs)
+                unit = "rad" if q.startswith("r") else L
+                parts.append(f"{q} {peak:.3g} {unit} (final {f[q]['final']:.3g})".replace("  ", " "))
+        parts.append(f"peak pressure {f['peak_pressure']['max']:.4g} {Fu}/{L}^2" if L and Fu
+                     else f"peak pressure {f['peak_pressure']['max']:.4g}")
+        parts.append(f"least contact (compression) {100 * f['contact_ratio']['min']:.3g} % of the base at t = "
+                     f"{f['contact_ratio']['t_min']:.4g} {T}".rstrip())
+        lines.append(f"footing {name}: " + ", ".join(parts))
+    if len(footings) > FOOTING_LINES:
+        lines.append(f"({len(footings) - FOOTING_LINES} more footings in summary.json)")
     return lines
 
 
