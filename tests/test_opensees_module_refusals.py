@@ -58,7 +58,6 @@ REFUSED_CALLS = [
     (lambda: ops.element('elasticBeamColumn', 9, 1, 3, 0.1, 30e6, 1e-3, 1, '-mass', 0.9), "-mass", "nodal masses"),
     (lambda: ops.element('zeroLength', 9, 1, 3, '-mat', 1, '-dir', 1, '-orient', 0, 1, 0, -1, 0, 0), "-orient"),
     (lambda: ops.element('zeroLength', 9, 1, 3, '-mat', 2, '-dir', 2, '-doRayleigh', 1), "-doRayleigh", "ENT"),
-    (lambda: ops.geomTransf('PDelta', 7), "PDelta", "axial force", "Frame2D.p_delta"),
     (lambda: ops.geomTransf('Corotational', 7), "Corotational", "linear structure"),
     (lambda: ops.geomTransf('Linear', 7, '-jntOffset', 0.1, 0.0, 0.0, 0.0), "joint offsets"),
     (lambda: ops.timeSeries('Trig', 7, 0.0, 1.0, 0.5), "Trig", "Path"),

@@ -24,6 +24,7 @@ from ..structure import Frame2D, Frame3D
 from .elements import BeamColumn, beam_stiffness
 from .elements3d import BeamColumn3D, beam_stiffness3d
 from .materials import DIRECTIONS
+from .pdelta import pdelta_table, with_axial
 from .refusals import OpenSeesRefused, refuse
 
 __all__ = ["Built", "build"]
@@ -44,6 +45,9 @@ class Built:
     springs : dict tag -> list of (material, direction, [(strain index, sign) of the elements read],
         damping factor)
     ties : (n_structure, n) csr, the structure's DOFs ``T u`` of the reduced ``u`` (the equalDOF ties)
+    pdelta : dict tag -> the P-Delta table of the beams of a ``PDelta`` transformation (:mod:`.pdelta`)
+    linear : Model, the model without their geometric stiffness (``model`` is it plus ``K_G(axial)``)
+    axial : dict tag -> the axial force of their geometric stiffness in ``model``
     """
 
     structure: object
@@ -56,6 +60,9 @@ class Built:
     ties: sp.csr_matrix = None
     ndf: int = 3
     stress: tuple = None
+    pdelta: dict = None
+    linear: Model = None
+    axial: dict = None
 
     def stresses(self, u, v) -> np.ndarray:
         """The element stresses (ne,) of the reduced ``u`` and ``v``, at the strains the queries read
@@ -120,7 +127,11 @@ def build(domain) -> Built:
     model = Model.from_natural((T.T @ nat.G).tocsr(), nat.E, nat.B, M=M, A=A, r=nat.r, theta=nat.theta(0.0),
                                C=sp.csr_matrix(C) if C.nnz else None, E_v=nat.E_v, dof_names=reduced_names,
                                constraint_names=list(st.constraint_names), families=st.families())
-    return Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs))
+    built = Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs),
+                  pdelta_table(domain, row), model, {})
+    if built.pdelta:
+        with_axial(built, {})
+    return built
 
 
 def _stress_rows(st, T, springs):

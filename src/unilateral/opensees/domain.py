@@ -155,22 +155,20 @@ class Domain:
         self._changed()
 
     def geomTransf(self, kind, tag, *args):
-        """``geomTransf('Linear', tag)`` (3-D: ``tag, vecxz_x, vecxz_y, vecxz_z``); ``PDelta`` and
-        ``Corotational`` are refused."""
+        """``geomTransf('Linear', tag)`` (3-D: ``tag, vecxz_x, vecxz_y, vecxz_z``), ``geomTransf('PDelta',
+        tag)`` in 2-D (the string stiffness of the axial forces, :mod:`.pdelta`); ``Corotational`` is
+        refused."""
         what = f"geomTransf({kind!r}, {tag!r})"
         self._need_model(what)
-        if kind == "PDelta":
-            refuse(what, "OpenSees's P-Delta adds to each element the string stiffness N/L of its current axial "
-                   "force N, which follows the response (overturning changes it; OpenSees iterates on it), while "
-                   "the structure here is linear: its P-Delta (Frame2D.p_delta) is the consistent geometric "
-                   "stiffness (6/5 N/L, N L/10, ...) of the constant axial forces of gravity, other equations even "
-                   "where N stays the gravity's", "geomTransf('Linear', tag), or build the frame with "
-                   "unilateral.structure.Frame2D and use Frame2D.p_delta")
+        if kind == "PDelta" and self.ndm == 3:
+            refuse(what, "the string P-Delta of a 3-D transformation (two transverse planes) is not in this slice",
+                   "geomTransf('Linear', tag, vx, vy, vz), or a 2-D model for geomTransf('PDelta', tag)")
         if kind == "Corotational":
             refuse(what, "large rotations (corotational kinematics) make the structure geometrically nonlinear; "
                    "the method needs a linear structure", "geomTransf('Linear', tag)")
-        if kind != "Linear":
-            refuse(what, "only the Linear transformation is in this slice", "geomTransf('Linear', tag)")
+        if kind not in ("Linear", "PDelta"):
+            refuse(what, "only the Linear and (2-D) PDelta transformations are in this slice",
+                   "geomTransf('Linear', tag)")
         vecxz = None
         if self.ndm == 3:
             if len(args) < 3 or any(isinstance(a, str) for a in args[:3]):

@@ -22,6 +22,7 @@ import numpy as np
 
 from .elements import BeamColumn
 from .elements3d import BeamColumn3D, beam_stiffness3d
+from .pdelta import element_geometric
 from .refusals import refuse
 
 __all__ = ["nodal", "element_force", "material_forces", "element_response", "nodal_reactions"]
@@ -139,10 +140,15 @@ def element_force(analysis, tag, dof=-1):
     return _pick(_global_force(analysis, b, tag, e), dof, what)
 
 
-def _global_force(analysis, b, tag, e):
+def _global_force(analysis, b, tag, e, geometric=True):
+    """The global end forces of element ``tag``; a ``PDelta`` beam's with its string forces
+    ``N (v_i - v_j) / L`` unless ``geometric`` is False (OpenSees's local and basic forces have none)."""
     if isinstance(e, (BeamColumn, BeamColumn3D)):
         rows, Ke, _ = b.beams[tag]
-        return Ke @ _state(analysis)["u"][rows]
+        U = _state(analysis)["u"][rows]
+        if geometric and b.pdelta and tag in b.pdelta:
+            return (Ke + element_geometric(b.pdelta, tag, b.axial[tag])) @ U
+        return Ke @ U
     out = np.zeros(2 * b.ndf)
     for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):
         out[direction - 1] -= f
@@ -153,7 +159,7 @@ def _global_force(analysis, b, tag, e):
 def _beam_response(analysis, b, tag, e, name):
     """``'localForce'`` or ``'basicForce'`` of a beam (2-D: ``N, M_i, M_j``; 3-D: ``N, Mz_i, Mz_j, My_i,
     My_j, T``), or None for another response."""
-    f = _global_force(analysis, b, tag, e)
+    f = _global_force(analysis, b, tag, e, geometric=False)
     if isinstance(e, BeamColumn3D):
         local = beam_stiffness3d(analysis.domain, e)[1] @ f
         basic = local[[6, 5, 11, 4, 10, 9]]

@@ -1,0 +1,78 @@
+"""``geomTransf('PDelta')`` (2-D) against openseespy: the static P-Delta equilibrium to round-off,
+and a transient response after gravity, where the axial forces kept constant here (OpenSees
+follows them) make the histories differ by a measured amount; the combinations refused."""
+
+import numpy as np
+import pytest
+
+from test_opensees_module import both, errors, needs_opensees
+
+import unilateral.opensees as ops
+from unilateral.opensees import OpenSeesRefused
+
+
+@needs_opensees
+def test_pdelta_static_cantilever_equals_openseespy_to_round_off():
+    theirs, ours = both("pdelta_cantilever.py")
+    err = errors(theirs, ours)
+    assert max(err.values()) <= 1e-12, err                          # measured 7.5e-15
+    # the P-Delta effect is there: the tip drift is 45 % above the Linear transformation's
+    assert theirs["u_PDelta"][-6] > 1.4 * theirs["u_Linear"][-6]
+
+
+@needs_opensees
+def test_pdelta_transient_after_gravity_within_the_measured_difference():
+    theirs, ours = both("pdelta_portal.py")
+    err = errors(theirs, ours)
+    for key in ("static_PDelta", "static_Linear", "drift_Linear", "N1_Linear", "N2_Linear"):
+        assert err[key] <= 1e-11, (key, err[key])                   # gravity and Linear: round-off
+    # constant axial forces here, OpenSees's follow the overturning (+- 21 % of the gravity's)
+    n1 = theirs["N1_PDelta"]
+    assert np.abs(n1 + 1500.0).max() > 0.2 * 1500.0
+    assert 1e-6 < err["drift_PDelta"] <= 3e-4, err["drift_PDelta"]   # measured 1.4e-4 of the peak
+    peak_theirs, peak_ours = np.abs(theirs["drift_PDelta"]).max(), np.abs(ours["drift_PDelta"]).max()
+    assert abs(peak_ours - peak_theirs) <= 2e-4 * peak_theirs       # peak drift: 1.4e-4
+    # ... against the P-Delta effect itself: 41 % more drift than with Linear columns
+    assert peak_theirs > 1.35 * np.abs(theirs["drift_Linear"]).max()
+
+
+def cantilever(P, F, kind="PDelta", steps=1):
+    ops.wipe()
+    ops.model('basic', '-ndm', 2, '-ndf', 3)
+    ops.node(1, 0.0, 0.0)
+    ops.node(2, 0.0, 4.0)
+    ops.fix(1, 1, 1, 1)
+    ops.geomTransf(kind, 1)
+    ops.element('elasticBeamColumn', 1, 1, 2, 0.01, 2e8, 8e-5, 1)
+    ops.timeSeries('Linear', 1)
+    ops.pattern('Plain', 1, 1)
+    ops.load(2, F, P, 0.0)
+    ops.integrator('LoadControl', 1.0 / steps)
+    ops.analysis('Static')
+    return [ops.analyze(1) for _ in range(steps)]
+
+
+def test_pdelta_static_is_the_string_pdelta_equilibrium():
+    """One element: the fixed point solves ``(K + N/L t t^T) u = f`` with ``N`` the element's own
+    axial force (``EA/L`` times its elongation)."""
+    assert cantilever(-2000.0, 5.0) == [0]
+    u = np.array(ops.nodeDisp(2))
+    E, A, I, H = 2e8, 0.01, 8e-5, 4.0
+    N = E * A / H * u[1]
+    K = np.array([[12 * E * I / H**3 + N / H, 0, 6 * E * I / H**2], [0, E * A / H, 0],
+                  [6 * E * I / H**2, 0, 4 * E * I / H]])                  # N < 0: compression softens
+    assert np.allclose(K @ u, [5.0, -2000.0, 0.0], rtol=0, atol=1e-9 * 2000)
+    assert np.isclose(ops.eleResponse(1, 'basicForce')[0], N, rtol=1e-12)
+
+
+def test_pdelta_refused_where_not_mapped():
+    cantilever(-2000.0, 5.0)
+    ops.integrator('DisplacementControl', 2, 1, 0.001)
+    with pytest.raises(OpenSeesRefused, match="follows the axial forces along the pushover"):
+        ops.analyze(1)
+    with pytest.raises(OpenSeesRefused, match="buckling"):
+        cantilever(-1e6, 5.0)                                        # above the Euler load (2470)
+    ops.wipe()
+    ops.model('basic', '-ndm', 3, '-ndf', 6)
+    with pytest.raises(OpenSeesRefused, match="3-D transformation"):
+        ops.geomTransf('PDelta', 1, 0.0, 0.0, 1.0)
