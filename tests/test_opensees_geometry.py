@@ -76,3 +76,61 @@ def test_pdelta_refused_where_not_mapped():
     ops.model('basic', '-ndm', 3, '-ndf', 6)
     with pytest.raises(OpenSeesRefused, match="3-D transformation"):
         ops.geomTransf('PDelta', 1, 0.0, 0.0, 1.0)
+
+
+@needs_opensees
+def test_truss_braces_equal_openseespy():
+    """Elastic braces (``-rho``, ``-doRayleigh 1``, a material ``eta``) and tension-only braces
+    (``ElasticPPGap``) with an ``ENT`` strut: every history to 1e-11 of its peak (measured 3e-13)."""
+    theirs, ours = both("braced_truss.py")
+    err = errors(theirs, ours)
+    assert max(err.values()) <= 1e-11, err
+    axial = theirs["axial_tension_only"].reshape(-1, 3)
+    for brace in (0, 1):                                            # each goes slack and taut in turn
+        assert axial[:, brace].min() >= 0.0 and (axial[:, brace] == 0).mean() > 0.2
+        assert axial[:, brace].max() > 500.0
+    assert axial[:, 2].max() <= 0.0 and axial[:, 2].min() < -100.0  # the ENT strut: compression only
+    assert (axial[:, 2] == 0).mean() > 0.2
+
+
+def small_truss(*options, material=('Elastic', 1, 2e8), ndm=2):
+    ops.wipe()
+    ops.model('basic', '-ndm', ndm, '-ndf', 3 * (ndm - 1))
+    ops.node(1, *[0.0] * ndm)
+    ops.node(2, 3.0, 4.0, *[0.0] * (ndm - 2))
+    ops.uniaxialMaterial(*material)
+    ops.element('truss', 1, 1, 2, 1e-3, 1, *options)
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: small_truss('-cMass', 1), ("-cMass 1", "lumped")),
+    (lambda: small_truss('-doRayleigh', 1, material=('ENT', 1, 2e8)), ("-doRayleigh 1 with ENT",)),
+    (lambda: small_truss(ndm=3), ("3-D",)),
+    (lambda: small_truss('-section'), ("'-section'",)),
+    (lambda: small_truss('-rho', -1.0), ("rho >= 0",)),
+    (lambda: ops.element('corotTruss', 2, 1, 2, 1e-3, 1), ("corotational", "2e-4", "truss (the linear truss)")),
+])
+def test_truss_options_refused(call, words):
+    small_truss()
+    with pytest.raises(OpenSeesRefused) as info:
+        call()
+    for word in words:
+        assert word in str(info.value), (word, str(info.value))
+
+
+def test_truss_is_an_axial_spring_of_EA_over_L():
+    small_truss('-rho', 2.0)
+    ops.fix(1, 1, 1, 1)
+    ops.fix(2, 0, 1, 1)                                             # free along x only: k = EA/L c^2
+    ops.timeSeries('Linear', 1)
+    ops.pattern('Plain', 1, 1)
+    ops.load(2, 30.0, 0.0, 0.0)
+    ops.integrator('LoadControl', 1.0)
+    ops.analysis('Static')
+    assert ops.analyze(1) == 0
+    k = 2e8 * 1e-3 / 5.0
+    assert np.isclose(ops.nodeDisp(2, 1), 30.0 / (k * 0.6**2), rtol=1e-13)
+    assert np.isclose(ops.eleResponse(1, 'axialForce')[0], 50.0, rtol=1e-13)
+    assert np.allclose(ops.eleForce(1), [-30.0, -40.0, 0.0, 30.0, 40.0, 0.0], rtol=1e-13)
+    with pytest.raises(OpenSeesRefused, match="axialForce"):
+        ops.eleResponse(1, 'localForce')
