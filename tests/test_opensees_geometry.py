@@ -134,3 +134,58 @@ def test_truss_is_an_axial_spring_of_EA_over_L():
     assert np.allclose(ops.eleForce(1), [-30.0, -40.0, 0.0, 30.0, 40.0, 0.0], rtol=1e-13)
     with pytest.raises(OpenSeesRefused, match="axialForce"):
         ops.eleResponse(1, 'localForce')
+
+
+@needs_opensees
+def test_beam_uniform_loads_equal_openseespy():
+    """``eleLoad -beamUniform`` (Wy and Wx, inclined rafters, '-ele' and '-range'): the consistent
+    nodal loads give the nodal displacements, and the end forces with the fixed-end forces give
+    eleForce, localForce, basicForce and the reactions, to round-off (measured 1.6e-13)."""
+    theirs, ours = both("beam_uniform.py")
+    err = errors(theirs, ours)
+    assert max(err.values()) <= 1e-11, err
+    basic = theirs["basic"].reshape(4, 4, 3)[-1]
+    assert abs(basic[1, 1]) < 1e-9 * np.abs(basic).max()            # the pinned base carries no moment
+
+
+def loaded_beam(*ele_load):
+    ops.wipe()
+    ops.model('basic', '-ndm', 2, '-ndf', 3)
+    ops.node(1, 0.0, 0.0)
+    ops.node(2, 5.0, 0.0)
+    ops.fix(1, 1, 1, 1)
+    ops.fix(2, 1, 1, 1)
+    ops.geomTransf('Linear', 1)
+    ops.geomTransf('PDelta', 2)
+    ops.element('elasticBeamColumn', 1, 1, 2, 0.1, 3e7, 1e-3, 1)
+    ops.node(3, 0.0, 3.0)
+    ops.element('elasticBeamColumn', 2, 1, 3, 0.1, 3e7, 1e-3, 2)
+    ops.uniaxialMaterial('Elastic', 1, 1e5)
+    ops.element('zeroLength', 3, 1, 3, '-mat', 1, '-dir', 1)
+    ops.timeSeries('Constant', 1)
+    ops.pattern('Plain', 1, 1)
+    ops.eleLoad(*ele_load)
+
+
+def test_beam_uniform_fixed_end_forces():
+    """A beam fixed at both ends: no displacement, and its end forces are the fixed-end forces."""
+    loaded_beam('-ele', 1, '-type', '-beamUniform', -10.0, 4.0)
+    ops.integrator('LoadControl', 1.0)
+    ops.analysis('Static')
+    assert ops.analyze(1) == 0
+    assert np.allclose(ops.eleForce(1), [-10.0, 25.0, 125.0 / 6, -10.0, 25.0, -125.0 / 6], rtol=1e-13)
+    assert np.allclose(ops.eleResponse(1, 'basicForce'), [-10.0, 125.0 / 6, -125.0 / 6], rtol=1e-13)
+
+
+@pytest.mark.parametrize("args, words", [
+    (('-ele', 1, '-type', '-beamPoint', -10.0, 0.5), ("-beamPoint", "-beamUniform")),
+    (('-ele', 1, '-type', '-beamUniform', -10.0, 0.0, 0.2, 0.8), ("partial",)),
+    (('-ele', 3, '-type', '-beamUniform', -10.0), ("element 3 is not a 2-D elasticBeamColumn",)),
+    (('-ele', 2, '-type', '-beamUniform', -10.0, 1.0), ("PDelta element 2", "Wx = 0")),
+    (('-type', '-beamUniform', -10.0), ("no element",)),
+])
+def test_element_loads_refused(args, words):
+    with pytest.raises(OpenSeesRefused) as info:
+        loaded_beam(*args)
+    for word in words:
+        assert word in str(info.value), (word, str(info.value))

@@ -77,7 +77,7 @@ REFUSED_CALLS = [
     (lambda: ops.recorder('Drift', '-file', 'x.out', '-iNode', 1, '-jNode', 3), "recorder('Drift')", "Node"),
     (lambda: ops.eigen(2), "eigen()"),
     (lambda: ops.sp(3, 1, 0.01), "sp()"),
-    (lambda: ops.eleLoad('-ele', 3, '-type', '-beamUniform', -10.0), "eleLoad()", "nodal loads"),
+    (lambda: ops.eleLoad('-ele', 3, '-type', '-beamPoint', -10.0, 0.5), "eleLoad(", "Plain pattern"),
     (lambda: ops.rigidLink('joint', 3, 4), "rigidLink('joint', 3, 4)", "'beam' or 'bar'"),
     (lambda: ops.rigidDiaphragm(3, 3, 4), "rigidDiaphragm(3, 3, ...)", "perpDirn 3", "2-D"),
     (lambda: ops.geomTransf('Linear', 8, 0.0, 0.0, 1.0), "geomTransf('Linear', 8) 0.0", "joint offsets"),

@@ -293,12 +293,15 @@ def _element_tables(domain, st, row, names, beta):
             if factor:
                 K[np.ix_(rows, rows)] += factor * Ke
             continue
-        springs[tag] = _spring_table(domain, e, row, names, tag, factor, starts, K)
+        springs[tag] = _spring_table(domain, tag, factor, (row, names, starts), K)
     return beams, springs, K.tocsr()
 
 
-def _spring_table(domain, e, row, names, tag, factor, starts, K):
-    """The materials of a zeroLength or a truss (see :class:`Built`); their Rayleigh damping added to ``K``."""
+def _spring_table(domain, tag, factor, tables, K):
+    """The materials of the zeroLength or truss ``tag`` (see :class:`Built`); their Rayleigh damping
+    added to ``K``. ``tables``: the nodes' first rows, the elements' names and their first strains."""
+    row, names, starts = tables
+    e = domain.elements[tag]
     nf = domain.ndf
     if isinstance(e, Truss):
         material, chord = truss_material(domain, e)

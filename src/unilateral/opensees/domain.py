@@ -13,6 +13,7 @@ import numpy as np
 
 from .composites import COMPOSITES, parse_composite
 from .elements import parse_element
+from .eleloads import parse_element_load
 from .materials import parse_material
 from .refusals import refuse
 from .series import parse_pattern, parse_series
@@ -230,6 +231,17 @@ class Domain:
         if len(values) != self.ndf or any(isinstance(v, str) for v in values):
             refuse(what, f"{values!r}: a node takes {self.ndf} values", f"load(node, {self.ndf} values)")
         self.patterns[self.current].loads.append((tag, np.array([float(v) for v in values])))
+        self._changed(loads=True)
+
+    def eleLoad(self, *args):
+        """``eleLoad('-ele', *tags, '-type', '-beamUniform', Wy[, Wx])`` in the last pattern defined (a
+        Plain one), on 2-D elasticBeamColumn elements (:mod:`.eleloads`)."""
+        what = f"eleLoad({', '.join(map(repr, args))})"
+        if self.current is None or self.patterns[self.current].kind != "Plain":
+            refuse(what, "element loads belong to a Plain pattern", "pattern('Plain', tag, tsTag) before eleLoad()")
+        if self.ndm != 2:
+            refuse(what, "element loads of a 3-D model are not in this slice", "nodal loads")
+        self.patterns[self.current].element_loads.extend(parse_element_load(self, args))
         self._changed(loads=True)
 
     def rayleigh(self, alphaM, betaK, betaKinit, betaKcomm):

@@ -22,6 +22,7 @@ import numpy as np
 
 from .elements import BeamColumn, Truss
 from .elements3d import BeamColumn3D, beam_stiffness3d
+from .eleloads import element_load_forces
 from .pdelta import element_geometric
 from .refusals import refuse
 
@@ -148,7 +149,9 @@ def _global_force(analysis, b, tag, e, geometric=True):
         rows, Ke, _ = b.beams[tag]
         U = _state(analysis)["u"][rows]
         if geometric and b.pdelta and tag in b.pdelta:
-            return (Ke + element_geometric(b.pdelta, tag, b.axial[tag])) @ U
+            Ke = Ke + element_geometric(b.pdelta, tag, b.axial[tag])
+        if isinstance(e, BeamColumn):                     # minus its element loads' nodal loads
+            return Ke @ U - element_load_forces(analysis.domain, tag, analysis.domain.time)
         return Ke @ U
     out = np.zeros(2 * b.ndf)
     for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):

@@ -32,6 +32,7 @@ from ..rules import Newmark
 from ..solve import Simulation
 from .build import build
 from .control import DisplacementPath, parse_displacement_control
+from .eleloads import pattern_forces
 from .pdelta import MAX_ITER, STATIC_TOL, axial_forces, with_axial
 from .queries import material_forces
 from .refusals import OpenSeesRefused, refuse
@@ -151,12 +152,11 @@ class Analysis:
         q = np.zeros((times.size, b.model.n))
         mass = b.mass
         for p in d.patterns.values():
-            f = np.zeros(mass.size)
             if p.kind == "Plain":
-                for node, values in p.loads:
-                    f[b.row[node]:b.row[node] + b.ndf] += values
+                f = pattern_forces(b, d, p)
                 _check_loaded(b, d, p, f)
             else:
+                f = np.zeros(mass.size)
                 f[p.direction - 1::b.ndf] = -mass[p.direction - 1::b.ndf]
             factor = np.full(times.size, p.frozen) if p.frozen is not None else p.factor * d.series[p.series](times)
             q += np.outer(factor, b.reduced(f))
