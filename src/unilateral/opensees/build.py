@@ -21,9 +21,10 @@ import scipy.sparse as sp
 
 from ..model import Model
 from ..structure import Frame2D, Frame3D
-from .elements import BeamColumn, beam_stiffness
+from .elements import BeamColumn, Truss, beam_stiffness
 from .elements3d import BeamColumn3D, beam_stiffness3d
 from .materials import DIRECTIONS
+from .pdelta import pdelta_table, with_axial
 from .refusals import OpenSeesRefused, refuse
 
 __all__ = ["Built", "build"]
@@ -41,9 +42,13 @@ class Built:
     row : dict node tag -> ``3 p``, its first row of ``P``
     mass : (3 nodes,) the lumped masses of the nodal DOFs
     beams : dict tag -> (rows (6,), K_e (6, 6), stiffness damping factor)
-    springs : dict tag -> list of (material, direction, [(strain index, sign) of the elements read],
-        damping factor)
+    springs : dict tag -> list of (material, direction (ndf,) unit vector on the nodal DOFs,
+        [(strain index, sign) of the elements read], damping factor) of a zeroLength's materials or a
+        truss's material (as a force-deformation law, :meth:`~.materials.Material.on_truss`)
     ties : (n_structure, n) csr, the structure's DOFs ``T u`` of the reduced ``u`` (the equalDOF ties)
+    pdelta : dict tag -> the P-Delta table of the beams of a ``PDelta`` transformation (:mod:`.pdelta`)
+    linear : Model, the model without their geometric stiffness (``model`` is it plus ``K_G(axial)``)
+    axial : dict tag -> the axial force of their geometric stiffness in ``model``
     """
 
     structure: object
@@ -56,6 +61,9 @@ class Built:
     ties: sp.csr_matrix = None
     ndf: int = 3
     stress: tuple = None
+    pdelta: dict = None
+    linear: Model = None
+    axial: dict = None
 
     def stresses(self, u, v) -> np.ndarray:
         """The element stresses (ne,) of the reduced ``u`` and ``v``, at the strains the queries read
@@ -120,7 +128,11 @@ def build(domain) -> Built:
     model = Model.from_natural((T.T @ nat.G).tocsr(), nat.E, nat.B, M=M, A=A, r=nat.r, theta=nat.theta(0.0),
                                C=sp.csr_matrix(C) if C.nnz else None, E_v=nat.E_v, dof_names=reduced_names,
                                constraint_names=list(st.constraint_names), families=st.families())
-    return Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs))
+    built = Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs),
+                  pdelta_table(domain, row), model, {})
+    if built.pdelta:
+        with_axial(built, {})
+    return built
 
 
 def _stress_rows(st, T, springs):
@@ -180,10 +192,21 @@ def _add_elements(fr, domain) -> dict:
             fr.beam(f"e{tag}", e.i, e.j, E=e.E, A=e.A, Iy=e.Iy, Iz=e.Iz, G=e.G, J=e.J,
                     vecxz=domain.transforms[e.transf][1])
             continue
+        if isinstance(e, Truss):
+            material, chord = truss_material(domain, e)
+            names[(tag, 0)] = material.add(fr, f"e{tag}.0", e.i, e.j, tuple(chord))
+            continue
         for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
             name = f"e{tag}.{k}"
             names[(tag, k)] = domain.materials[mat].add(fr, name, e.i, e.j, dofs[direction])
     return names
+
+
+def truss_material(domain, e):
+    """The material of the truss ``e`` as its force-deformation law and its chord ``(c, s)``."""
+    d = np.subtract(domain.nodes[e.j], domain.nodes[e.i])
+    L = float(np.hypot(*d))
+    return domain.materials[e.material].on_truss(e.A, L), d / L
 
 
 def _ties(domain, st):
@@ -234,12 +257,15 @@ def _masses(domain, row):
         if tag in nodes:
             damped[row[tag]:row[tag] + nf] += values
     for tag, e in domain.elements.items():
-        if isinstance(e, BeamColumn) and e.mass:
+        per_length = e.mass if isinstance(e, BeamColumn) else e.rho if isinstance(e, Truss) else 0.0
+        if per_length:
             L = float(np.hypot(*np.subtract(domain.nodes[e.j], domain.nodes[e.i])))
+            # a truss's mass is damped by alphaM only with -doRayleigh 1 (OpenSees's Truss::getDamp)
+            alpha = tag in elements and (not isinstance(e, Truss) or e.rayleigh)
             for node in (e.i, e.j):
-                half = np.array([e.mass * L / 2, e.mass * L / 2, 0.0])
+                half = np.array([per_length * L / 2, per_length * L / 2, 0.0])
                 mass[row[node]:row[node] + 3] += half
-                if tag in elements:
+                if alpha:
                     damped[row[node]:row[node] + 3] += half
     return mass, damped
 
@@ -267,14 +293,27 @@ def _element_tables(domain, st, row, names, beta):
             if factor:
                 K[np.ix_(rows, rows)] += factor * Ke
             continue
-        table = []
-        for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
-            material = domain.materials[mat]
-            damp = factor if e.rayleigh else 0.0
-            table.append((material, direction, [(starts[name], sign) for name, sign in names[(tag, k)]], damp))
-            if damp:
-                ri, rj = row[e.i] + direction - 1, row[e.j] + direction - 1
-                K[np.ix_([ri, rj], [ri, rj])] += damp * material.E * np.array([[1.0, -1.0], [-1.0, 1.0]])
-        springs[tag] = table
+        springs[tag] = _spring_table(domain, tag, factor, (row, names, starts), K)
     return beams, springs, K.tocsr()
 
+
+def _spring_table(domain, tag, factor, tables, K):
+    """The materials of the zeroLength or truss ``tag`` (see :class:`Built`); their Rayleigh damping
+    added to ``K``. ``tables``: the nodes' first rows, the elements' names and their first strains."""
+    row, names, starts = tables
+    e = domain.elements[tag]
+    nf = domain.ndf
+    if isinstance(e, Truss):
+        material, chord = truss_material(domain, e)
+        laws = [(material, np.r_[chord, np.zeros(nf - 2)])]
+    else:
+        laws = [(domain.materials[mat], np.eye(nf)[direction - 1]) for mat, direction in zip(e.materials, e.directions)]
+    table = []
+    rows = np.r_[row[e.i]:row[e.i] + nf, row[e.j]:row[e.j] + nf]
+    for k, (material, vector) in enumerate(laws):
+        damp = factor if e.rayleigh else 0.0
+        table.append((material, vector, [(starts[name], sign) for name, sign in names[(tag, k)]], damp))
+        if damp:
+            t = np.r_[-vector, vector]
+            K[np.ix_(rows, rows)] += damp * material.E * np.outer(t, t)
+    return table

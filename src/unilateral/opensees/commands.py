@@ -13,7 +13,7 @@ __all__ = ["Session"]
 
 _DOMAIN_COMMANDS = ("model", "node", "fix", "mass", "equalDOF", "rigidLink", "rigidDiaphragm",
                     "geomTransf", "uniaxialMaterial", "element",
-                    "timeSeries", "pattern", "load", "rayleigh", "loadConst", "setTime", "getTime")
+                    "timeSeries", "pattern", "load", "eleLoad", "rayleigh", "loadConst", "setTime", "getTime")
 _SESSION_COMMANDS = ("wipe", "integrator", "analyze", "wipeAnalysis", "nodeDisp", "nodeVel", "nodeAccel",
                      "nodeCoord", "getNodeTags", "getEleTags", "eleForce", "eleResponse", "reactions",
                      "nodeReaction", "recorder", "record", "remove")

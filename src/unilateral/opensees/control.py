@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .eleloads import pattern_forces
 from .refusals import refuse
 
 __all__ = ["parse_displacement_control", "DisplacementPath"]
@@ -115,9 +116,7 @@ def _loads(analysis):
         if pat.frozen is None and (pat.kind != "Plain" or d.series[pat.series].kind != "Linear"):
             refuse(f"analyze (DisplacementControl) with pattern {tag}", "only Plain patterns of Linear series "
                    "(and patterns held by loadConst) are loads of a displacement control here", _ALTERNATIVE)
-        f = np.zeros(b.mass.size)
-        for node, values in pat.loads:
-            f[b.row[node]:b.row[node] + b.ndf] += values
+        f = pattern_forces(b, d, pat) if pat.kind == "Plain" else np.zeros(b.mass.size)
         if pat.frozen is not None:
             q0 += pat.frozen * b.reduced(f)
         else:

@@ -13,6 +13,7 @@ import numpy as np
 
 from .composites import COMPOSITES, parse_composite
 from .elements import parse_element
+from .eleloads import parse_element_load
 from .materials import parse_material
 from .refusals import refuse
 from .series import parse_pattern, parse_series
@@ -155,22 +156,20 @@ class Domain:
         self._changed()
 
     def geomTransf(self, kind, tag, *args):
-        """``geomTransf('Linear', tag)`` (3-D: ``tag, vecxz_x, vecxz_y, vecxz_z``); ``PDelta`` and
-        ``Corotational`` are refused."""
+        """``geomTransf('Linear', tag)`` (3-D: ``tag, vecxz_x, vecxz_y, vecxz_z``), ``geomTransf('PDelta',
+        tag)`` in 2-D (the string stiffness of the axial forces, :mod:`.pdelta`); ``Corotational`` is
+        refused."""
         what = f"geomTransf({kind!r}, {tag!r})"
         self._need_model(what)
-        if kind == "PDelta":
-            refuse(what, "OpenSees's P-Delta adds to each element the string stiffness N/L of its current axial "
-                   "force N, which follows the response (overturning changes it; OpenSees iterates on it), while "
-                   "the structure here is linear: its P-Delta (Frame2D.p_delta) is the consistent geometric "
-                   "stiffness (6/5 N/L, N L/10, ...) of the constant axial forces of gravity, other equations even "
-                   "where N stays the gravity's", "geomTransf('Linear', tag), or build the frame with "
-                   "unilateral.structure.Frame2D and use Frame2D.p_delta")
+        if kind == "PDelta" and self.ndm == 3:
+            refuse(what, "the string P-Delta of a 3-D transformation (two transverse planes) is not in this slice",
+                   "geomTransf('Linear', tag, vx, vy, vz), or a 2-D model for geomTransf('PDelta', tag)")
         if kind == "Corotational":
             refuse(what, "large rotations (corotational kinematics) make the structure geometrically nonlinear; "
                    "the method needs a linear structure", "geomTransf('Linear', tag)")
-        if kind != "Linear":
-            refuse(what, "only the Linear transformation is in this slice", "geomTransf('Linear', tag)")
+        if kind not in ("Linear", "PDelta"):
+            refuse(what, "only the Linear and (2-D) PDelta transformations are in this slice",
+                   "geomTransf('Linear', tag)")
         vecxz = None
         if self.ndm == 3:
             if len(args) < 3 or any(isinstance(a, str) for a in args[:3]):
@@ -232,6 +231,17 @@ class Domain:
         if len(values) != self.ndf or any(isinstance(v, str) for v in values):
             refuse(what, f"{values!r}: a node takes {self.ndf} values", f"load(node, {self.ndf} values)")
         self.patterns[self.current].loads.append((tag, np.array([float(v) for v in values])))
+        self._changed(loads=True)
+
+    def eleLoad(self, *args):
+        """``eleLoad('-ele', *tags, '-type', '-beamUniform', Wy[, Wx])`` in the last pattern defined (a
+        Plain one), on 2-D elasticBeamColumn elements (:mod:`.eleloads`)."""
+        what = f"eleLoad({', '.join(map(repr, args))})"
+        if self.current is None or self.patterns[self.current].kind != "Plain":
+            refuse(what, "element loads belong to a Plain pattern", "pattern('Plain', tag, tsTag) before eleLoad()")
+        if self.ndm != 2:
+            refuse(what, "element loads of a 3-D model are not in this slice", "nodal loads")
+        self.patterns[self.current].element_loads.extend(parse_element_load(self, args))
         self._changed(loads=True)
 
     def rayleigh(self, alphaM, betaK, betaKinit, betaKcomm):

@@ -15,7 +15,7 @@ positive (OpenSees's ``basicDeformation`` and ``basicForce``).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..structure import Frame3D
 from ..structure import elements as el
@@ -60,8 +60,9 @@ class Material:
         ----------
         fr : Frame2D
         name : str, the element's name
-        i, j : node tags (the zeroLength's nodes)
-        dof : str, the DOF name of the direction (``ux``, ``uy``, ``rz``, ...)
+        i, j : node tags (the zeroLength's or the truss's nodes)
+        dof : str, the DOF name of the direction (``ux``, ``uy``, ``rz``, ...), or a truss's chord
+            ``(c, s)``
 
         Returns
         -------
@@ -99,6 +100,18 @@ class Material:
         fr._add(el.directional(name, "yield", i, j, terms, self.E, theta=self.eps0,
                                unknowns=el.pair(name, 0, "yield", r=(Fy_t, Fy_c), k=self.E)))
         return [(name, 1)]
+
+    def on_truss(self, A, L) -> Material:
+        """The material as a force-deformation law of a truss of area ``A`` and length ``L``.
+
+        A truss's force is ``A sigma(e / L)``: stiffnesses and viscosities times ``A / L``, forces
+        times ``A``, strains (gaps, ``eps0``) times ``L``; the parts of a composite likewise.
+        """
+        Fy = self.Fy
+        if Fy is not None:
+            Fy = tuple(A * f for f in Fy) if isinstance(Fy, tuple) else A * Fy
+        return replace(self, E=self.E * A / L, eta=self.eta * A / L, Fy=Fy, gap=self.gap * L, eps0=self.eps0 * L,
+                       parts=tuple(part.on_truss(A, L) for part in self.parts))
 
     def force(self, e, edot, forces) -> float:
         """OpenSees's force of the material.

@@ -20,8 +20,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .elements import BeamColumn
+from .elements import BeamColumn, Truss
 from .elements3d import BeamColumn3D, beam_stiffness3d
+from .eleloads import element_load_forces
+from .pdelta import element_geometric
 from .refusals import refuse
 
 __all__ = ["nodal", "element_force", "material_forces", "element_response", "nodal_reactions"]
@@ -89,15 +91,16 @@ def _element(analysis, tag, what):
 
 
 def material_forces(analysis, tag):
-    """``[(e, f), ...]``: deformation and force of each material of the zeroLength ``tag``."""
+    """``[(e, f), ...]``: deformation and force of each material of the zeroLength or truss ``tag``."""
     b = analysis.built
     e = analysis.domain.elements[tag]
     state = _state(analysis)
     U, Ud, sigma = state["u"], state["ud"], state["sigma"]
     out = []
+    ri, rj, nf = b.row[e.i], b.row[e.j], b.ndf
     for material, direction, reads, damp in b.springs[tag]:
-        ri, rj = b.row[e.i] + direction - 1, b.row[e.j] + direction - 1
-        de, dv = U[rj] - U[ri], Ud[rj] - Ud[ri]
+        de = float(direction @ (U[rj:rj + nf] - U[ri:ri + nf]))
+        dv = float(direction @ (Ud[rj:rj + nf] - Ud[ri:ri + nf]))
         forces = [sign * sigma[strain] for strain, sign in reads]
         out.append((de, material.force(de, dv, forces) + damp * material.E * dv))
     return out
@@ -139,21 +142,43 @@ def element_force(analysis, tag, dof=-1):
     return _pick(_global_force(analysis, b, tag, e), dof, what)
 
 
-def _global_force(analysis, b, tag, e):
+def _global_force(analysis, b, tag, e, geometric=True):
+    """The global end forces of element ``tag``; a ``PDelta`` beam's with its string forces
+    ``N (v_i - v_j) / L`` unless ``geometric`` is False (OpenSees's local and basic forces have none)."""
     if isinstance(e, (BeamColumn, BeamColumn3D)):
         rows, Ke, _ = b.beams[tag]
-        return Ke @ _state(analysis)["u"][rows]
+        U = _state(analysis)["u"][rows]
+        if geometric and b.pdelta and tag in b.pdelta:
+            Ke = Ke + element_geometric(b.pdelta, tag, b.axial[tag])
+        if isinstance(e, BeamColumn):                     # minus its element loads' nodal loads
+            return Ke @ U - element_load_forces(analysis.domain, tag, analysis.domain.time)
+        return Ke @ U
     out = np.zeros(2 * b.ndf)
     for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):
-        out[direction - 1] -= f
-        out[b.ndf + direction - 1] += f
+        out[:b.ndf] -= f * direction
+        out[b.ndf:] += f * direction
+    if isinstance(e, Truss) and e.rho:
+        out += _truss_inertia_load(analysis, b, e)
+    return out
+
+
+def _truss_inertia_load(analysis, b, e):
+    """OpenSees's truss holds the ground motion's inertia load ``-m a_g`` of its lumped masses
+    ``m = rho L / 2`` in its resisting force (``eleForce`` is ``A sigma`` at the ends plus ``m a_g``)."""
+    d = analysis.domain
+    half = e.rho * float(np.hypot(*np.subtract(d.nodes[e.j], d.nodes[e.i]))) / 2
+    out = np.zeros(2 * b.ndf)
+    for p in d.patterns.values():
+        if p.kind == "UniformExcitation" and p.direction <= 2:
+            a_g = p.frozen if p.frozen is not None else p.factor * float(d.series[p.series](np.array([d.time]))[0])
+            out[[p.direction - 1, b.ndf + p.direction - 1]] += half * a_g
     return out
 
 
 def _beam_response(analysis, b, tag, e, name):
     """``'localForce'`` or ``'basicForce'`` of a beam (2-D: ``N, M_i, M_j``; 3-D: ``N, Mz_i, Mz_j, My_i,
     My_j, T``), or None for another response."""
-    f = _global_force(analysis, b, tag, e)
+    f = _global_force(analysis, b, tag, e, geometric=False)
     if isinstance(e, BeamColumn3D):
         local = beam_stiffness3d(analysis.domain, e)[1] @ f
         basic = local[[6, 5, 11, 4, 10, 9]]
@@ -195,13 +220,16 @@ def element_response(analysis, tag, *args):
         if values is not None:
             return values
     else:
+        truss = isinstance(e, Truss)
+        if truss and name == "globalForce":
+            return [float(x) for x in _global_force(analysis, b, tag, e)]
         pairs = material_forces(analysis, tag)
         if name in ("deformation", "deformations", "basicDeformation", "basicDeformations"):
             return [float(de) for de, _ in pairs]
-        if name in ("basicForce", "basicForces"):
+        if name in ("basicForce", "basicForces") or (truss and name == "axialForce"):
             return [float(f) for _, f in pairs]
     refuse(what, "the response is not in the subset", "'force' or 'deformation' (zeroLength); 'force', "
-           "'localForce' or 'basicForce' (elasticBeamColumn)")
+           "'localForce' or 'basicForce' (elasticBeamColumn); 'force', 'axialForce' or 'deformation' (truss)")
 
 
 def nodal_reactions(analysis, *args):

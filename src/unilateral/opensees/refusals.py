@@ -66,7 +66,6 @@ REFUSED_COMMANDS = {
                         "elasticBeamColumn"),
     "eigen": ("eigenvalue analysis is not in this slice", "unilateral.structure.modes on the built model"),
     "sp": ("imposed displacements are not in this slice", "a load, or a stiff support spring in the model"),
-    "eleLoad": ("element loads are not in this slice", "equivalent nodal loads (load(node, ...))"),
     "imposedMotion": ("multi-support excitation is not in this slice", "pattern('UniformExcitation', ...)"),
     "groundMotion": ("multi-support excitation is not in this slice", "pattern('UniformExcitation', ...)"),
     "nDMaterial": ("multi-dimensional materials are not in this slice", "uniaxial ENT, ElasticPP, ElasticPPGap"),

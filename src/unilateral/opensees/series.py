@@ -92,6 +92,7 @@ class Pattern:
     factor : float, ``-fact``
     direction : int, the ground motion's DOF (1: x, 2: y) of a UniformExcitation
     loads : list of (node, (3,) values) of a Plain pattern
+    element_loads : list of (element tag, Wy, Wx) of a Plain pattern's ``eleLoad -beamUniform``
     frozen : float or None, the factor held by ``loadConst`` (None: follows its series)
     """
 
@@ -101,6 +102,7 @@ class Pattern:
     direction: int = 0
     loads: list = field(default_factory=list)
     frozen: float | None = None
+    element_loads: list = field(default_factory=list)
 
 
 def _floats(what, values):

@@ -32,6 +32,8 @@ from ..rules import Newmark
 from ..solve import Simulation
 from .build import build
 from .control import DisplacementPath, parse_displacement_control
+from .eleloads import pattern_forces
+from .pdelta import MAX_ITER, STATIC_TOL, axial_forces, with_axial
 from .queries import material_forces
 from .refusals import OpenSeesRefused, refuse
 
@@ -57,6 +59,7 @@ class Analysis:
         self.u = self.ud = self.udd = None           # reduced state of self.built
         self.v = None
         self.sim = None
+        self.axial = {}                              # the P-Delta axial forces of the last static state
         self.wipe_analysis()
 
     def wipe_analysis(self):
@@ -118,6 +121,8 @@ class Analysis:
             self.built, self.built_version = build(d), d.version
             self.sim = None
             self._carry(old, state)
+            if self.built.pdelta:
+                with_axial(self.built, self.axial)
         return self.built
 
     def _carry(self, old, state):
@@ -147,12 +152,11 @@ class Analysis:
         q = np.zeros((times.size, b.model.n))
         mass = b.mass
         for p in d.patterns.values():
-            f = np.zeros(mass.size)
             if p.kind == "Plain":
-                for node, values in p.loads:
-                    f[b.row[node]:b.row[node] + b.ndf] += values
+                f = pattern_forces(b, d, p)
                 _check_loaded(b, d, p, f)
             else:
+                f = np.zeros(mass.size)
                 f[p.direction - 1::b.ndf] = -mass[p.direction - 1::b.ndf]
             factor = np.full(times.size, p.frozen) if p.frozen is not None else p.factor * d.series[p.series](times)
             q += np.outer(factor, b.reduced(f))
@@ -203,7 +207,7 @@ class Analysis:
                        "state", "a transient analysis, or static loads that do not yield")
             d.time = d.time + self.integrator[1]
             q = self.load([d.time])[0] + model.q_imposed(d.time)
-            state = static_state(model, q, get_lcp_solver("bpp"))
+            state = self._static_state(q)
             if state.message:
                 print(f"unilateral.opensees: static step failed at time {d.time:g}: {state.message}", file=sys.stderr)
                 return -3
@@ -219,9 +223,34 @@ class Analysis:
         self.sim = None
         return 0
 
+    def _static_state(self, q):
+        """The static state under ``q``; with P-Delta elements, at the fixed point of their axial forces."""
+        b = self.built
+        solver = get_lcp_solver("bpp")
+        if not b.pdelta:
+            return static_state(b.model, q, solver)
+        N = axial_forces(b.pdelta, b.nodal(self.u))
+        for _ in range(MAX_ITER):
+            with_axial(b, N)
+            state = static_state(b.model, q, solver)
+            if state.message:
+                return state
+            new = axial_forces(b.pdelta, b.nodal(state.u))
+            scale = max(max(abs(x) for x in new.values()), 1e-300)
+            if max(abs(new[tag] - N[tag]) for tag in new) <= STATIC_TOL * scale:
+                self.axial = N
+                return state
+            N = new
+        state.message = (f"the P-Delta axial forces did not converge in {MAX_ITER} iterations (a load near "
+                         "the buckling load)")
+        return state
+
     def _displacement_control(self, steps):
         """Steps of ``DisplacementControl`` on the monotonic static path (:mod:`.control`)."""
-        self.current()
+        if self.current().pdelta:
+            refuse("analyze (DisplacementControl) with geomTransf('PDelta')", "the path followed here is that of "
+                   "a constant K, while OpenSees's P-Delta follows the axial forces along the pushover",
+                   "geomTransf('Linear', tag), or unilateral.pushover(..., p_delta='string') on a Frame2D")
         _, node, dof, incr = self.integrator
         d = self.domain
         path = self.path
