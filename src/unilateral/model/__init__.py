@@ -49,6 +49,9 @@ class NaturalForm:
     theta : callable ``theta(t) -> (ne,)`` imposed strains
     E_v : (ne, ne) viscous elasticity matrix of Kelvin elements, or None
     theta_rate : callable ``theta'(t) -> (ne,)`` or None
+    K_geometric : (n, n) sparse or None
+        A stiffness the model's ``K`` has beside ``G E G^T`` and that no element strain carries (the
+        geometric stiffness of P-Delta): whatever rebuilds ``K`` from this form adds it.
     """
 
     G: object
@@ -59,6 +62,7 @@ class NaturalForm:
     theta: object
     E_v: object = None
     theta_rate: object = None
+    K_geometric: object = None
 
     def imposed_strains(self, t) -> np.ndarray:
         """``theta`` at the times ``t`` (N,): (N, ne), or (ne,) when it is constant (broadcasts)."""

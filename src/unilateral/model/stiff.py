@@ -119,9 +119,11 @@ def _conditioned_model(model, split) -> Model:
     F_v = None if model.F_v is None else Gt.T @ dense(nat.E_v @ nat.B)
     q_imposed = _imposed(model, nat, Gt)
     g = model.g(0.0) if model.g_is_constant else model.g
+    K_geometric = congruent(nat.K_geometric)        # P-Delta: not in G E G^T, added to the split's K
     conditioned_nat = NaturalForm(G=Gt.T, E=nat.E, B=nat.B, A=nat.A, r=nat.r, theta=nat.theta,
-                                  E_v=nat.E_v, theta_rate=nat.theta_rate)
-    conditioned = Model(M=congruent(model.M), K=split.K, F=F, H=model.H, C=congruent(model.C), g=g,
+                                  E_v=nat.E_v, theta_rate=nat.theta_rate, K_geometric=K_geometric)
+    K = split.K if K_geometric is None else split.K + K_geometric
+    conditioned = Model(M=congruent(model.M), K=K, F=F, H=model.H, C=congruent(model.C), g=g,
                         F_v=F_v, H_v=model.H_v, q_imposed=q_imposed,
                         dof_names=_names(model, split),
                         constraint_names=list(model.constraint_names), natural=conditioned_nat,

@@ -946,6 +946,7 @@ class Structure:
                 raise ValueError(f"p_delta: K - K_G is not positive definite: the gravity load reaches the "
                                  f"buckling load of the structure held bilateral ({exc})") from None
             model.K = K
+            model.natural = replace(model.natural, K_geometric=self.geometric)
         return model
 
     def static_axial_forces(self, load) -> dict:
