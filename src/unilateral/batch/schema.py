@@ -20,6 +20,7 @@ from pydantic import BaseModel, ConfigDict, Field, model_validator
 from pydantic_core import PydanticCustomError
 
 from ..modelfile import schema as _model_schema
+from .footing_quantity import FOOTING_MEASURES
 
 _MODEL_ANALYSIS = _model_schema.Analysis.model_fields
 METHOD = _MODEL_ANALYSIS["method"].annotation
@@ -30,7 +31,8 @@ INITIAL = _MODEL_ANALYSIS["initial"].annotation
 MEASURES = ("factor", "pga", "sa")
 """Intensity measures of ``[scaling]``: plain factors, peak ground acceleration, Sa(T, zeta)."""
 
-QUANTITY_TYPES = ("uplift", "contact_force", "displacement", "drift", "residual", "base_shear", "energy_error")
+QUANTITY_TYPES = ("uplift", "contact_force", "displacement", "drift", "residual", "base_shear", "energy_error",
+                  "footing")
 """Peak quantities a study can collect (``[[quantities]] type``)."""
 
 ENVELOPES = ("saragoni-hart", "amin-ang")
@@ -164,9 +166,13 @@ class Quantity(Table):
     type: Literal[QUANTITY_TYPES] = Field(title="quantity type")
     elements: list[Name] | None = Field(None, description="uplift, contact_force: unilateral elements "
                                                           "(default: every contact unknown; plastic "
-                                                          "multipliers, slips and shears left out).")
+                                                          "multipliers, slips and shears left out); footing: "
+                                                          "the footings (default: all).")
     over: Literal["max", "each"] = Field("max", title="combination", description=(
-        "uplift, contact_force: max over the elements (one column), or each (one column per element)."))
+        "uplift, contact_force, footing: max over the elements (one column), or each (one column per element)."))
+    measure: Literal[tuple(FOOTING_MEASURES)] | None = Field(None, description=(
+        "footing: what of each footing (peak uplift, peak or residual rotation, settlement or slip, peak "
+        "bearing pressure, least contact_ratio)."))
     node: NodeId | None = Field(None, description="displacement, residual: the node.")
     dof: str | None = Field(None, description=('"ux", "uy", "rz" (2-D frames), "ux" ... "rz" (3-D frames) or a DOF '
                                                'name (matrix-level models).'))
@@ -176,8 +182,10 @@ class Quantity(Table):
 
     USES: ClassVar[dict] = {"uplift": ("elements", "over"), "contact_force": ("elements", "over"),
                             "displacement": ("node", "dof"), "residual": ("node", "dof"),
-                            "drift": ("pairs", "dof", "ratio"), "base_shear": (), "energy_error": ()}
-    NEEDS: ClassVar[dict] = {"displacement": ("dof",), "residual": ("dof",), "drift": ("pairs",)}
+                            "drift": ("pairs", "dof", "ratio"), "base_shear": (), "energy_error": (),
+                            "footing": ("measure", "elements", "over")}
+    NEEDS: ClassVar[dict] = {"displacement": ("dof",), "residual": ("dof",), "drift": ("pairs",),
+                             "footing": ("measure",)}
 
 
 class LimitState(Table):

@@ -24,6 +24,7 @@ from ..modelfile import ModelFileError, build_model_spec
 from ..modelfile.build import read_toml
 from ..modelfile.errors import Problems, did_you_mean, key_path, toml_value, translate, value_problem
 from .collapse import collapse_problems
+from .footing_quantity import footing_names, footing_problems
 from .estimate import RECORD_SUFFIXES, combinations, size_problems, study_size
 from .keypath import KeyPathError, PlainErrors, parse_key_path, set_key_path
 from .keys import AnalysisKeys
@@ -326,7 +327,7 @@ def _static_problems(doc: StudyFile, folder: Path) -> list[str]:
                 problems.append(f"{key_path(('quantities', k, key))}: missing key ({_article(quantity.type)} "
                                 f"{quantity.type} quantity needs {' and '.join(quantity.NEEDS[quantity.type])}"
                                 f"{', and node for a frame' if key == 'dof' and quantity.type != 'drift' else ''})")
-        for key in ("elements", "node", "dof", "pairs"):
+        for key in ("elements", "node", "dof", "pairs", "measure"):
             if getattr(quantity, key) is not None and key not in quantity.USES[quantity.type]:
                 uses = ", ".join(quantity.USES[quantity.type]) or "no other key"
                 problems.append(value_problem(("quantities", k, key), getattr(quantity, key),
@@ -444,9 +445,11 @@ def quantity_columns(doc: StudyFile, variants) -> list[str]:
     """Names of the quantity columns of the table, in order."""
     columns = []
     for quantity in doc.quantities:
-        if quantity.type in ("uplift", "contact_force") and quantity.over == "each":
+        if quantity.type in ("uplift", "contact_force", "footing") and quantity.over == "each":
             names = quantity.elements
-            if names is None:                   # the contacts (plastic multipliers and slips left out)
+            if names is None and quantity.type == "footing":
+                names = list(dict.fromkeys(n for variant in variants for n in footing_names(variant.spec.structure)))
+            elif names is None:                   # the contacts (plastic multipliers and slips left out)
                 from .worker import contact_names
 
                 names = []
@@ -467,6 +470,9 @@ def _check_quantities(doc: StudyFile, variants) -> None:
         ids = [node.id for node in spec.document.nodes]
         ys = {node.id: getattr(node, "z", node.y) for node in spec.document.nodes}      # elevations
         for k, q in enumerate(doc.quantities):
+            if q.type == "footing":
+                problems += footing_problems(k, q.elements, spec.structure, where)
+                continue
             for j, name in enumerate(q.elements or []):
                 if name not in variant.constraint_names:
                     problems.append(value_problem(("quantities", k, "elements", j), name,

@@ -19,6 +19,7 @@ import numpy as np
 from ..io.atomic import atomic_path, to_jsonable, write_json_atomic
 from ..modelfile.errors import toml_value
 from .collapse import collapse_of
+from .footing_quantity import measure_unit
 
 STATUSES = ("ok", "failed", "error", "timeout", "pending")
 
@@ -150,7 +151,7 @@ def quantity_units(study) -> dict:
              "base_shear": force, "energy_error": ""}
     out = {}
     for q in study.document.quantities:
-        unit = kinds.get(q.type, "")
+        unit = kinds.get(q.type, "") if q.type != "footing" else measure_unit(q.measure, spec.units)
         if q.type in ("displacement", "residual", "drift") and q.dof == "rz":
             unit = "rad"
         elif q.type == "drift":

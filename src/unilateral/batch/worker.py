@@ -247,6 +247,10 @@ def collect(quantity: dict, sol, spec, ys: dict, frame: FrameResults | None = No
     """
     kind, name = quantity["type"], quantity["name"]
     notes = []
+    if kind == "footing":
+        from .footing_quantity import collect_footing
+
+        return collect_footing(quantity, sol, spec.structure)
     if kind in ("uplift", "contact_force"):
         names = quantity["elements"] or contact_names(spec.model, sol.constraint_names)
         if not names:
