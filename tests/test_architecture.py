@@ -118,7 +118,6 @@ LONG_FUNCTIONS = {
     "march/full_space.py:full_space_steps": 102, "soil/structure_weights.py:structure_weights": 100,
     "loads/site_response.py:free_field": 100,
     "batch/runner.py:run_study": 95, "analysis/results3d.py:structure_results_3d": 96,
-    "soil/lamb.py:_axis_factors": 94,
     "march/event_config.py:__init__": 86,
 }
 
