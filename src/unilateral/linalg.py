@@ -169,6 +169,65 @@ def row_stiffness(G, E) -> np.ndarray:
     return np.abs(np.diag(dense(E))) * np.einsum("ij,ij->j", Gd, Gd)
 
 
+def _stiff_rows(Ed, B, E_v, k, limit) -> np.ndarray:
+    """The rows of :func:`stiff_split` to separate.
+
+    Parameters
+    ----------
+    Ed : (ne, ne) dense elasticity;  B : (ne, m) unilateral rows;  E_v : (ne, ne) viscosities or None
+    k : (ne,) row stiffnesses;  limit : the row stiffness that makes a group of rows stiff
+
+    Returns
+    -------
+    (ne,) bool
+        The rows of every group that ``E`` (and ``E_v``) couple whose stiffest row reaches ``limit``
+        and none of whose rows carries a unilateral unknown or a dashpot.
+    """
+    from scipy.sparse.csgraph import connected_components
+
+    coupled = Ed != 0
+    free = np.asarray(abs(B).sum(axis=1)).ravel() == 0
+    if E_v is not None:
+        Evd = dense(E_v)
+        coupled |= Evd != 0
+        free &= ~np.any(Evd != 0, axis=1)
+    n_groups, group = connected_components(sp.csr_matrix(coupled), directed=False)
+    stiff = np.zeros(Ed.shape[0], dtype=bool)
+    for g in range(n_groups):
+        rows = group == g
+        if k[rows].max() >= limit and np.all(free[rows]):
+            stiff |= rows
+    return stiff
+
+
+def _independent_rows(Gd, k, stiff) -> tuple[list, list]:
+    """The stiff rows whose columns of ``Gd`` (n, ne) are independent, stiffest first, and the others.
+
+    Parameters
+    ----------
+    Gd : (n, ne) dense equilibrium matrix;  k : (ne,) row stiffnesses;  stiff : (ne,) bool rows
+
+    Returns
+    -------
+    independent, dependent : lists of row indices (a softer row in a stiff loop is carried by the
+        others: dependent), at most ``n`` independent ones
+    """
+    n = Gd.shape[0]
+    order = np.flatnonzero(stiff)[np.argsort(-k[stiff], kind="stable")]
+    basis, independent, dependent = np.zeros((n, 0)), [], []
+    for i in order:
+        g = Gd[:, i]
+        r = g - basis @ (basis.T @ g)
+        r = r - basis @ (basis.T @ r)
+        norm = np.linalg.norm(r)
+        if norm > 1e-10 * np.linalg.norm(g) and len(independent) < n:
+            basis = np.column_stack([basis, r / norm])
+            independent.append(i)
+        else:
+            dependent.append(i)
+    return independent, dependent
+
+
 def stiff_split(G, E, B, E_v=None, *, massless=None, apply_ratio=STIFF_APPLY_RATIO, row_ratio=STIFF_ROW_RATIO,
                 max_n=STIFF_SPLIT_MAX_N) -> StiffSplit | None:
     """Split the natural form ``K = G E G^T`` into stiff and soft coordinates, or None if not needed.
@@ -188,8 +247,6 @@ def stiff_split(G, E, B, E_v=None, *, massless=None, apply_ratio=STIFF_APPLY_RAT
     StiffSplit or None
         None when the model is well conditioned, too large, or no row qualifies.
     """
-    from scipy.sparse.csgraph import connected_components
-
     n, ne = G.shape
     if n == 0 or ne == 0 or n > max_n:
         return None
@@ -202,35 +259,12 @@ def stiff_split(G, E, B, E_v=None, *, massless=None, apply_ratio=STIFF_APPLY_RAT
     if ratio < apply_ratio:
         return None
     Ed = dense(E)
-    coupled = Ed != 0
-    free = np.asarray(abs(B).sum(axis=1)).ravel() == 0
-    if E_v is not None:
-        Evd = dense(E_v)
-        coupled |= Evd != 0
-        free &= ~np.any(Evd != 0, axis=1)
-    n_groups, group = connected_components(sp.csr_matrix(coupled), directed=False)
-    stiff = np.zeros(ne, dtype=bool)
-    for g in range(n_groups):
-        rows = group == g
-        if k[rows].max() >= row_ratio * k_min and np.all(free[rows]):
-            stiff |= rows
+    stiff = _stiff_rows(Ed, B, E_v, k, row_ratio * k_min)
     if not stiff.any():
         return None
     Gd = dense(G).astype(float)
     massless = np.zeros(n, dtype=bool) if massless is None else np.asarray(massless, dtype=bool)
-    # independent stiff rows, stiffest first (a softer row in a stiff loop is carried by the others)
-    order = np.flatnonzero(stiff)[np.argsort(-k[stiff], kind="stable")]
-    basis, independent, dependent = np.zeros((n, 0)), [], []
-    for i in order:
-        g = Gd[:, i]
-        r = g - basis @ (basis.T @ g)
-        r = r - basis @ (basis.T @ r)
-        norm = np.linalg.norm(r)
-        if norm > 1e-10 * np.linalg.norm(g) and len(independent) < n:
-            basis = np.column_stack([basis, r / norm])
-            independent.append(i)
-        else:
-            dependent.append(i)
+    independent, dependent = _independent_rows(Gd, k, stiff)
     p = len(independent)
     if p == n:
         return None                     # nothing soft is left to protect

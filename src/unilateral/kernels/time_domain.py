@@ -181,23 +181,9 @@ class TimeKernel:
             out = kernel(s) - A0
             return out if A1 is None else out - s[:, None, None] * A1
 
-        samples = np.empty((N + 1, m, m))
-        samples[1:] = invert_laplace(remainder, dt * np.arange(1, N + 1), method=method, **options)
-        q = min(4, N)
-        samples[0] = sum((-1) ** (j + 1) * math.comb(q, j) * samples[j] for j in range(1, q + 1))
-        other = INVERSION_METHODS[1 - INVERSION_METHODS.index(method)]
-        k = np.unique(np.round(np.linspace(1, N, min(CHECK_TIMES, N))).astype(int))
-        check = invert_laplace(remainder, dt * k, method=other, omega_max=options["omega_max"])
-        scale = max(np.max(np.abs(samples[1:])), np.finfo(float).tiny)
-        info.update(check_method=other, check_times=dt * k,
-                    check_relative=float(np.max(np.abs(check - samples[k])) / scale))
-        for key in ("check_relative", "asymptote_misfit"):
-            if info[key] > WARN_LEVEL:
-                warnings.warn(
-                    f"TimeKernel.from_laplace: {key} = {info[key]:.3g} > {WARN_LEVEL:g}: the kernel "
-                    "may vary faster than dt resolves, or its asymptote is not Lambda_inf + s "
-                    "Lambda_rate; check info, reduce dt or give Lambda_inf/Lambda_rate",
-                    RuntimeWarning, stacklevel=2)
+        samples, check = _inverted_samples(remainder, m, dt, N, method, options)
+        info.update(check)
+        _warn_inaccurate(info)
         return cls(A0, samples, dt=dt, Lambda_rate=A1, Lambda0=_static(kernel, info), info=info)
 
     def samples(self, N: int, dt: float) -> np.ndarray:
@@ -334,3 +320,42 @@ def _static(kernel, info):
     value = np.real(value)
     info["Lambda0"] = "Lambda(s = 0)"
     return 0.5 * (value + value.T)
+
+
+def _inverted_samples(remainder, m, dt, N, method, options) -> tuple[np.ndarray, dict]:
+    """Steps 2 and 3 of :meth:`TimeKernel.from_laplace`: the samples of the inverse of ``remainder``
+    and their check by the other method.
+
+    Parameters
+    ----------
+    remainder : callable, ``remainder(s) -> (len(s), m, m)``;  m : int;  dt : float;  N : int
+    method : the inversion method;  options : dict of :func:`~unilateral.kernels.invert_laplace`
+        (with ``omega_max``)
+
+    Returns
+    -------
+    samples : (N + 1, m, m), ``samples[0]`` extrapolated by the cubic through k = 1..4
+    check : dict, ``check_method``, ``check_times`` and ``check_relative`` of ``info``
+    """
+    samples = np.empty((N + 1, m, m))
+    samples[1:] = invert_laplace(remainder, dt * np.arange(1, N + 1), method=method, **options)
+    q = min(4, N)
+    samples[0] = sum((-1) ** (j + 1) * math.comb(q, j) * samples[j] for j in range(1, q + 1))
+    other = INVERSION_METHODS[1 - INVERSION_METHODS.index(method)]
+    k = np.unique(np.round(np.linspace(1, N, min(CHECK_TIMES, N))).astype(int))
+    check = invert_laplace(remainder, dt * k, method=other, omega_max=options["omega_max"])
+    scale = max(np.max(np.abs(samples[1:])), np.finfo(float).tiny)
+    return samples, dict(check_method=other, check_times=dt * k,
+                         check_relative=float(np.max(np.abs(check - samples[k])) / scale))
+
+
+def _warn_inaccurate(info) -> None:
+    """Warn (RuntimeWarning, at the caller of :meth:`TimeKernel.from_laplace`) if the check or the
+    asymptote misfit of its ``info`` exceeds ``WARN_LEVEL``."""
+    for key in ("check_relative", "asymptote_misfit"):
+        if info[key] > WARN_LEVEL:
+            warnings.warn(
+                f"TimeKernel.from_laplace: {key} = {info[key]:.3g} > {WARN_LEVEL:g}: the kernel "
+                "may vary faster than dt resolves, or its asymptote is not Lambda_inf + s "
+                "Lambda_rate; check info, reduce dt or give Lambda_inf/Lambda_rate",
+                RuntimeWarning, stacklevel=3)

@@ -19,10 +19,10 @@ the file, the key path and the bad value, says what is wrong and what would be v
 from importlib import import_module
 
 #: Public name -> the submodule that defines it, imported on first use: :mod:`.build` imports numpy,
-#: scipy and the structure code, while :mod:`.schema` and :mod:`.errors` (pydantic only) let the
-#: command line check a model file's keys and values before those.
+#: scipy and the structure code, while :mod:`.schema`, :mod:`.dimensions` and :mod:`.errors`
+#: (pydantic only) let the command line check a model file's keys and values before those.
 _EXPORTS = {**dict.fromkeys(("LoadHistory", "ModelSpec", "build_model_spec", "load_model_file"), "build"),
-            "ModelFileError": "errors", **dict.fromkeys(("model_file_schema", "write_schema"), "schema")}
+            "ModelFileError": "errors", **dict.fromkeys(("model_file_schema", "write_schema"), "dimensions")}
 
 __all__ = sorted(_EXPORTS)
 

@@ -27,9 +27,9 @@ from .checks import read_toml  # noqa: F401 (the reader of study files too)
 from .errors import ModelFileError, Problems, key_path
 from .matrices import dof_index, read_matrix_model, read_vector
 from .rigid import add_rigid, ground_inertia
-from .schema import (TIME_UNITS, Bar, Beam, Beam3D, Cable, ConstantLoad, Dashpot, Dashpot3D, Gap, Gap3D,
-                     HalfSinePulse, Hinge, Hinge3D, ModelFile, RampLoad, RectangularPulse, Slider, Slider3D, Soil,
-                     Soil3D, Spring, Spring3D, TableLoad, TriangularPulse, YieldLink, YieldLink3D)
+from .schema import (TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap, HalfSinePulse, Hinge, ModelFile,
+                     RampLoad, RectangularPulse, Slider, Soil, Spring, TableLoad, TriangularPulse, YieldLink)
+from .schema3d import Beam3D, Dashpot3D, Gap3D, Hinge3D, Slider3D, Soil3D, Spring3D, YieldLink3D
 
 
 @dataclass(frozen=True, eq=False)

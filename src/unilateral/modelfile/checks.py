@@ -26,12 +26,14 @@ from pydantic import ValidationError
 from pydantic.fields import FieldInfo
 
 from ..io.files import TOML_LIMIT, InputFileError, file_problem, read_input_text
+from .dimensions import model_class
 from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_path, missing_section, toml_value,
                      translate, value_problem)
 from .pushover_table import pushover_problems
 from .recorders import recorder_problems
-from .schema import (DOFS_3D, FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Beam3D, Gap, Hinge, ModelFile,
-                     Node, Node3D, Soil, YieldLink, iter_fields, model_class)
+from .schema import (FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Gap, Hinge, ModelFile, Node, Soil, YieldLink,
+                     iter_fields)
+from .schema3d import DOFS_3D, Beam3D, Node3D
 
 _TOML_POSITION = re.compile(r"^(.*) \(at line (\d+), column (\d+)\)$")
 
@@ -140,7 +142,7 @@ def read_document(source: Path) -> ModelFile:
 
 
 def validate_document(data: dict) -> ModelFile:
-    """The validated document of the parsed model file ``data``: a :class:`~.schema.ModelFile3D` for
+    """The validated document of the parsed model file ``data``: a :class:`~.schema3d.ModelFile3D` for
     ``[frame] dimensions = 3``, else a :class:`ModelFile`; its problems raise :class:`Problems`."""
     root = model_class(data)
     try:

@@ -237,7 +237,7 @@ def _unknown_key(site: _Site, root: type[BaseModel]) -> str:
         return (f"{path}: unknown key ({key} is a top-level section, but in TOML a key after a table header "
                 f"belongs to that table ({table}); move {key} = ... above the first table header, "
                 f"or write [{key}] / [[{key}]])")
-    from .schema import dimension_hint
+    from .dimensions import dimension_hint
 
     other = None if site.parent is None else dimension_hint(site.parent, key)
     if other is not None:
@@ -279,7 +279,7 @@ def _bad_tag(site: _Site, error: dict, root=None) -> str:
         return f"{path}: missing key (valid {title}s: {', '.join(valid)})"
     tag = error["ctx"]["tag"]
     tag = site.value.get("type", tag) if isinstance(site.value, dict) else tag
-    from .schema import TWO_D_ONLY_TYPES
+    from .schema3d import TWO_D_ONLY_TYPES
 
     if getattr(root, "DIMENSIONS", 2) == 3 and tag in TWO_D_ONLY_TYPES:
         return (f"{path} = {toml_value(tag)}: {TWO_D_ONLY_TYPES[tag]} are for 2-D frames only (this file declares "

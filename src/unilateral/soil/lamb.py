@@ -223,21 +223,17 @@ def _phase(kxr, kxi, v):
     return e * c, e * s, c / e, -s / e
 
 
-def _axis_factors(k, proj, b, plan, want, arrays):
-    """Axis factors of the keys of ``plan`` (:func:`_axis_plan`) at ``k_x = k proj[j]``, ``j < b``.
+def _sinc_products(kxr, kxi, b, half, sinc):
+    """The sinc products of the groups of :func:`_axis_factors` at ``k_x = kxr + i kxi``, ``j < b``.
 
-    ``k = (re, im)``; ``arrays = (wk, sinc, out)``: ``out[0, :, u, j]`` (re, im) = sinc product
-    times ``cos(k_x d_u)`` if ``want[0]``; ``out[1]`` the same with ``sin(k_x d_u)`` if
-    ``want[1]``. Work space: ``wk`` (10, >= b) and ``sinc`` (2, G, >= b) float.
+    Parameters
+    ----------
+    kxr, kxi : (>= b,) float, the wavenumbers ``k_x`` (real and imaginary parts)
+    b : int
+    half : (G, 2) float, the half sides of a group's two rectangles (<= 0: a point)
+    sinc : (2, G, >= b) float, output: ``sinc[:, g, j]`` (re, im) the product over the two sides
+        of ``sin(k_x h) / (k_x h)``
     """
-    kr, ki = k
-    wk, sinc, out = arrays
-    d0, delta, d, m, r, order, ngrid, group, half = plan
-    kxr, kxi, Pr, Pi, Qr, Qi = wk[0], wk[1], wk[2], wk[3], wk[4], wk[5]
-    Wr, Wi, Vr, Vi = wk[6], wk[7], wk[8], wk[9]
-    for j in range(b):
-        kxr[j] = kr * proj[j]
-        kxi[j] = ki * proj[j]
     for g in range(half.shape[0]):
         for j in range(b):
             sr, si = 1.0, 0.0
@@ -268,6 +264,24 @@ def _axis_factors(k, proj, b, plan, want, arrays):
                 sr, si = sr * fr - si * fi, sr * fi + si * fr
             sinc[0, g, j] = sr
             sinc[1, g, j] = si
+
+
+def _axis_factors(k, proj, b, plan, want, arrays):
+    """Axis factors of the keys of ``plan`` (:func:`_axis_plan`) at ``k_x = k proj[j]``, ``j < b``.
+
+    ``k = (re, im)``; ``arrays = (wk, sinc, out)``: ``out[0, :, u, j]`` (re, im) = sinc product
+    times ``cos(k_x d_u)`` if ``want[0]``; ``out[1]`` the same with ``sin(k_x d_u)`` if
+    ``want[1]``. Work space: ``wk`` (10, >= b) and ``sinc`` (2, G, >= b) float.
+    """
+    kr, ki = k
+    wk, sinc, out = arrays
+    d0, delta, d, m, r, order, ngrid, group, half = plan
+    kxr, kxi, Pr, Pi, Qr, Qi = wk[0], wk[1], wk[2], wk[3], wk[4], wk[5]
+    Wr, Wi, Vr, Vi = wk[6], wk[7], wk[8], wk[9]
+    for j in range(b):
+        kxr[j] = kr * proj[j]
+        kxi[j] = ki * proj[j]
+    _sinc_products(kxr, kxi, b, half, sinc)
     even, odd = want[0], want[1]
     mcur = 0
     for t in range(order.size):
@@ -413,7 +427,7 @@ def _compiled():
 
         jit = numba.njit(cache=True, error_model="numpy", fastmath={"reassoc", "contract"})
         module = globals()
-        for name in ("_phase", "_axis_factors"):
+        for name in ("_phase", "_sinc_products", "_axis_factors"):
             if not isinstance(module[name], numba.core.dispatcher.Dispatcher):
                 module[name] = jit(module[name])
         _COMPILED = jit(_angular_loop)

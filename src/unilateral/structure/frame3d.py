@@ -32,9 +32,11 @@ from ..loads.units import STANDARD_GRAVITY
 from ..model import NaturalForm  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
 from . import elements as el, support_motion
 from . import elements3d as el3
+from .built import Structure
+from .checks import _friction, _hardening, _real, _strength
 from .dofs import DofMap  # noqa: F401  (likewise)
 from .dofs3d import IN_PLANE, DofMap3D
-from .frame import Structure, _Frame, _friction, _hardening, _real, _strength
+from .frame_base import _Frame
 
 
 class Frame3D(support_motion.SupportMotions, _Frame):
