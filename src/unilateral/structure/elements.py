@@ -320,6 +320,19 @@ CLEARANCE_MAX_RATIO = 10.0
 POINT_FRAME_SIZE = 1e4
 
 
+def clearance_bound(coords) -> tuple[float, str]:
+    """``(bound, size)``: the largest clearance a frame with the nodes ``coords`` carries
+    (:data:`CLEARANCE_MAX_RATIO` times the span of the node coordinates; for nodes that all coincide,
+    their largest coordinate, or at the origin :data:`POINT_FRAME_SIZE`), and the size it is of, in words."""
+    points = np.array(list(coords.values()), dtype=float).reshape(len(coords), -1) if coords else np.zeros((1, 2))
+    span = float(np.max(points.max(axis=0) - points.min(axis=0)))
+    largest = float(np.abs(points).max())
+    size, basis = ((span, "the span of its nodes") if span > 0 else
+                   (largest, "its nodes' largest coordinate") if largest > 0 else
+                   (POINT_FRAME_SIZE, "a frame whose nodes are all at the origin"))
+    return CLEARANCE_MAX_RATIO * size, f"{size:.6g}, {basis}"
+
+
 def check_clearances(elements, coords):
     """``elements``, checked: refuse a contact clearance that double precision cannot carry beside
     the frame's size.
@@ -333,16 +346,9 @@ def check_clearances(elements, coords):
     ------
     ValueError
         Naming the element, its ``gap``, the frame's size and the largest ``gap`` that is valid
-        (:data:`CLEARANCE_MAX_RATIO` times the span of the node coordinates; for nodes that all
-        coincide, their largest coordinate, or at the origin :data:`POINT_FRAME_SIZE`).
+        (:func:`clearance_bound`).
     """
-    points = np.array(list(coords.values()), dtype=float).reshape(len(coords), -1) if coords else np.zeros((1, 2))
-    span = float(np.max(points.max(axis=0) - points.min(axis=0)))
-    largest = float(np.abs(points).max())
-    size, basis = ((span, "the span of its nodes") if span > 0 else
-                   (largest, "its nodes' largest coordinate") if largest > 0 else
-                   (POINT_FRAME_SIZE, "a frame whose nodes are all at the origin"))
-    bound = CLEARANCE_MAX_RATIO * size
+    bound, size = clearance_bound(coords)
     for e in elements:
         if e.kind not in ("soil", "gap", "cable"):
             continue
@@ -350,7 +356,7 @@ def check_clearances(elements, coords):
         if abs(gap) > bound:
             raise ValueError(
                 f"{e.kind} {e.name!r}: {what} = {gap!r} exceeds {CLEARANCE_MAX_RATIO:g} times the size of the frame "
-                f"({size:.6g}, {basis}): a clearance is an imposed strain that an open contact "
+                f"({size}): a clearance is an imposed strain that an open contact "
                 f"cancels (v = e + gap), and double precision carries the response only to about 2.2e-16 * gap; "
                 f"give |{what}| <= {bound:.6g}, or leave the element out if it never closes")
     return elements

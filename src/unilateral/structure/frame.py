@@ -446,8 +446,9 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         fields = self._assemble(dofs, exempt=on_soil)
         footings = None
         if self._foundations:
-            from .foundation import Footings
+            from .foundation import Footings, check_patch_gaps
 
+            check_patch_gaps(self._foundations, self._coords)
             footings = Footings(self._foundations, first=len(fields["constraint_names"]))
         structure = support_motion.attach(self, Structure(**fields, foundation=footings))
         if self._p_delta is None:

@@ -538,8 +538,10 @@ class Frame3D(support_motion.SupportMotions, _Frame):
             on_soil |= {dofs.free[i] for i in np.flatnonzero(np.abs(_rows_matrix(dofs, rows, len(rows))).sum(axis=1))}
         fields = self._assemble(dofs, exempt=on_soil)
         if self._foundations:
+            from .foundation import check_patch_gaps
             from .foundation3d import Footings3D
 
+            check_patch_gaps(self._foundations, self._coords)
             fields["foundation"] = Footings3D(self._foundations, first=len(fields["constraint_names"]))
         return support_motion.attach(self, Structure3D(**fields))
 
