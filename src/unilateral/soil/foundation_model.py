@@ -76,6 +76,11 @@ class FoundationModel:
         footings slide in plan (``soil`` then has ``3 m`` rows, x, y then z).
     facets : int, optional
         With ``Ty``: the facets of each patch's polygonal friction cone (even, >= 4; default 8).
+    K_geometric : (n, n) array_like or sparse, optional
+        P-Delta: the geometric stiffness included in ``K``. ``K - K_geometric`` must be positive
+        semidefinite, ``K`` itself need not be: a footing resting only on the soil rocks unstably under
+        its weight without it (the frame's own ``D(s)`` has a real pole); its stability on the soil is
+        that of ``K + T Phi(0)^-1 T^T`` (checked by :meth:`unilateral.structure.Structure.to_model`).
 
     Attributes
     ----------
@@ -126,7 +131,7 @@ class FoundationModel:
 
     kind = "foundation"     #: the kind of problem, as the methods know it (``Method.solves``)
     def __init__(self, M, K, T, soil, *, C=None, gap=None, dof_names=None, contact_names=None, Tx=None, mu=None,
-                 Ty=None, facets=None):
+                 Ty=None, facets=None, K_geometric=None):
         self.K = V.as_matrix("K", K, (None, None))
         n = self.K.shape[0]
         if self.K.shape != (n, n) or n == 0:
@@ -137,10 +142,12 @@ class FoundationModel:
         m = self.T.shape[1]
         if m == 0:
             raise ValueError("T must have at least one column (one contact point)")
+        geometric = None if K_geometric is None else V.as_matrix("K_geometric", K_geometric, (n, n))
         for name in ("M", "K", "C"):
             if getattr(self, name) is not None:
                 V.check_symmetric(name, getattr(self, name))
-                _check_psd(name, getattr(self, name))
+                elastic = self.K - geometric if name == "K" and geometric is not None else getattr(self, name)
+                _check_psd(name if elastic is getattr(self, name) else "K - K_geometric", elastic)
         if not isinstance(soil, SoilFlexibility):
             raise TypeError("soil must be a SoilFlexibility (SoilFlexibility.halfspace, .cones, .impedances, "
                             f".kelvin, .rational or .callable), got {V.describe(soil)}")
@@ -200,8 +207,10 @@ class FoundationModel:
         ms = V.as_matrix("T", T, (structure.n, None)).shape[1]
         if contact_names is None:
             contact_names = [f"soil{j}" for j in range(ms)]
+        natural = getattr(structure, "natural", None)
         out = cls(structure.M, structure.K, T, soil, C=structure.C, gap=gap, dof_names=structure.dof_names,
-                  contact_names=contact_names, Tx=Tx, mu=mu, Ty=Ty, facets=facets)
+                  contact_names=contact_names, Tx=Tx, mu=mu, Ty=Ty, facets=facets,
+                  K_geometric=None if natural is None else natural.K_geometric)
         twice = set(structure.constraint_names) & set(out.constraint_names)
         if twice:
             raise ValueError(f"contact_names: {sorted(twice)[:3]} are also names of the structure's constraints; "

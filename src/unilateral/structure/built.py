@@ -140,7 +140,7 @@ class Structure:
         if self.foundation is not None and not self.m:
             from .foundation import to_foundation_model
 
-            return to_foundation_model(self)
+            return _soil_supported_definite(to_foundation_model(self), self.geometric)
         nat = self.natural
         model = Model.from_natural(
             nat.G, nat.E, nat.B, M=self.M, A=_nonzero_interaction(nat.A, np.shape(nat.B)[1]), r=nat.r,
@@ -149,33 +149,28 @@ class Structure:
             constraint_names=list(self.constraint_names), families=self.families(),
             on_soil=self.foundation is not None,
         )
+        if self.geometric is not None:
+            model.K = (model.K + self.geometric).tocsr()
+            model.natural = replace(model.natural, K_geometric=self.geometric)
+            if self.foundation is None:
+                _check_below_buckling(model.K)
         if self.foundation is not None:
             from .foundation import to_foundation_model
 
-            return to_foundation_model(self, model)
-        if self.geometric is not None:
-            from ..model import check_definite
-
-            K = (model.K + self.geometric).tocsr()
-            try:
-                check_definite("K", K, strict=True)
-            except ValueError as exc:
-                raise ValueError(f"p_delta: K - K_G is not positive definite: the gravity load reaches the "
-                                 f"buckling load of the structure held bilateral ({exc})") from None
-            model.K = K
-            model.natural = replace(model.natural, K_geometric=self.geometric)
+            return _soil_supported_definite(to_foundation_model(self, model), self.geometric)
         return model
 
-    def static_axial_forces(self, load) -> dict:
+    def static_axial_forces(self, load, K=None) -> dict:
         """Axial forces (tension positive) of the beams and bars under the static load ``load``
         (n,), every element bilateral (contacts closed and bonded, no yield), imposed strains
-        included: ``{name: N}``."""
+        included: ``{name: N}``. ``K`` (n, n): the stiffness to solve with, if not ``G E G^T`` (a
+        frame on footings: with the soil's static springs)."""
         from scipy.sparse.linalg import spsolve
 
         nat = self.natural
         theta = nat.theta(0.0)
         GE = nat.G @ nat.E
-        K = (GE @ nat.G.T).tocsc()
+        K = (GE @ nat.G.T).tocsc() if K is None else sp.csc_matrix(K)
         f = np.asarray(load, dtype=float) + np.asarray(GE @ theta).ravel()
         u = np.atleast_1d(spsolve(K, f))
         sigma = nat.E @ (np.asarray(nat.G.T @ u).ravel() - theta)
@@ -377,3 +372,29 @@ def _yield_polygons(pairs, indices) -> list:
             rows |= key[1]
         groups[(id(element), frozenset(rows))] = members
     return [sorted(members) for members in groups.values() if len(members) > 4]
+
+
+def _check_below_buckling(K) -> None:
+    """Refuse a P-Delta stiffness ``K - K_G`` (n, n) that is not positive definite: the gravity load
+    reaches the buckling load of the structure held bilateral."""
+    from ..model import check_definite
+
+    try:
+        check_definite("K", K, strict=True)
+    except ValueError as exc:
+        raise ValueError(f"p_delta: K - K_G is not positive definite: the gravity load reaches the "
+                         f"buckling load of the structure held bilateral ({exc})") from None
+
+
+def _soil_supported_definite(model, geometric):
+    """``model`` (a FoundationModel), with P-Delta (``geometric`` not None) checked below buckling on
+    the soil's static springs (:meth:`~unilateral.soil.FoundationModel.static_model`)."""
+    if geometric is not None:
+        try:
+            static = model.static_model()
+        except ValueError as exc:
+            raise ValueError(f"p_delta: K - K_G is not positive definite on the soil's static springs: the gravity "
+                             f"load reaches the buckling (overturning) load of the structure on its footings ({exc})") \
+                from None
+        _check_below_buckling(sp.csr_matrix(static.K))
+    return model

@@ -721,6 +721,8 @@ def to_foundation_model(structure, model=None):
         raise ValueError("the frame has imposed strains (axial_strain, curvature) and a foundation on a soil "
                          "medium: give them as loads")
     K = (nat.G @ nat.E @ nat.G.T).tocsr()
+    if structure.geometric is not None:            # P-Delta: the gravity's axial forces on the soil's springs
+        K = (K + structure.geometric).tocsr()
     dense = structure.n <= 2000
     M, C = structure.M, structure.C
     if dense:
@@ -730,7 +732,7 @@ def to_foundation_model(structure, model=None):
         T = sp.csr_matrix(T)
         slide = {key: sp.csr_matrix(value) if key == "Tx" else value for key, value in slide.items()}
     return FoundationModel(M, K, T, fnd.soil, C=C, gap=fnd.gap, dof_names=structure.dofs.names,
-                           contact_names=list(fnd.contact_names), **slide)
+                           contact_names=list(fnd.contact_names), K_geometric=structure.geometric, **slide)
 
 
 def _positive(where, arg, value) -> float:

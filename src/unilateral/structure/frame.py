@@ -453,11 +453,11 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         structure = support_motion.attach(self, Structure(**fields, foundation=footings))
         if self._p_delta is None:
             return rigid.attach(self, structure)
-        if self._foundations:
-            raise ValueError("p_delta: not available with a foundation on a soil medium")
         g, (dx, dy) = self._p_delta
         load = structure.gravity(g, (dx, dy)) if (dx or dy) else np.zeros(structure.n)
-        axial = structure.static_axial_forces(load)
+        # on footings: the static state with the soil's static springs (its static flexibility Phi(0))
+        K = None if not self._foundations else structure.to_model().static_model().K
+        axial = structure.static_axial_forces(load, K)
         return replace(structure, geometric=structure.geometric_stiffness(axial), axial_forces=axial)
 
     # ------------------------------------------------------------------ helpers
