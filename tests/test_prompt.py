@@ -199,10 +199,9 @@ def test_run_imports_neither_dask_nor_pandas(tmp_path):
 
 
 #: Not imported by a run of a frame without figures: the Matrix Market reader (a model file without
-#: matrices), the soil media (a frame without footings), the figure code, matplotlib and xarray.
-NOT_IN_A_RUN_WITHOUT_FIGURES = ("scipy.io", "unilateral.soil.foundation_model", "unilateral.soil.flexibility",
-                                "matplotlib", "PIL", "unilateral.figures.results", "unilateral.figures.plots",
-                                "xarray")
+#: matrices), the figure code, and the module of the one-thread BLAS limit's own (threadpoolctl is).
+NOT_IN_A_RUN_WITHOUT_FIGURES = ("scipy.io", "matplotlib", "PIL", "unilateral.figures.results",
+                                "unilateral.figures.plots", "xarray")
 
 
 def test_a_run_without_figures_imports_only_what_it_uses(tmp_path):

@@ -15,7 +15,6 @@ import dataclasses
 import functools
 import math
 import os
-import sys
 import warnings
 
 import numpy as np
@@ -31,24 +30,12 @@ from .model import Model
 from .result import Solution, State
 from .rules import alias_note
 from .run_context import RunContext
+from .soil.foundation_model import FoundationModel
+
 __all__ = ["METHODS", "MODEL_CLASSES", "Simulation", "solve"]
 
-
-def __getattr__(name):
-    """``MODEL_CLASSES``: the problems a simulation takes (``Model``, ``KernelModel``, ``FoundationModel``),
-    the soil's module imported only when asked (a run of a frame does not import it)."""
-    if name == "MODEL_CLASSES":
-        from .soil.foundation_model import FoundationModel
-
-        return (Model, KernelModel, FoundationModel)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def _is_model(model) -> bool:
-    """Whether ``model`` is one of ``MODEL_CLASSES``: a FoundationModel only if its module is imported
-    (no such model exists before)."""
-    soil = sys.modules.get("unilateral.soil.foundation_model")
-    return isinstance(model, (Model, KernelModel)) or (soil is not None and isinstance(model, soil.FoundationModel))
+#: The problems a simulation takes.
+MODEL_CLASSES = (Model, KernelModel, FoundationModel)
 #: A run may use at most this fraction of the machine's memory.
 MEMORY_FRACTION = 0.5
 
@@ -164,7 +151,7 @@ class Simulation:
         """Check the problem, choose the method and start it (under the simulation's policy)."""
         (dt, t_end, rule), (method, options) = grid, method
         disc = Discretization.from_user(dt, t_end, rule)
-        if not _is_model(model):                          # the boundary: what a simulation takes
+        if not isinstance(model, MODEL_CLASSES):          # the boundary: what a simulation takes
             raise TypeError("model must be a unilateral.Model, KernelModel or FoundationModel, got "
                             f"{V.describe(model)}")
         options = _method_options(options)
