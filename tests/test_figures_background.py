@@ -51,6 +51,29 @@ def test_the_figure_process_draws_the_same_files(cases, tmp_path):
     assert process.pid is None
 
 
+@pytest.mark.parametrize("shared", ["memory", "pipe"])
+def test_the_job_is_handed_over_in_memory_or_by_the_pipe_and_nothing_is_left(cases, tmp_path, monkeypatch,
+                                                                             shared):
+    import unilateral.figures.background as background
+
+    folder = tmp_path / "shm"
+    folder.mkdir()
+    if shared == "pipe":                                # no such folder: the pipe carries the job
+        folder = tmp_path / "missing"
+    monkeypatch.setattr(background, "SHARED_FOLDER", str(folder))
+    files, write = [], background._shared_file
+    monkeypatch.setattr(background, "_shared_file", lambda data: files.append(write(data)) or files[-1])
+    solved, kw = cases
+    process = BackgroundFigures()
+    try:
+        there = write_outputs(tmp_path / "there", solved, figure_process=process, **kw)
+    finally:
+        process.close()
+    assert any(os.path.basename(p) == "fig2.png" for p in there["figures"])
+    assert (files[0] is not None) == (shared == "memory")
+    assert not folder.exists() or not list(folder.iterdir())         # the file read and removed
+
+
 def test_a_write_error_in_the_figure_process_is_raised_as_such(cases, tmp_path):
     solved, kw = cases
     out = tmp_path / "out"

@@ -26,6 +26,13 @@ def test_importing_the_command_line_imports_nothing_heavy():
     assert out.strip() == "[]"
 
 
+def test_the_figure_code_does_not_import_scipy():
+    """The figure process imports it while the run solves, on the same cores: matplotlib only."""
+    code = "import sys, unilateral.figures.results; print(sorted(m for m in sys.modules if m.startswith('scipy')))"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "[]"
+
+
 def test_python_dash_m_unilateral():
     out = subprocess.run([sys.executable, "-m", "unilateral", "--help"], capture_output=True, text=True)
     assert out.returncode == 0 and "Usage:" in out.stdout and "run" in out.stdout

@@ -45,7 +45,7 @@ def _in_subprocess(argv: list[str] | None, cwd: Path, blocked=()) -> dict:
                 except SystemExit as exc:
                     code = exc.code
         print(json.dumps({{"modules": sorted({{m.partition(".")[0] for m in sys.modules}}), "code": code,
-                          "output": out.getvalue()}}))
+                          "output": out.getvalue(), "submodules": sorted(sys.modules)}}))
     """)
     done = subprocess.run([sys.executable, "-c", code], cwd=cwd, env=env, capture_output=True, text=True,
                           timeout=300)
@@ -196,6 +196,21 @@ def test_run_imports_neither_dask_nor_pandas(tmp_path):
                            "--out", str(tmp_path / "out")], tmp_path, blocked=(*NEVER_IN_RUN, "xarray"))
     assert done["code"] in (None, 0), done["output"]
     assert "hysteresis.png" in {path.name for path in (tmp_path / "out").glob("*.png")}
+
+
+#: Not imported by a run of a frame without figures: the Matrix Market reader (a model file without
+#: matrices), the figure code, and the module of the one-thread BLAS limit's own (threadpoolctl is).
+NOT_IN_A_RUN_WITHOUT_FIGURES = ("scipy.io", "matplotlib", "PIL", "unilateral.figures.results",
+                                "unilateral.figures.plots", "xarray")
+
+
+def test_a_run_without_figures_imports_only_what_it_uses(tmp_path):
+    done = _in_subprocess(["run", str(ROOT / "examples" / "yielding_frame.toml"), "--t-end", "0.05",
+                           "--figures", "none", "--out", str(tmp_path / "out")], tmp_path)
+    assert done["code"] in (None, 0), done["output"]
+    loaded = set(done["submodules"])
+    assert not loaded & set(NOT_IN_A_RUN_WITHOUT_FIGURES), sorted(loaded & set(NOT_IN_A_RUN_WITHOUT_FIGURES))
+    assert (tmp_path / "out" / "results.nc").is_file()
 
 
 def _without_timings(ds):

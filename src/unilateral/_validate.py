@@ -7,17 +7,24 @@ traceback from deep inside numpy or scipy.
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 
 import numpy as np
-import scipy.sparse as sp
 
 SYMMETRY_RTOL = 1e-9
 
 
+def _issparse(value) -> bool:
+    """``scipy.sparse.issparse(value)`` without importing scipy: nothing is sparse before scipy.sparse is
+    imported (the figure process checks its inputs with these functions and never needs it)."""
+    sparse = sys.modules.get("scipy.sparse")
+    return sparse is not None and sparse.issparse(value)
+
+
 def describe(value) -> str:
     """Short description of a value for error messages."""
-    if isinstance(value, np.ndarray) or sp.issparse(value):
+    if isinstance(value, np.ndarray) or _issparse(value):
         return f"array of shape {value.shape}"
     text = repr(value)
     return text if len(text) <= 60 else text[:57] + "..."
@@ -33,7 +40,9 @@ def as_matrix(name: str, value, shape: tuple[int | None, int | None], *, allow_s
     if value is None:
         raise TypeError(f"{name} is required (got None); pass an array of shape {_shape_text(shape)}")
     _refuse_complex(name, value)
-    if sp.issparse(value):
+    if _issparse(value):
+        import scipy.sparse as sp
+
         if not copy and allow_sparse and type(value) is sp.csr_matrix and value.dtype == np.float64:
             pass                        # handed over: kept as it is (a new wrapper would share its arrays)
         else:
@@ -52,7 +61,7 @@ def as_matrix(name: str, value, shape: tuple[int | None, int | None], *, allow_s
     for axis, expected in enumerate(shape):
         if expected is not None and value.shape[axis] != expected:
             raise ValueError(f"{name} has shape {value.shape}, expected {_shape_text(shape)}")
-    check_finite(name, value.data if sp.issparse(value) else value)
+    check_finite(name, value.data if _issparse(value) else value)
     return value
 
 
@@ -105,15 +114,15 @@ def check_symmetric(name: str, A, *, diagonal=False) -> None:
     """
     if diagonal:
         return
-    if sp.issparse(A) and A.shape[0] * A.shape[1] <= SMALL_DENSE_SIZE:
+    if _issparse(A) and A.shape[0] * A.shape[1] <= SMALL_DENSE_SIZE:
         A = A.toarray()         # a small sparse matrix: dense arithmetic costs microseconds
     if _exactly_symmetric(A):
         return
-    if (not sp.issparse(A) and A.ndim == 2 and A.shape[0] == A.shape[1] and A.size <= SMALL_DENSE_SIZE
+    if (not _issparse(A) and A.ndim == 2 and A.shape[0] == A.shape[1] and A.size <= SMALL_DENSE_SIZE
             and bool((A == A.T).all())):
         return                  # small and exactly symmetric: max |A - A^T| = 0 passes the test below
     diff = A - A.T
-    if sp.issparse(diff):
+    if _issparse(diff):
         err = abs(diff).max() if diff.nnz else 0.0
         scale = abs(A).max() if A.nnz else 0.0
     else:
@@ -132,7 +141,7 @@ def _exactly_symmetric(A) -> bool:
     ``A``; dense: every nonzero entry equals its mirror (the zeros are skipped)."""
     if A.ndim != 2 or A.shape[0] != A.shape[1] or A.shape[0] * A.shape[1] <= SMALL_DENSE_SIZE:
         return False
-    if sp.issparse(A):
+    if _issparse(A):
         if A.format != "csr" or not A.has_canonical_format:
             return False                # (a product's unsorted indices: sorting costs as much as the full check)
         At = A.T.tocsr()
@@ -151,7 +160,7 @@ def is_diagonal(A) -> bool:
     """Whether the dense square ``A`` is larger than :data:`SMALL_DENSE_SIZE` entries and diagonal
     (every nonzero entry on the diagonal), as :func:`check_symmetric` and :func:`check_psd` find it;
     False: not known."""
-    if sp.issparse(A) or A.ndim != 2 or A.shape[0] != A.shape[1] or A.size <= SMALL_DENSE_SIZE:
+    if _issparse(A) or A.ndim != 2 or A.shape[0] != A.shape[1] or A.size <= SMALL_DENSE_SIZE:
         return False
     return np.count_nonzero(A) == np.count_nonzero(np.diagonal(A))
 

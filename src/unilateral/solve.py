@@ -316,6 +316,14 @@ def _scope(model, policy, blas=True):
                 yield
 
 
+def small_model_blas(model):
+    """A context in which BLAS runs with one thread if ``model`` is small (the policy in force's
+    ``blas_one_thread_max_n``, as while it is solved): the results and spectra of a small model
+    are made of many tiny products, which threads slow down (a 4 x 4 ``expm`` takes 5 ms with
+    the threads of a loaded 2-core machine, 17 us with one)."""
+    return _scope(model, current_policy())
+
+
 @functools.cache
 def _blas_controller():
     """The BLAS libraries of numpy and scipy (scipy's is loaded first, so that both are found)."""

@@ -73,6 +73,7 @@ residuals are lists over ``components``.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 
@@ -183,7 +184,11 @@ class Polygons:
     def axis_limits(self) -> np.ndarray:
         """(p, c, 2): the resistance along ``+`` and ``-`` each component's axis, ``min r_k / |n_k|``
         over the facets facing it (a pair's ``r+`` and ``r-``; a hinge's ``My`` and ``Mz`` on its
-        polygon's axes); NaN for no component."""
+        polygon's axes); NaN for no component. Computed once (the peaks of each element read it)."""
+        return self._axis_limits
+
+    @functools.cached_property
+    def _axis_limits(self) -> np.ndarray:
         out = np.full((len(self), self.width, 2), np.nan)
         for g in range(len(self)):
             n, r = self.normals[g, :self.counts[g]], self.limits[g, :self.counts[g]]
@@ -192,6 +197,7 @@ class Polygons:
                     facing = sign * n[:, j] > 0
                     if facing.any():
                         out[g, j, side] = np.min(r[facing] / (sign * n[facing, j]))
+        out.flags.writeable = False
         return out
 
     def vectors(self, v) -> np.ndarray:

@@ -479,6 +479,19 @@ def _pad(values, rows: int):
     return padded
 
 
+def _stacked(arrays: list, rows: int | None) -> np.ndarray:
+    """``np.stack`` of ``arrays`` each padded with NaN to ``rows`` rows (None: as they are), written
+    into the result at once (no padded copy of each)."""
+    if rows is None:
+        return np.stack(arrays)
+    arrays = [np.asarray(a, dtype=float) for a in arrays]
+    out = np.empty((len(arrays), rows, *arrays[0].shape[1:]))
+    for k, a in enumerate(arrays):
+        out[k, :len(a)] = a
+        out[k, len(a):] = np.nan
+    return out
+
+
 def _strip_unit(label: str) -> str:
     """``"ux of node 7 (m)"`` -> ``"ux of node 7"``: figures state their own (scaled) unit."""
     for opening in (" (", " ["):
@@ -529,10 +542,8 @@ def _with_results(ds, res, multi, names):
         if not all(case in per_case for case in names):
             continue
         if multi:
-            rows = ds.sizes["time"]             # a case that stopped early: NaN after its last step
-            data = np.stack([_pad(per_case[case], rows) if dims[0] == "time" else per_case[case]
-                             for case in names])
-            new[name] = Variable(("case", *dims), data, attrs)
+            rows = ds.sizes["time"] if dims[0] == "time" else None    # a case that stopped early: NaN after
+            new[name] = Variable(("case", *dims), _stacked([per_case[case] for case in names], rows), attrs)
         else:
             new[name] = Variable(dims, per_case[names[0]], attrs)
     for name, (dims, data, attrs) in res["static"].items():

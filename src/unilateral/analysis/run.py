@@ -259,6 +259,7 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
     draws the figures while this process writes the other outputs (:func:`write_outputs`).
     """
     from ..io.folder import OutputFolder
+    from ..solve import small_model_blas
     from .outputs import write_outputs
 
     _steps(settings)                            # dt and t_end checked before the folder
@@ -266,10 +267,11 @@ def analyse(model, load, settings, out, *, structure, units, figure, title, meta
     folder.prepare()
     try:
         solved = solve_cases(model, load, settings, cases, progress=progress)
-        result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
-                               meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
-                               formats=formats, point=point, storeys=storeys, figure_process=figure_process,
-                               spectra=spectra, model_figure=model_figure, recorders=recorders)
+        with small_model_blas(model):           # the results of a small model: tiny products, one thread
+            result = write_outputs(folder, solved, structure=structure, units=units, figure=figure, title=title,
+                                   meta=meta, labels=labels, model=model, load=load, rule=settings["rule"],
+                                   formats=formats, point=point, storeys=storeys, figure_process=figure_process,
+                                   spectra=spectra, model_figure=model_figure, recorders=recorders)
     finally:
         folder.close()
     if progress is not None:

@@ -444,9 +444,8 @@ def _draw_modes(fig, drawing: ModelDrawing, size: float, *, bottom: float, heigh
         peak = max((float(np.hypot(*d)) for d in shape.values()), default=0.0)
         scale = 0.1 * size / peak if peak > 0 else 0.0
         moved = {node: c[node] + scale * np.asarray(shape.get(node, (0.0, 0.0))) for node in c}
-        for i, j in lines:
-            ax.plot(*np.column_stack([c[i], c[j]]), color="0.75", linewidth=0.8)
-            ax.plot(*np.column_stack([moved[i], moved[j]]), color="C0", linewidth=1.3)
+        ax.plot(*_segments(c, lines), color="0.75", linewidth=0.8)          # one line each: fewer artists
+        ax.plot(*_segments(moved, lines), color="C0", linewidth=1.3)
         ax.set_aspect("equal", adjustable="datalim")
         ax.margins(0.1)
         ax.set_xticks([])
@@ -454,6 +453,14 @@ def _draw_modes(fig, drawing: ModelDrawing, size: float, *, bottom: float, heigh
         ax.grid(False)
         unit = f" {drawing.time_unit}" if drawing.time_unit else ""
         ax.set_title(f"mode {k + 1}: T = {period:.3g}{unit}", fontsize=8)
+
+
+def _segments(xy: dict, lines: list) -> tuple:
+    """``x, y`` of the segments ``lines`` (pairs of nodes of ``xy``) in one line, NaN between them."""
+    out = np.full((3 * len(lines), 2), np.nan)
+    for k, (i, j) in enumerate(lines):
+        out[3 * k], out[3 * k + 1] = xy[i], xy[j]
+    return out[:, 0], out[:, 1]
 
 
 # ---------------------------------------------------------------------- names without overlaps
@@ -467,24 +474,26 @@ _PRIORITY = ("unilateral", "footing", "element", "patch", "node")
 def _place_names(fig, ax) -> None:
     """Move each name to the offset of :data:`_TRIES` where it overlaps the names placed before it
     least (no overlap: the first such offset)."""
-    fig.canvas.draw()                               # the limits of the equal aspect are set on drawing
+    ax.apply_aspect()                               # the limits of the equal aspect, as drawing sets them
     renderer = fig.canvas.get_renderer()
     names = [t for t in ax.texts if str(t.get_gid() or "").partition(":")[0] in _PRIORITY]
     names.sort(key=lambda t: _PRIORITY.index(t.get_gid().partition(":")[0]))
-    placed = _node_boxes(ax, [t.xy for t in names if t.get_gid().startswith("node:")])
+    placed = np.empty((len(names) + len(ax.texts), 4))      # (x0, y0, x1, y1) of the boxes placed
+    count = 0
+    for box in _node_boxes(ax, [t.xy for t in names if t.get_gid().startswith("node:")]):
+        placed[count], count = box.extents, count + 1
     for text in names:
         base = tuple(text.xyann)
         best, best_overlap = base, None
         for dx, dy in _TRIES:
             text.xyann = (base[0] + dx, base[1] + dy)
-            box = text.get_window_extent(renderer)
-            overlap = sum(_overlap(box, other) for other in placed)
+            overlap = _overlap_sum(text.get_window_extent(renderer), placed[:count])
             if best_overlap is None or overlap < best_overlap:
                 best, best_overlap = text.xyann, overlap
             if overlap == 0.0:
                 break
         text.xyann = best
-        placed.append(text.get_window_extent(renderer))
+        placed[count], count = text.get_window_extent(renderer).extents, count + 1
 
 
 def _node_boxes(ax, points, radius: float = 4.0) -> list:
@@ -496,8 +505,10 @@ def _node_boxes(ax, points, radius: float = 4.0) -> list:
             for x, y in ax.transData.transform(np.asarray(points, dtype=float).reshape(-1, 2))]
 
 
-def _overlap(a, b) -> float:
-    """The area two boxes (display units) share."""
-    w = min(a.x1, b.x1) - max(a.x0, b.x0)
-    h = min(a.y1, b.y1) - max(a.y0, b.y0)
-    return w * h if w > 0 and h > 0 else 0.0
+def _overlap_sum(box, others: np.ndarray) -> float:
+    """The sum of the areas ``box`` shares with each of ``others`` (k, 4) ``(x0, y0, x1, y1)`` (display
+    units), added in their order (the same float as adding them one by one)."""
+    w = np.minimum(box.x1, others[:, 2]) - np.maximum(box.x0, others[:, 0])
+    h = np.minimum(box.y1, others[:, 3]) - np.maximum(box.y0, others[:, 1])
+    shared = (w > 0) & (h > 0)
+    return sum((w[shared] * h[shared]).tolist())

@@ -43,6 +43,11 @@ _STYLE = {
 }
 
 
+#: Options of ``savefig`` by format: a PNG compressed at zlib level 3, not 6 (the same pixels, a third
+#: less time to encode, 3 % larger).
+_SAVE = {"png": {"pil_kwargs": {"compress_level": 3}}}
+
+
 def math_unit(unit: str) -> str:
     """A unit in mathtext: ``"m"`` -> ``$\\mathrm{m}$``, ``"m/s^2"`` -> ``$\\mathrm{m/s^{2}}$``, ``"kN m"``
     -> ``$\\mathrm{kN\\,m}$``. A unit of other characters than letters, digits, spaces and ``/^().*-``
@@ -104,7 +109,7 @@ def save_figure(fig: Figure, path_without_suffix: str | os.PathLike, formats=("p
         The files written. On an error the figure stays open (nothing partial is left behind).
     """
     base = os.fspath(path_without_suffix)
-    paths = [atomic_write(f"{base}.{fmt}", functools.partial(fig.savefig, format=fmt, dpi=dpi))
+    paths = [atomic_write(f"{base}.{fmt}", functools.partial(fig.savefig, format=fmt, dpi=dpi, **_SAVE.get(fmt, {})))
              for fmt in formats]
     pyplot = sys.modules.get("matplotlib.pyplot")
     if pyplot is not None:          # only pyplot keeps figures; ours are not registered there

@@ -35,7 +35,6 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-from scipy.sparse.csgraph import connected_components
 
 from ..linalg import dense
 
@@ -282,6 +281,8 @@ def _clusters(p: np.ndarray) -> list[np.ndarray]:
     real = p.imag == 0
     near = np.abs(p[:, None] - p[None, :]) <= CLUSTER_TOL * np.maximum(mag[:, None], mag[None, :])
     close = near & (real[:, None] == real[None, :])
+    from scipy.sparse.csgraph import connected_components   # here: importing the kernels does not load it
+
     count, labels = connected_components(sp.csr_matrix(close), directed=False)
     sizes = np.bincount(labels, minlength=count)
     return [np.flatnonzero(labels == c) for c in np.flatnonzero(sizes > 1)]

@@ -9,7 +9,6 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-import scipy.io
 import scipy.sparse as sp
 
 from ..model import Model
@@ -71,6 +70,8 @@ MAX_DIMENSION = 10_000_000
 
 
 def _read(parts, name: str, folder: Path):
+    import scipy.io                             # here: a model file without matrices does not import it
+
     try:
         _check_header(parts, name, scipy.io.mminfo(folder / name))
         array = scipy.io.mmread(folder / name)

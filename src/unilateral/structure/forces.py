@@ -267,8 +267,18 @@ def _solve_massive(M, f):
 
 # ---------------------------------------------------------------------- element forces
 def stresses(structure, h: Histories) -> np.ndarray:
-    """Natural stresses ``sigma`` (N+1, ne) of the elements: elastic plus Kelvin."""
-    return structure.natural.stresses(h.t, h.u, h.v, h.udot, h.vdot)
+    """Natural stresses ``sigma`` (N+1, ne) of the elements: elastic plus Kelvin.
+
+    Computed once for ``structure`` and the arrays of ``h`` (the end forces, reactions, nodal forces
+    and yield forces of a case all start from them) and kept on ``h``, read-only."""
+    key = (structure, h.t, h.u, h.v, h.udot, h.vdot)
+    cached = getattr(h, "_stresses", None)
+    if cached is not None and len(cached[0]) == len(key) and all(a is b for a, b in zip(cached[0], key)):
+        return cached[1]
+    sigma = structure.natural.stresses(h.t, h.u, h.v, h.udot, h.vdot)
+    sigma.flags.writeable = False
+    h._stresses = (key, sigma)
+    return sigma
 
 
 def _full_rows(structure, element):
