@@ -135,9 +135,10 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         adds their consistent geometric stiffness (:meth:`Structure.geometric_stiffness`; a
         compression ``N < 0`` lowers ``K``) to the ``K`` of :meth:`Structure.to_model`. The element
         forces reported stay those of ``G E G^T`` (the geometric part shows in the equilibrium of
-        the nodes, not in ``sigma``), and the energy terms do not count it. A gravity at or above
-        the buckling load makes ``K`` indefinite: ``to_model`` then refuses the model.
-        ``enabled=False`` switches it off.
+        the nodes, not in ``sigma``); the energy balance counts its energy (``geometric``). With
+        footings on a soil medium the static problem holds them on the soil's static springs. A
+        gravity at or above the buckling load makes ``K`` indefinite (on a soil: ``K`` with the soil's
+        static springs): ``to_model`` then refuses the model. ``enabled=False`` switches it off.
         """
         if not enabled:
             self._p_delta = None
