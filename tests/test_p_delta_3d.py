@@ -5,14 +5,20 @@ the buckling refusal and the energy balance."""
 
 from dataclasses import replace
 
+import json
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 import scipy.sparse.linalg as spl
+from test_opensees_module import ENV
 
 import unilateral as ul
 from unilateral.analysis.energy import energy_balance
 from unilateral.structure import Frame2D, Frame3D
 from unilateral.structure import forces3d as F3
+from unilateral.structure.geometric import string
 
 E, A, G, J = 3e7, 0.1, 1.2e7, 2e-3
 IX, IY = 1e-3, 2.5e-3               # the column's second moments bending in x (Iy) and in y (Iz)
@@ -184,3 +190,45 @@ def test_the_energy_balance_closes_with_p_delta_in_3d():
     geometric = e["geometric"] - e["geometric"][0]
     assert np.abs(geometric).max() > 1e-3 * np.abs(e["input_work"]).max()      # the term is there
     assert np.abs(e["balance_error"] + geometric).max() > 1e-3 * np.abs(e["input_work"]).max()
+
+
+#: The 3-D cantilever of :func:`column_3d` in OpenSees (``geomTransf('PDelta')``: the string stiffness
+#: of the committed axial force): gravity P by Newton, then the skew lateral load; the drift of the second.
+OPENSEES_COLUMN = """
+import json, sys
+import openseespy.opensees as ops
+E, A, G, J, Iy, Iz, H, n, P, c, s = map(float, sys.argv[1:])
+n = int(n)
+ops.model('basic', '-ndm', 3, '-ndf', 6)
+for k in range(n + 1):
+    ops.node(k, 0.0, 0.0, H * k / n)
+ops.fix(0, 1, 1, 1, 1, 1, 1)
+ops.geomTransf('PDelta', 1, 1.0, 0.0, 0.0)
+for k in range(n):
+    ops.element('elasticBeamColumn', k + 1, k, k + 1, A, E, G, J, Iy, Iz, 1)
+ops.system('FullGeneral'); ops.numberer('Plain'); ops.constraints('Plain')
+ops.test('NormDispIncr', 1e-14, 50); ops.algorithm('Newton'); ops.integrator('LoadControl', 1.0)
+ops.analysis('Static')
+ops.timeSeries('Constant', 1); ops.pattern('Plain', 1, 1); ops.load(n, 0.0, 0.0, -P, 0.0, 0.0, 0.0)
+ops.analyze(1); ops.loadConst('-time', 0.0)
+before = [ops.nodeDisp(n, 1), ops.nodeDisp(n, 2)]
+ops.timeSeries('Constant', 2); ops.pattern('Plain', 2, 2); ops.load(n, c, s, 0.0, 0.0, 0.0, 0.0)
+ops.analyze(1)
+print(json.dumps([ops.nodeDisp(n, 1) - before[0], ops.nodeDisp(n, 2) - before[1]]))
+"""
+
+
+@pytest.mark.skipif(ENV is None, reason="openseespy is not installed (pip install '.[test]')")
+def test_the_string_form_is_opensees_p_delta_and_the_consistent_one_is_near():
+    P, c, s = 0.3 * euler(IX), np.cos(np.radians(30.0)), np.sin(np.radians(30.0))
+    args = [E, A, G, J, IX, IY, H, N_EL, P, c, s]
+    out = subprocess.run([sys.executable, "-c", OPENSEES_COLUMN, *(repr(float(a)) for a in args)], env=ENV, capture_output=True,
+                         text=True, timeout=120, check=True)
+    theirs = np.array(json.loads(out.stdout.strip().splitlines()[-1]))
+    st = column_3d(P / GRAV)
+    f = st.nodal_load(N_EL, ux=c, uy=s)
+    top = [st.dofs.index(N_EL, "ux"), st.dofs.index(N_EL, "uy")]
+    strung = static(replace(st, geometric=string(st, st.axial_forces)), f)[top]
+    np.testing.assert_allclose(strung, theirs, rtol=1e-9)          # measured: 2e-14
+    consistent = static(st, f)[top]
+    assert np.all(np.abs(consistent / theirs - 1) < 1e-2) and np.all(consistent > theirs)      # 0.5 %, 0.2 %
