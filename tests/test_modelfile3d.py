@@ -103,6 +103,21 @@ def test_a_3d_portal_in_its_plane_is_the_2d_portal(tmp_path):
     np.testing.assert_allclose(b.psi, a.psi, rtol=0, atol=1e-9 * np.abs(a.psi).max())
 
 
+def test_p_delta_of_a_3d_portal_in_its_plane_is_that_of_the_2d_portal(tmp_path):
+    with_p_delta = _change(analysis__p_delta=True)
+    two, three = (load_model_file(write(tmp_path, with_p_delta(d()), f"{d.__name__}.toml"))
+                  for d in (portal_2d, portal_3d))
+    assert three.structure.axial_forces == pytest.approx(two.structure.axial_forces, rel=1e-12)
+    without = load_model_file(write(tmp_path, portal_3d(), "linear.toml"))
+    assert abs(three.model.K - without.model.K).sum() > 0
+    a, b = _solve(two), _solve(three)
+    assert a.success and b.success
+    for node in (2, 3):
+        x, y = two.structure.node_displacement(a, node, "ux"), three.structure.node_displacement(b, node, "ux")
+        assert np.abs(x - y).max() <= 1e-9 * np.abs(a.u).max(), node
+    np.testing.assert_allclose(b.psi, a.psi, rtol=0, atol=1e-9 * np.abs(a.psi).max())
+
+
 def test_the_run_of_a_3d_portal_writes_the_2d_base_forces(tmp_path):
     """``unilateral.run``: the base shear and vertical force of the 2-D file are Fx and Fz of the 3-D
     file; nothing leaves the plane; the summary says what a 3-D run does not write."""
@@ -176,7 +191,8 @@ WRONG_3D = {
     "2-D type": (lambda d: d | {"unilateral": d["unilateral"] + [{"type": "hing", "name": "h"}]},
                  'unilateral[2].type = "hing": unknown unilateral element type (valid: cable, gap, hinge, slider, '
                  "soil, yield)"),
-    "p-delta": (_change(analysis__p_delta=True), "analysis.p_delta = true: P-Delta is for 2-D frames only"),
+    "p-delta without gravity": (_change(analysis__p_delta=True, loads__gravity=None),
+                                "analysis.p_delta = true: needs [loads.gravity]"),
     "dimensions": (_change(frame__dimensions=4),
                    "frame.dimensions = 4: unknown number of dimensions (valid: 2, 3)"),
     "direction": (_change(loads__ground_motion__0__direction="rz"),

@@ -1,9 +1,10 @@
 """Pushover of 3-D frames (Frame3D): the portal of tests/pushover_frames.py built in the x-z plane with
-polygonal hinges, pushed in its plane (the 2-D events, exactly) and out of it (two cantilevers)."""
+polygonal hinges, pushed in its plane (the 2-D events, exactly, with P-Delta too) and out of it (two
+cantilevers; with P-Delta the mechanism softens by the gravity over the height)."""
 
 import numpy as np
 import pytest
-from pushover_frames import A, E, HINGES, I_BEAM, I_COL, H, L, independent_events
+from pushover_frames import A, E, HINGES, I_BEAM, I_COL, H, L, independent_events, portal
 
 from unilateral.pushover import pushover
 from unilateral.structure import Frame3D
@@ -55,10 +56,38 @@ def test_out_of_plane_pushover_is_two_cantilevers():
     assert ry @ r.pattern == pytest.approx(20.0, rel=1e-12)              # the base shear per unit mass
 
 
+@pytest.mark.parametrize("form", ["consistent", "string"])
+def test_in_plane_pushover_with_p_delta_of_a_3d_portal_is_the_2d_one(form):
+    st, plane = portal3d(), portal()
+    r = pushover(st, st.nodal_load(2, ux=1.0), node=2, dof="ux", target=0.1, gravity=9.81, p_delta=form)
+    r2 = pushover(plane, plane.nodal_load(2, ux=1.0), node=2, dof="ux", target=0.1, gravity=9.81, p_delta=form)
+    assert r.success and r2.success and len(r.events) == len(r2.events) == 4
+    for event, expected in zip(r.events, r2.events):
+        assert event.name.split(".")[0] == expected.name.split(".")[0]
+        assert event.load_factor == pytest.approx(expected.load_factor, rel=1e-9)
+        assert event.displacement == pytest.approx(expected.displacement, rel=1e-9)
+    np.testing.assert_allclose(r.load_factor, r2.load_factor, rtol=0, atol=1e-9 * np.abs(r2.load_factor).max())
+    np.testing.assert_allclose(r.displacement, r2.displacement, rtol=0, atol=1e-12)
+
+
+def test_out_of_plane_pushover_with_p_delta_softens_by_the_gravity_over_the_height():
+    st = portal3d()
+    N = sum(st.static_axial_forces(st.gravity(9.81))[c] for c in ("c1", "c2"))      # compression, < 0
+    k = 2 * 3 * E * I_COL / H ** 3
+    string = pushover(st, "triangular", node=2, dof="uy", target=0.1, gravity=9.81, p_delta="string")
+    assert string.success and [e.name for e in string.events] == ["hb1.facet1", "hb2.facet1"]
+    d = string.events[0].displacement
+    assert d == pytest.approx(2 * 100.0 / H / k, rel=1e-9)                  # the elastic base moment reaches Mp
+    assert string.base_shear[1] == pytest.approx((k + N / H) * d, rel=1e-9)
+    slope = np.diff(string.base_shear)[-1] / np.diff(string.displacement)[-1]
+    assert slope == pytest.approx(N / H, rel=1e-9)                          # the leaning columns: sum N / h
+    consistent = pushover(st, "triangular", node=2, dof="uy", target=0.1, gravity=9.81, p_delta="consistent")
+    slope = np.diff(consistent.base_shear)[-1] / np.diff(consistent.displacement)[-1]
+    assert slope == pytest.approx(N / H * 34 / 30, rel=1e-4)                # the nodal cubic (0, 0, d, d/h)
+
+
 def test_3d_refusals():
     st = portal3d()
-    with pytest.raises(ValueError, match="p_delta='string': P-Delta is for plane frames"):
-        pushover(st, st.nodal_load(2, ux=1.0), node=2, target=0.1, gravity=9.81, p_delta="string")
     with pytest.raises(ValueError, match="dof='rq' is not valid; use one of 'ux', 'uy', 'uz', 'rx', 'ry', 'rz'"):
         pushover(st, st.nodal_load(2, ux=1.0), node=2, dof="rq", target=0.1)
     with pytest.raises(ValueError, match="dof='rx', which is not a translation; use dof='ux' or 'uy' or 'uz'"):

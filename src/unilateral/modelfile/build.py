@@ -173,10 +173,7 @@ def _build_structure(document: ModelFile, folder: Path) -> Structure:
                           patches=f.patches, nodes=f.nodes, horizontal=f.horizontal, gap=f.gap,
                           mass=f.mass * to_mass, J=f.J * to_mass, mu=f.mu)
     _damping(fr, document)
-    if document.analysis.p_delta:                   # with [loads.gravity]: checks._analysis_problems
-        gravity = document.loads.gravity
-        with _at("analysis.p_delta"):
-            fr.p_delta(g=_gravity_value(document), direction=gravity.direction)
+    _p_delta(fr, document)
     _support_motions(fr, document, folder)
     with _at("structure"):
         return fr.build()
@@ -191,6 +188,13 @@ def _footing_soil(f, to_mass: float) -> dict:
         soil["layers"] = [{key: value * to_mass if key == "rho" else value for key, value in layer.items()
                            if value is not None} for layer in soil["layers"]]
     return soil
+
+
+def _p_delta(fr, document: ModelFile) -> None:
+    """``[analysis] p_delta`` of the frame being built (2-D or 3-D): P-Delta of ``[loads.gravity]``."""
+    if document.analysis.p_delta:                   # with [loads.gravity]: checks._analysis_problems
+        with _at("analysis.p_delta"):
+            fr.p_delta(g=_gravity_value(document), direction=document.loads.gravity.direction)
 
 
 def _damping(fr, document: ModelFile) -> None:
@@ -229,6 +233,7 @@ def _build_structure_3d(document: ModelFile, folder: Path) -> Structure:
                           nodes=f.nodes, horizontal=f.horizontal, gap=f.gap, mass=f.mass * to_mass,
                           Jx=f.Jx * to_mass, Jy=f.Jy * to_mass, Jz=f.Jz * to_mass, mu=f.mu, facets=f.facets)
     _damping(fr, document)
+    _p_delta(fr, document)
     _support_motions(fr, document, folder)
     with _at("structure"):
         return fr.build()

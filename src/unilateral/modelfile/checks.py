@@ -742,9 +742,6 @@ def _beam_load_problems(document: ModelFile) -> list[str]:
 
 def _analysis_problems(document: ModelFile) -> list[str]:
     """``[analysis]`` keys that need other sections."""
-    if is_3d(document) and document.analysis.p_delta:
-        return ["analysis.p_delta = true: P-Delta is for 2-D frames only (not yet for [frame] dimensions = 3): "
-                "remove it or set it false"]
     if document.analysis.load_sampling == "point" and document.analysis.method == "event":
         return ['analysis.load_sampling = "point": method = "event" integrates the loads exactly between events '
                 'and cannot sample them at points; use load_sampling = "average" or another method']

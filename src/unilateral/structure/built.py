@@ -14,9 +14,10 @@ from ..loads.units import STANDARD_GRAVITY
 from ..constraints import Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
 from . import elements as el, support_motion
-from .assembly import _coo, _nonzero_interaction
+from .assembly import _nonzero_interaction
 from .checks import _real
 from .dofs import DofMap
+from .geometric import AXIAL_KINDS, consistent
 
 
 @dataclass(frozen=True, eq=False)
@@ -176,49 +177,22 @@ class Structure:
         sigma = nat.E @ (np.asarray(nat.G.T @ u).ravel() - theta)
         out, start = {}, 0
         for e in self.elements:
-            if e.kind in ("beam", "bar"):
+            if e.kind in AXIAL_KINDS:
                 out[e.name] = float(sigma[start])
             start += e.E.shape[0]
         return out
 
     def geometric_stiffness(self, axial) -> sp.csr_matrix:
         """Geometric stiffness ``K_G`` (n, n) of the axial forces ``axial`` ``{beam or bar name: N}``
-        (tension positive; a compression lowers the stiffness).
+        (tension positive; a compression lowers the stiffness): the consistent matrix of
+        :func:`unilateral.structure.geometric.consistent`.
 
-        Beams: the consistent matrix of the cubic deflection, ``N/(30 L) [[36, 3L, -36, 3L],
-        [3L, 4L^2, -3L, -L^2], [-36, -3L, 36, -3L], [3L, -L^2, -3L, 4L^2]]`` on the transverse
-        displacements and the rotations ``(v_i, rz_i, v_j, rz_j)``; bars: the string stiffness
-        ``N/L [[1, -1], [-1, 1]]`` on ``(v_i, v_j)`` (``v = -s ux + c uy``, ``(c, s)`` the chord).
+        Beams: ``N/(30 L) [[36, 3L, -36, 3L], [3L, 4L^2, -3L, -L^2], [-36, -3L, 36, -3L], [3L, -L^2,
+        -3L, 4L^2]]`` on the transverse displacements and the slopes of each bending plane (2-D:
+        ``(v_i, rz_i, v_j, rz_j)``; 3-D: both planes of the local axes); bars: the string stiffness
+        ``N/L [[1, -1], [-1, 1]]`` on the displacements across the chord.
         """
-        full = self.dofs.T.shape[0]
-        rows, cols, vals = [], [], []
-        for e in self.elements:
-            if e.name not in axial or e.kind not in ("beam", "bar"):
-                continue
-            N = float(axial[e.name])
-            i, j = e.dofs[0][0], e.dofs[-1][0]
-            L, (c, s) = el.chord(e.name, i, self.coords[i], j, self.coords[j])
-            index = {d: k for k, d in enumerate(e.dofs)}
-            if e.kind == "beam":
-                T = np.zeros((4, len(e.dofs)))
-                T[0, [index[(i, "ux")], index[(i, "uy")]]] = (-s, c)
-                T[1, index[(i, "rz")]] = 1.0
-                T[2, [index[(j, "ux")], index[(j, "uy")]]] = (-s, c)
-                T[3, index[(j, "rz")]] = 1.0
-                k = N / (30 * L) * np.array([[36, 3 * L, -36, 3 * L], [3 * L, 4 * L * L, -3 * L, -L * L],
-                                             [-36, -3 * L, 36, -3 * L], [3 * L, -L * L, -3 * L, 4 * L * L]])
-            else:
-                T = np.zeros((2, len(e.dofs)))
-                T[0, [index[(i, "ux")], index[(i, "uy")]]] = (-s, c)
-                T[1, [index[(j, "ux")], index[(j, "uy")]]] = (-s, c)
-                k = N / L * np.array([[1.0, -1.0], [-1.0, 1.0]])
-            ke = T.T @ k @ T
-            at = np.array([self.dofs.full_index(node, dof) for node, dof in e.dofs])
-            rows.append(np.repeat(at, len(at)))
-            cols.append(np.tile(at, len(at)))
-            vals.append(ke.ravel())
-        KG = _coo(rows, cols, vals, (full, full))
-        return (self.dofs.T.T @ KG @ self.dofs.T).tocsr()
+        return consistent(self, axial)
 
     def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, -1.0)) -> np.ndarray:
         """Load (n,) of gravity ``g`` along ``direction`` (normalised) on the lumped masses."""

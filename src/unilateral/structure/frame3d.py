@@ -26,7 +26,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..loads.units import STANDARD_GRAVITY
 from ..model import NaturalForm  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
@@ -37,6 +36,7 @@ from .checks import _friction, _hardening, _real, _strength
 from .dofs import DofMap  # noqa: F401  (likewise)
 from .dofs3d import IN_PLANE, DofMap3D
 from .frame_base import _Frame
+from .geometric import with_gravity
 
 
 class Frame3D(support_motion.SupportMotions, _Frame):
@@ -63,7 +63,8 @@ class Frame3D(support_motion.SupportMotions, _Frame):
     :meth:`slider`) along any direction, as in 2-D. Plastic hinges at beam ends (:meth:`hinge`, after
     the beam) yield under the end moments about both bending axes, within a polygonal interaction
     surface (an ellipse's circumscribed polygon, a diamond or a box). Flexible footings in plan
-    (:meth:`foundation` with ``nodes``: a patch under each node of a grid). Not (yet) in 3-D: P-Delta.
+    (:meth:`foundation` with ``nodes``: a patch under each node of a grid). Second-order effects of
+    gravity: :meth:`p_delta`.
     """
 
     _dof_names = el3.DOF_NAMES
@@ -73,6 +74,7 @@ class Frame3D(support_motion.SupportMotions, _Frame):
         super().__init__()
         self._ties: dict = {}
         self._foundations = []
+        self._p_delta: tuple | None = None
 
     # ------------------------------------------------------------------ nodes and supports
     def node(self, node_id, x, y, z) -> None:
@@ -145,6 +147,26 @@ class Frame3D(support_motion.SupportMotions, _Frame):
         m = _real(where, "m", m, ">=0")
         add = np.array([m, m, m] + [_real(where, arg, J, ">=0") for arg, J in (("Jx", Jx), ("Jy", Jy), ("Jz", Jz))])
         self._mass[node] = self._mass.get(node, np.zeros(6)) + add
+
+    def p_delta(self, enabled=True, *, g=STANDARD_GRAVITY, direction=(0.0, 0.0, -1.0)) -> None:
+        """P-Delta: the geometric stiffness of the gravity's axial forces, constant in time, in ``K``.
+
+        As :meth:`Frame2D.p_delta <unilateral.structure.Frame2D.p_delta>`: :meth:`build` solves the
+        linear static problem of the gravity ``g`` along ``direction`` (a vector (dx, dy, dz),
+        normalised; default -z) on the lumped masses with every element bilateral, takes the axial
+        force ``N`` (tension positive) of each beam and bar and adds their consistent geometric
+        stiffness (:meth:`Structure3D.geometric_stiffness`: the cubic of both bending planes of each
+        beam, the string ``N/L`` across a bar; the torsional term ``N I_p/(A L)`` is left out, see
+        :mod:`unilateral.structure.geometric`) to the ``K`` of :meth:`Structure3D.to_model`, which
+        refuses a gravity at or above the buckling load (``K - K_G`` not positive definite).
+        Element forces and the elastic energies stay those of ``G E G^T``; the energy balance counts
+        ``u^T K_G u / 2`` as its ``geometric`` term. Not with footings on a soil medium.
+        ``enabled=False`` switches it off.
+        """
+        if not enabled:
+            self._p_delta = None
+            return
+        self._p_delta = (_real("p_delta", "g", g, ">0"), _gravity_direction("p_delta", direction))
 
     def foundation(self, name, node=None, *, soil, width=None, length=None, patches=None, nodes=None,
                    horizontal="support", gap=0.0, mass=0.0, Jx=0.0, Jy=0.0, Jz=0.0, mu=None, facets=None) -> None:
@@ -510,11 +532,15 @@ class Frame3D(support_motion.SupportMotions, _Frame):
                                                                        moduli=moduli))
 
     # ------------------------------------------------------------------ build
-    def build(self) -> Structure3D:
+    def build(self, *, p_delta=None) -> Structure3D:
         """Number the DOFs and assemble the natural form, the mass and the damping matrices.
 
-        Raises ``ValueError`` naming the free DOFs that no element stiffens (``K`` would be singular).
+        ``p_delta=True`` is :meth:`p_delta` with the standard gravity along -z (``False``: off; None:
+        as set by :meth:`p_delta`). Raises ``ValueError`` naming the free DOFs that no element
+        stiffens (``K`` would be singular).
         """
+        if p_delta is not None:
+            self.p_delta(bool(p_delta))
         if not self._coords:
             raise ValueError("the frame has no nodes; add nodes with Frame3D.node()")
         everything = self._elements + self._dashpots
@@ -543,7 +569,14 @@ class Frame3D(support_motion.SupportMotions, _Frame):
 
             check_patch_gaps(self._foundations, self._coords)
             fields["foundation"] = Footings3D(self._foundations, first=len(fields["constraint_names"]))
-        return support_motion.attach(self, Structure3D(**fields))
+        structure = support_motion.attach(self, Structure3D(**fields))
+        if self._p_delta is None:
+            return structure
+        if self._foundations:
+            raise ValueError("p_delta: not available with a foundation on a soil medium (Frame3D.foundation); "
+                             "remove the footings or switch P-Delta off with p_delta(False)")
+        g, d = self._p_delta
+        return with_gravity(structure, structure.gravity(g, tuple(d.get(dof, 0.0) for dof in el3.TRANSLATIONS)))
 
     # ------------------------------------------------------------------ helpers
     def _tied(self, node, dof) -> bool:
@@ -577,6 +610,16 @@ class Frame3D(support_motion.SupportMotions, _Frame):
         mu, kt, ct = coulomb
         return el3.frictional(name, kind, *ends, terms, el3.tangents(where, terms, tangent), kt=kt, ct=ct, mu=mu,
                               capacity=capacity, facets=facets, **contact)
+
+
+def _gravity_direction(where, direction) -> dict:
+    """``{dof: component}`` of the unit vector ``direction`` (dx, dy, dz) of gravity; ``ValueError``
+    for a rotation or a vector that is not finite and nonzero."""
+    d = dict(el.direction_terms(where, direction, el3.DOF_NAMES, el3.AXES))
+    if any(dof in el3.ROTATIONS for dof in d):
+        raise ValueError(f"{where}: direction={direction!r} is not a direction of gravity; use a vector "
+                         "(dx, dy, dz)")
+    return d
 
 
 def _facets(where, mu, facets) -> int:
@@ -624,7 +667,8 @@ class Structure3D(Structure):
     :meth:`gravity`, :meth:`nodal_load`, :meth:`distributed_load`, :meth:`influence`. Beams have
     the kind ``"beam3d"`` (six strains). The ground's forces, base forces, torque and drifts of a
     solution: :mod:`unilateral.structure.forces3d` (those of :mod:`unilateral.structure.forces` are
-    for 2-D frames); P-Delta (:meth:`geometric_stiffness`) is for 2-D frames only.
+    for 2-D frames). P-Delta (:meth:`Frame3D.p_delta`): :meth:`geometric_stiffness` is the consistent
+    matrix of both bending planes of each beam (:mod:`unilateral.structure.geometric`).
     """
 
     def to_model(self):
@@ -641,10 +685,7 @@ class Structure3D(Structure):
     def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, 0.0, -1.0)) -> np.ndarray:
         """Load (n,) of gravity ``g`` along ``direction`` (a vector, normalised) on the lumped masses."""
         g = _real("gravity", "g", g)
-        d = dict(el.direction_terms("gravity", direction, el3.DOF_NAMES, el3.AXES))
-        if any(dof in el3.ROTATIONS for dof in d):
-            raise ValueError(f"gravity: direction={direction!r} is not a direction of gravity; use a vector "
-                             "(dx, dy, dz)")
+        d = _gravity_direction("gravity", direction)
         f = np.zeros_like(self.nodal_mass)
         for column, dof in enumerate(el3.TRANSLATIONS):
             f[:, column] = self.nodal_mass[:, column] * g * d.get(dof, 0.0)
@@ -713,9 +754,3 @@ class Structure3D(Structure):
             for dof, value in zip(el3.DOF_NAMES, np.concatenate([w * L / 2, sign * moment])):
                 f[self.dofs.full_index(node, dof)] += value
         return self.dofs.gather(f)
-
-    def geometric_stiffness(self, axial) -> sp.csr_matrix:
-        """Refused: P-Delta (``Frame2D.p_delta``) has no 3-D form here, so there is no geometric
-        stiffness of a 3-D frame to give."""
-        raise TypeError("geometric_stiffness: P-Delta is available for Frame2D only; a Frame3D structure has no "
-                        "geometric stiffness (leave second-order effects out or model the frame in 2-D)")
