@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.sparse as sp  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
 
 from ..loads.units import STANDARD_GRAVITY
 from ..model import NaturalForm  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
