@@ -107,3 +107,31 @@ def test_a_dynamic_run_under_axial_load_balances_its_energy():
     assert energy["max_relative_error"] < 1e-9
     elongation, rotation = plastic_strains(st, sol.v[-1])
     assert elongation < 0                                                      # compression: the column shortens
+
+
+def test_model_file_hinges_with_a_backbone_and_an_interaction_are_the_builders():
+    import tomllib
+
+    from yield_portal import PORTAL_TOML
+
+    from unilateral.modelfile import build_model_spec
+
+    data = tomllib.loads(PORTAL_TOML + "[analysis]\ndt = 1e-3\nt_end = 0.1\n")
+    backbone = [[0.002, 30.0], [0.01, 40.0], [-0.003, -45.0], [-0.011, -55.0]]
+    data["unilateral"][0] = {"type": "hinge", "name": "h1", "beam": "c1", "end": "j", "backbone": backbone}
+    data["unilateral"][2] = {"type": "hinge", "name": "h3", "beam": "c2", "end": "i", "interaction": "aisc",
+                             "Ny": 2000.0, "My": 60.0}
+    spec = build_model_spec(data, "model.toml")
+    fr = Frame2D()
+    for node, x, y in ((1, 0.0, 0.0), (2, 0.0, 3.0), (3, 4.0, 3.0), (4, 4.0, 0.0)):
+        fr.node(node, x, y)
+    for name, i, j in (("c1", 1, 2), ("c2", 4, 3), ("g", 2, 3)):
+        fr.beam(name, i, j, E=30e6, A=0.09, I=6.75e-4)
+    fr.hinge("h1", "c1", "j", backbone=backbone)
+    fr.hinge("h3", "c2", "i", interaction="aisc", Ny=2000.0, My=60.0)
+    built = {e.name: e for e in fr.build().elements}
+    for name in ("c1", "c2"):
+        ours = next(e for e in spec.structure.elements if e.name == name)
+        assert ours.unknowns == built[name].unknowns
+        np.testing.assert_array_equal(ours.A, built[name].A)
+        np.testing.assert_array_equal(ours.E, built[name].E)
