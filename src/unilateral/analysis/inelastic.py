@@ -225,7 +225,8 @@ def _local_rows(element, unknowns) -> list:
 
 
 def _component_names(element, rows, family) -> list:
-    """``roty``, ``rotz`` (a 3-D hinge), ``t1``, ``t2`` (a 3-D friction cone), ``d`` (one strain)."""
+    """``roty``, ``rotz`` (a 3-D hinge), ``axial``, ``rot_i``/``rot_j`` (a 2-D axial force - moment hinge),
+    ``t1``, ``t2`` (a 3-D friction cone), ``d`` (one strain)."""
     if len(rows) == 1:
         return ["d"]
     names = {"beam3d": BEAM3D_COMPONENTS, "beam": BEAM_COMPONENTS}.get(
