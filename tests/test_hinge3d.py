@@ -502,7 +502,7 @@ def _portal_2d():
 WRONG = {
     "Mz in 2-D": (2, lambda d: d["unilateral"][0].update(Mz=30.0),
                   "unilateral[0].Mz = 30.0: a key of 3-D frames only (declare [frame] dimensions = 3; valid keys of "
-                  "a 2-D frame here: type, name, beam, end, My, k, hardening)"),
+                  "a 2-D frame here: type, name, beam, end, My, k, hardening, backbone, interaction, Ny)"),
     "shape in 2-D": (2, lambda d: d["unilateral"][0].update(shape="box"),
                      'unilateral[0].shape = "box": a key of 3-D frames only'),
     "facets in 2-D": (2, lambda d: d["unilateral"][0].update(facets=8), "unilateral[0].facets = 8: a key of 3-D "

@@ -82,11 +82,13 @@ import numpy as np
 #: Relative size of a multiplier increment below which it is taken as no flow.
 FLOW_TOLERANCE = 1e-10
 #: The suffixes of the facets of a yield or friction element (``name.plastic+``, ``name.slip2-``, ``name.facet3``).
-FACET_SUFFIX = re.compile(r"\.(plastic[+-]|slip2?[+-]|facet\d+)$")
+FACET_SUFFIX = re.compile(r"\.(plastic\d*[+-]|slip2?[+-]|facet\d+)$")
 #: The component of a 3-D beam's strain row (:func:`unilateral.structure.elements3d.beam`) and of a
 #: 3-D friction contact's (:func:`unilateral.structure.elements3d.frictional`).
 BEAM3D_COMPONENTS = {4: "roty", 2: "rotz", 5: "roty", 3: "rotz"}
 CONE_COMPONENTS = {1: "t1", 2: "t2"}
+#: The components of a 2-D beam's strain rows: a hinge's axial force - moment polygon.
+BEAM_COMPONENTS = {0: "axial", 1: "rot_i", 2: "rot_j"}
 
 
 @dataclass(frozen=True)
@@ -229,10 +231,12 @@ def _local_rows(element, unknowns) -> list:
 
 
 def _component_names(element, rows, family) -> list:
-    """``roty``, ``rotz`` (a 3-D hinge), ``t1``, ``t2`` (a 3-D friction cone), ``d`` (one strain)."""
+    """``roty``, ``rotz`` (a 3-D hinge), ``axial``, ``rot_i``/``rot_j`` (a 2-D axial force - moment hinge),
+    ``t1``, ``t2`` (a 3-D friction cone), ``d`` (one strain)."""
     if len(rows) == 1:
         return ["d"]
-    names = BEAM3D_COMPONENTS if element.kind == "beam3d" else CONE_COMPONENTS if family == "friction" else {}
+    names = {"beam3d": BEAM3D_COMPONENTS, "beam": BEAM_COMPONENTS}.get(
+        element.kind, CONE_COMPONENTS if family == "friction" else {})
     return [names.get(row, f"strain{row}") for row in rows]
 
 

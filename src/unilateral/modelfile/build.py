@@ -27,7 +27,7 @@ from .checks import read_toml  # noqa: F401 (the reader of study files too)
 from .errors import ModelFileError, Problems, key_path
 from .matrices import dof_index, read_matrix_model, read_vector
 from .rigid import add_rigid, ground_inertia
-from .schema import (TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap, HalfSinePulse, Hinge, ModelFile,
+from .schema import (TIME_UNITS, Bar, Beam, Cable, ConstantLoad, Dashpot, Gap, HalfSinePulse, Hinge2D, ModelFile,
                      RampLoad, RectangularPulse, Slider, Soil, Spring, TableLoad, TriangularPulse, YieldLink)
 from .schema3d import Beam3D, Dashpot3D, Gap3D, Hinge3D, Slider3D, Soil3D, Spring3D, YieldLink3D
 
@@ -305,8 +305,9 @@ def _add_element(fr: Frame2D, e, to_mass=1.0) -> None:
         case YieldLink():
             fr.yield_link(e.name, e.node, e.node_j, k=e.k, Fy=e.Fy, Fy_t=e.Fy_t, Fy_c=e.Fy_c, direction=e.direction,
                           hardening=e.hardening)
-        case Hinge():
-            fr.hinge(e.name, e.beam, e.end, My=e.My, k=e.k, hardening=e.hardening)
+        case Hinge2D():
+            fr.hinge(e.name, e.beam, e.end, My=e.My, k=e.k, hardening=e.hardening, backbone=e.backbone,
+                     interaction=e.interaction, Ny=e.Ny)
         case Slider():
             fr.slider(e.name, e.node, mu=e.mu, N=e.N, k=e.k, direction=e.direction)
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from .schema import (Beam, Dashpot, DistributedLoad, Figure, Foundation, Gap, Gravity, Hinge, Loads, Mass, ModelFile,
+from .schema import (Beam, Dashpot, DistributedLoad, Figure, Foundation, Gap, Gravity, Hinge2D, Loads, Mass, ModelFile,
                      NodalLoad, Node, Output, Soil, Spring, Support)
 from .schema3d import (Beam3D, Dashpot3D, DistributedLoad3D, Figure3D, Foundation3D, Gap3D, Gravity3D, GroundMotion3D,
                        Hinge3D, Loads3D, Mass3D, ModelFile3D, NodalLoad3D, Node3D, Output3D, RigidDiaphragm, Soil3D,
@@ -18,7 +18,7 @@ from .schema3d import (Beam3D, Dashpot3D, DistributedLoad3D, Figure3D, Foundatio
 
 #: The table of a 2-D frame and that of a 3-D frame in the same place (both ways).
 COUNTERPARTS = {Node: Node3D, Support: Support3D, Mass: Mass3D, Beam: Beam3D, Spring: Spring3D, Dashpot: Dashpot3D,
-                Soil: Soil3D, Gap: Gap3D, Hinge: Hinge3D, Foundation: Foundation3D, Gravity: Gravity3D,
+                Soil: Soil3D, Gap: Gap3D, Hinge2D: Hinge3D, Foundation: Foundation3D, Gravity: Gravity3D,
                 NodalLoad: NodalLoad3D, DistributedLoad: DistributedLoad3D, Loads: Loads3D, Figure: Figure3D,
                 Output: Output3D, ModelFile: ModelFile3D}
 COUNTERPARTS |= {three: two for two, three in COUNTERPARTS.items()}

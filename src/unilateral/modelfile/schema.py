@@ -72,6 +72,13 @@ def _vector(value):
     return (float(value[0]), float(value[1]))
 
 
+def _pair(value):
+    if not (isinstance(value, list) and len(value) == 2 and all(isinstance(x, int | float) and not isinstance(x, bool)
+                                                                and abs(x) < float("inf") for x in value)):
+        raise PydanticCustomError("pair", "expected a pair [x, y] of two finite numbers")
+    return (float(value[0]), float(value[1]))
+
+
 def _direction(value):
     if isinstance(value, str):
         if value not in ("ux", "uy", "rz"):
@@ -96,6 +103,8 @@ DofRef = Annotated[int | str, PlainValidator(_dof_ref),
                    WithJsonSchema({"type": ["integer", "string"], "minimum": 0, "minLength": 1})]
 Vector = Annotated[tuple[float, float], PlainValidator(_vector),
                    WithJsonSchema({"type": "array", "items": _NUMBER_SCHEMA, "minItems": 2, "maxItems": 2})]
+Pair = Annotated[tuple[float, float], PlainValidator(_pair),              # a point of a backbone, a polygon
+                 WithJsonSchema({"type": "array", "items": _NUMBER_SCHEMA, "minItems": 2, "maxItems": 2})]
 Direction = Annotated[str | tuple[float, float], PlainValidator(_direction), WithJsonSchema({"anyOf": [
     {"enum": ["ux", "uy", "rz"]}, {"type": "array", "items": _NUMBER_SCHEMA, "minItems": 2, "maxItems": 2}]})]
 GravityValue = Annotated[float | str, PlainValidator(_gravity),
@@ -327,6 +336,18 @@ class Hinge(Table):
     hardening: NonNegative = Field(0.0, description="Kinematic hardening modulus over k (over 4EI/L without k).")
 
 
+class Hinge2D(Hinge):
+    """Plastic hinge at an end of a 2-D beam: elastic-plastic, multi-linear or axial force - moment."""
+
+    My: Positive | None = Field(None, description="Yield moment [force length]; none with a backbone.")
+    hardening: NonNegative = Field(0.0, description="Hardening over k (4EI/L without k); backbone: last slope/first.")
+    backbone: list[Pair] | None = Field(None, min_length=1, description="Convex multi-linear backbone [[theta, M], "
+                                        "...] [rad, force length] instead of My and k (theta < 0: negative branch).")
+    interaction: Literal["aisc"] | list[Pair] | None = Field(None, description="Axial force - moment polygon: 'aisc' "
+                                                             "(with Ny, My) or its vertices [[N, M], ...].")
+    Ny: Positive | None = Field(None, description="Axial yield force [force] of interaction = 'aisc'.")
+
+
 class Slider(Table):
     """Flat sliding bearing under a node: Coulomb friction mu N behind a stick spring k."""
 
@@ -339,7 +360,7 @@ class Slider(Table):
     direction: Direction = Field("ux", description="Sliding direction.")
 
 
-Unilateral = Annotated[Union[Soil, Gap, Cable, YieldLink, Hinge, Slider],
+Unilateral = Annotated[Union[Soil, Gap, Cable, YieldLink, Hinge2D, Slider],
                        Field(discriminator="type", title="unilateral element type")]
 
 

@@ -334,17 +334,17 @@ class Structure:
 
 def _yield_polygons(pairs, indices) -> list:
     """The yield multipliers of ``indices`` that are the facets of one polygon of more than four
-    facets: those of one element whose columns of ``B`` share strains (a 3-D hinge at one beam end)."""
+    facets: the unknowns ``name.facet<k>`` of one element and one ``name`` (a hinge's interaction
+    polygon: a 3-D hinge's on its end moments, a 2-D one's on the axial force and an end moment; two
+    such hinges of one 2-D beam share its axial strain, not their polygons). The pairs of a
+    multi-linear hinge's segments (:func:`.elements.backbone_hinge`) are no polygon: they lie on
+    one strain, and their hardening makes them independent."""
     groups: dict = {}
     for k in indices:
         element, unknown = pairs[k]
-        rows = {row for row, _ in unknown.entries}
-        joined = [key for key in groups if key[0] == id(element) and key[1] & rows]
-        members = [k]
-        for key in joined:
-            members += groups.pop(key)
-            rows |= key[1]
-        groups[(id(element), frozenset(rows))] = members
+        base, _, facet = unknown.name.rpartition(".")
+        if facet.startswith("facet") and facet[5:].isdigit():
+            groups.setdefault((id(element), base), []).append(k)
     return [sorted(members) for members in groups.values() if len(members) > 4]
 
 

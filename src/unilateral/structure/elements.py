@@ -432,20 +432,108 @@ def hinge(beam_element, name, end, *, My, k=None, modulus=0.0) -> Element:
     node condensed out), so the beam's stiffness becomes ``(E^-1 + e e^T / k)^-1``.
     ``modulus`` [force length/rad] is the kinematic hardening of the pair.
     """
-    row = {"i": 1, "j": 2}[end]
-    E = beam_element.E
-    if k is not None:
-        flexibility = np.linalg.inv(E)
+    row = END_ROWS[end]
+    E = beam_element.E if k is None else in_series(beam_element.E, (row,), k)
+    unknowns = pair(name, row, "yield", r=(My, My), node=end_node(beam_element, end), k=k)
+    return _with_unknowns(beam_element, E, unknowns, kinematic_hardening(modulus))
+
+
+#: The strain row of the end rotation of a 2-D beam at each end (:func:`beam`).
+END_ROWS = {"i": 1, "j": 2}
+
+
+def end_node(beam_element, end):
+    """The node at the end ``end`` of a 2-D beam."""
+    return beam_element.dofs[0 if end == "i" else 3][0]
+
+
+def in_series(E, rows, k) -> np.ndarray:
+    """The stiffness ``(E^-1 + sum_row e_row e_row^T / k)^-1`` (symmetrised) of an element ``E`` with an
+    elastic spring ``k`` in series on each strain of ``rows``: the springs' massless inner nodes
+    condensed out."""
+    flexibility = np.linalg.inv(E)
+    for row in rows:
         flexibility[row, row] += 1.0 / k
-        E = np.linalg.inv(flexibility)
-        E = 0.5 * (E + E.T)
-    node = beam_element.dofs[0 if end == "i" else 3][0]
-    unknowns = pair(name, row, "yield", r=(My, My), node=node, k=k)
-    n = len(beam_element.unknowns)
-    A = np.zeros((n + 2, n + 2))
-    A[:n, :n] = beam_element.interaction
-    A[n:, n:] = kinematic_hardening(modulus)
-    return replace(beam_element, E=E, unknowns=beam_element.unknowns + unknowns, A=A)
+    E = np.linalg.inv(flexibility)
+    return 0.5 * (E + E.T)
+
+
+def _with_unknowns(beam_element, E, unknowns, A) -> Element:
+    """``beam_element`` with the stiffness ``E`` and the further ``unknowns``, coupled by ``A``."""
+    n, u = len(beam_element.unknowns), len(unknowns)
+    full = np.zeros((n + u, n + u))
+    full[:n, :n] = beam_element.interaction
+    full[n:, n:] = A
+    return replace(beam_element, E=E, unknowns=beam_element.unknowns + tuple(unknowns), A=full)
+
+
+def backbone_hinge(beam_element, name, end, *, K, k, theta_plus, theta_minus) -> Element:
+    """``beam_element`` with a hinge at ``end`` whose moment-rotation law is a convex multi-linear
+    backbone: elastic-perfectly-plastic springs in parallel (:func:`.hinge_laws.backbone_springs`).
+
+    Parameters
+    ----------
+    K : the hinge's initial stiffness [force length/rad]: the sum of the springs' and of an elastic
+        spring ``K - sum(k)`` (the slope beyond the backbone's last point)
+    k : (n,) the springs' stiffnesses, > 0
+    theta_plus, theta_minus : (n,) their yield rotations in the two senses, > 0
+
+    The parallel springs, of rotation ``theta`` (the hinge's) and plastic rotations ``p_s``, carry
+    ``M = K theta - sum_s k_s p_s = K (theta - sum_s q_s)``: one spring ``K`` in series with the beam
+    (as :func:`hinge` with ``k = K``) whose plastic rotation is ``sum_s q_s``, ``q_s = k_s p_s / K``.
+    Spring ``s`` yields when ``|k_s (theta - p_s)| = k_s theta_s``; divided by ``k_s / K`` its yield
+    function is ``+-(M - alpha_s) - K theta_s`` with the back moment ``alpha_s = (K^2/k_s) q_s - K
+    sum_t q_t``. Its pair ``name.plastic+-`` (the first spring), ``name.plastic<s>+-`` (``s`` = 2,
+    3, ...) has ``b = +-1`` on the end rotation, ``r = K theta_s``, multipliers ``q_s+-`` (rad), and
+    ``A = K (diag(K/k) - 1 1^T)`` on the pairs' net multipliers: positive semidefinite (Cauchy-Schwarz,
+    ``sum k_s <= K``), singular only without the elastic spring, along ``q ~ k`` (every spring flows).
+    """
+    row = END_ROWS[end]
+    node = end_node(beam_element, end)
+    unknowns = []
+    for s, (r_plus, r_minus) in enumerate(zip(K * np.asarray(theta_plus), K * np.asarray(theta_minus))):
+        tag = "" if s == 0 else str(s + 1)
+        unknowns += [Unknown(f"{name}.plastic{tag}+", row, 1.0, float(r_plus), "yield", None, 0.0, node, K),
+                     Unknown(f"{name}.plastic{tag}-", row, -1.0, float(r_minus), "yield", None, 0.0, node, K)]
+    net = K * (np.diag(K / np.asarray(k, dtype=float)) - 1.0)
+    return _with_unknowns(beam_element, in_series(beam_element.E, (row,), K), unknowns,
+                          np.kron(net, kinematic_hardening(1.0)))
+
+
+def polygon_hinge(beam_element, name, node, rows, polygon, moduli) -> Element:
+    """``beam_element`` with a rigid-plastic hinge bounding the stresses of two of its strains,
+    ``s = (sigma[rows[0]], sigma[rows[1]])``, by a convex polygon (the axial force and an end moment
+    of a 2-D beam; the two end moments of a 3-D beam).
+
+    Parameters
+    ----------
+    node : the node at the hinge, for reports
+    rows : the two strain rows
+    polygon : (n (N, 2), r (N,))
+        The unit outward normals on ``s`` and the resistances of the ``N`` facets (even; facet
+        ``k + N/2`` never active with facet ``k``: opposite, or not adjacent)
+    moduli : (2,) kinematic hardening moduli on the two strains
+
+    Facet ``k`` is an unknown ``name.facet<k>`` of the ``"yield"`` family whose column of ``B`` is
+    ``n_k`` on ``rows`` (the primary entry on the larger in magnitude, the first row on a tie, the
+    other in ``extra`` unless it is 0): ``psi_k = n_k . (s - alpha) - r_k``, the plastic strains
+    ``sum_k lambda_k n_k`` (associated flow) imposed on the two strains, the back stress ``alpha =
+    diag(moduli)`` times them (``A_kj = n_k^T diag(moduli) n_j``). The unknowns come in the pairs
+    ``(k, k + N/2)``, in that order (those of :class:`~unilateral.constraints.Yield`).
+    """
+    normals, resistances = polygon
+    half = len(normals) // 2
+    order = [f for p in range(half) for f in (p, p + half)]
+    unknowns = []
+    for f in order:
+        (n0, n1) = normals[f]
+        (row, b), (other, b2) = (((rows[0], n0), (rows[1], n1)) if abs(n0) >= abs(n1)
+                                 else ((rows[1], n1), (rows[0], n0)))
+        unknowns.append(Unknown(f"{name}.facet{f}", row, float(b), float(resistances[f]), "yield", None, 0.0, node,
+                                None, ((other, float(b2)),) if b2 != 0.0 else ()))
+    ordered = np.asarray(normals)[order]
+    return _with_unknowns(beam_element, beam_element.E, unknowns,
+                          ordered @ np.diag(np.asarray(moduli, dtype=float)) @ ordered.T)
 
 
 def _relative(i, j, directions, dof_names=DOF_NAMES):

@@ -26,7 +26,7 @@ from itertools import compress
 import numpy as np
 
 from ..loads.units import STANDARD_GRAVITY
-from . import bulk, elements as el, rigid, support_motion
+from . import bulk, elements as el, hinge_laws, rigid, support_motion
 from .assembly import _block_diagonal, _compatibility, _groups, _lumped_mass  # noqa: F401  (tests/test_build_speed.py)
 from .assembly import _node_and_dof_columns
 from .built import Structure
@@ -296,7 +296,8 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
     yield_link = _Frame.yield_link
     slider = _Frame.slider
 
-    def hinge(self, name, beam, end, *, My, k=None, hardening=0.0) -> None:
+    def hinge(self, name, beam, end, *, My=None, k=None, hardening=0.0, backbone=None, interaction=None,
+              Ny=None) -> None:
         """Plastic hinge at the end ``"i"`` or ``"j"`` of the beam ``beam`` (define the beam first).
 
         The end moment ``M`` (the beam's natural stress ``rot_i`` or ``rot_j``: the moment acting
@@ -311,19 +312,72 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         condensed into the beam's stiffness, so no DOF is added. Stiffness-proportional Rayleigh
         damping acts on the beam's total end rotation, plastic part included.
 
+        ``backbone`` (instead of ``My`` and ``k``): the spring's moment-rotation law is the convex
+        multi-linear backbone through the points ``(theta, M)`` (slopes decreasing, > 0; beyond the
+        last point the slope ``hardening`` times the initial one, 0: flat; points with ``theta < 0``
+        a negative branch of the same slopes, else symmetric), exactly: elastic-perfectly-plastic
+        springs in parallel, one per segment, unloading elastically with the initial stiffness and
+        reloading by Masing's rule (:mod:`.hinge_laws`, :func:`.elements.backbone_hinge`). The
+        multipliers ``"name.plastic+-"``, ``"name.plastic2+-"``, ... are those of the segments.
+
+        ``interaction`` (instead of ``k``): a rigid-plastic hinge bounding the axial force ``N``
+        (tension positive) and the end moment ``M`` by a convex polygon in ``(N, M)``: its vertices,
+        or ``"aisc"`` (AISC 360 eq. H1-1, with ``Ny`` and ``My``); one yield unknown ``"name.facet<k>"``
+        per facet, associated flow: the plastic elongation and rotation ``sum_k lambda_k n_k``
+        (:func:`.elements.polygon_hinge`). ``hardening`` is relative to ``EA/L`` and ``4EI/L``.
+
         Parameters
         ----------
-        My : yield moment, force length, > 0
+        My : yield moment, force length, > 0 (the plastic moment of a shape ``interaction``)
         k : rotational stiffness of the spring, force length/rad, > 0, or None (rigid-plastic)
         hardening : ``h >= 0``
+        backbone : sequence of ``(theta, M)`` pairs [rad, force length], or None
+        interaction : ``"aisc"`` or a sequence of ``(N, M)`` vertices [force, force length], or None
+        Ny : the axial yield force of a shape ``interaction``, force, > 0
         """
         where = self._hinge_site(name, beam, end)
+        beam_E = self._beams[beam].E
+        if backbone is not None or interaction is not None:
+            law = self._hinge_law(where, beam_E, _hardening(where, hardening), My=My, k=k, backbone=backbone, interaction=interaction, Ny=Ny)
+            self._put_hinge(name, beam, end, lambda beam_element: law(beam_element, name, end))
+            return
+        if Ny is not None:
+            raise ValueError(f"{where}: Ny={Ny!r} is the axial yield force of an interaction shape; give "
+                             "interaction='aisc' too, or leave Ny out")
+        if My is None:
+            raise ValueError(f"{where}: My is missing; give the yield moment My (force length, > 0), or a backbone")
         My = _strength(where, "My", My)
         k = None if k is None else _real(where, "k", k, ">0")
-        reference = k if k is not None else self._beams[beam].E[1, 1]          # k or 4EI/L
-        modulus = _hardening(where, hardening) * reference
+        modulus = _hardening(where, hardening) * (k if k is not None else beam_E[1, 1])          # k or 4EI/L
         self._put_hinge(name, beam, end, lambda beam_element: el.hinge(beam_element, name, end, My=My, k=k,
                                                                       modulus=modulus))
+
+    @staticmethod
+    def _hinge_law(where, beam_E, h, *, My, k, backbone, interaction, Ny):
+        """The element law ``(beam element, name, end) -> element`` of a hinge with a ``backbone`` or
+        an ``interaction`` polygon, the arguments checked."""
+        if backbone is not None:
+            given = [arg for arg, value in (("My", My), ("k", k), ("interaction", interaction), ("Ny", Ny))
+                     if value is not None]
+            if given:
+                raise ValueError(f"{where}: {given[0]} cannot go with a backbone, which gives the hinge's "
+                                 "stiffness and strengths (its first point: k = M1/theta1, My = M1)")
+            K, ks, theta_plus, theta_minus = hinge_laws.backbone_springs(where, backbone, h)
+            return lambda e, name, end: el.backbone_hinge(e, name, end, K=K, k=ks, theta_plus=theta_plus,
+                                                          theta_minus=theta_minus)
+        if k is not None:
+            raise ValueError(f"{where}: k={k!r} cannot go with an interaction polygon: the axial force - moment "
+                             "hinge is rigid-plastic (its plastic elongation and rotation are imposed on the beam)")
+        shape = isinstance(interaction, str)
+        if not shape and (My is not None or Ny is not None):
+            raise ValueError(f"{where}: My and Ny scale a named interaction shape ('aisc'); the vertices "
+                             f"interaction={interaction!r} are in force and force length already: leave them out")
+        polygon = hinge_laws.interaction_polygon(
+            where, interaction, Ny=None if Ny is None or not shape else _strength(where, "Ny", Ny),
+            My=None if My is None or not shape else _strength(where, "My", My))
+        moduli = (h * beam_E[0, 0], h * beam_E[1, 1])                  # EA/L, 4EI/L
+        return lambda e, name, end: el.polygon_hinge(e, name, el.end_node(e, end), (0, el.END_ROWS[end]),
+                                                     polygon, moduli)
 
     # ------------------------------------------------------------------ foundation on a soil medium
     def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
