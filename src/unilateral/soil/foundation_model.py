@@ -605,7 +605,7 @@ class FoundationModel:
         K = dense(self.K)
         w, X = np.linalg.eigh(K)
         scale = max(abs(w).max(initial=0.0), 1e-300)
-        Z = X[:, w <= 1e-10 * scale]
+        Z = X[:, np.abs(w) <= 1e-10 * scale]       # not the negative modes of P-Delta (K - K_G is checked)
         if Z.shape[1] == 0:
             return
         inertia = Z.T @ (dense(self.M) + (0 if self.C is None else dense(self.C))) @ Z

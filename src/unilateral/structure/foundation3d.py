@@ -42,7 +42,7 @@ patches of the same grid). Sliding in plan, each patch's shears act on its own n
 from __future__ import annotations
 
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.sparse as sp
@@ -445,16 +445,22 @@ def to_plan_model(structure):
                                    C=structure.C, E_v=nat.E_v, dof_names=structure.dofs.names,
                                    constraint_names=list(structure.constraint_names), families=structure.families(),
                                    on_soil=True)
+        if structure.geometric is not None:        # P-Delta: as Structure.to_model adds it
+            model.K = (model.K + structure.geometric).tocsr()
+            model.natural = replace(model.natural, K_geometric=structure.geometric)
         return FoundationModel.on(model, T, fnd.soil, **slide)
     if np.any(nat.theta(0.0)):
         raise ValueError("the frame has imposed strains (axial_strain, curvature) and a foundation on a soil "
                          "medium: give them as loads")
     K = (nat.G @ nat.E @ nat.G.T).tocsr()
+    if structure.geometric is not None:            # P-Delta: the gravity's axial forces on the soil's springs
+        K = (K + structure.geometric).tocsr()
     M, C = structure.M, structure.C
     if not big:
         K, M = K.toarray(), M.toarray()
         C = None if C is None else C.toarray()
-    return FoundationModel(M, K, T, fnd.soil, C=C, dof_names=structure.dofs.names, **slide)
+    return FoundationModel(M, K, T, fnd.soil, C=C, dof_names=structure.dofs.names,
+                           K_geometric=structure.geometric, **slide)
 
 
 def check_plan_overlap(footings, new, where) -> None:

@@ -20,7 +20,6 @@ Strain and sign conventions of the elements are in :mod:`unilateral.structure.el
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from itertools import compress
 
 import numpy as np
@@ -33,6 +32,7 @@ from .built import Structure
 from .checks import _friction, _hardening, _real, _strength
 from .dofs import DofMap
 from .frame_base import _Frame
+from .geometric import with_gravity
 
 _isfinite = math.isfinite
 _INF = math.inf
@@ -511,9 +511,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         g, (dx, dy) = self._p_delta
         load = structure.gravity(g, (dx, dy)) if (dx or dy) else np.zeros(structure.n)
         # on footings: the static state with the soil's static springs (its static flexibility Phi(0))
-        K = None if not self._foundations else structure.to_model().static_model().K
-        axial = structure.static_axial_forces(load, K)
-        return replace(structure, geometric=structure.geometric_stiffness(axial), axial_forces=axial)
+        return with_gravity(structure, load, None if not self._foundations else structure.to_model().static_model().K)
 
     # ------------------------------------------------------------------ helpers
     def _master(self, node):

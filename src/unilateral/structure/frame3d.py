@@ -161,8 +161,8 @@ class Frame3D(support_motion.SupportMotions, _Frame):
         :mod:`unilateral.structure.geometric`) to the ``K`` of :meth:`Structure3D.to_model`, which
         refuses a gravity at or above the buckling load (``K - K_G`` not positive definite).
         Element forces and the elastic energies stay those of ``G E G^T``; the energy balance counts
-        ``u^T K_G u / 2`` as its ``geometric`` term. Not with footings on a soil medium.
-        ``enabled=False`` switches it off.
+        ``u^T K_G u / 2`` as its ``geometric`` term. With footings on a soil medium the static state
+        holds them on the soil's static springs (``Phi(0)``), as in 2-D. ``enabled=False`` switches it off.
         """
         if not enabled:
             self._p_delta = None
@@ -573,11 +573,10 @@ class Frame3D(support_motion.SupportMotions, _Frame):
         structure = support_motion.attach(self, Structure3D(**fields))
         if self._p_delta is None:
             return structure
-        if self._foundations:
-            raise ValueError("p_delta: not available with a foundation on a soil medium (Frame3D.foundation); "
-                             "remove the footings or switch P-Delta off with p_delta(False)")
         g, d = self._p_delta
-        return with_gravity(structure, structure.gravity(g, tuple(d.get(dof, 0.0) for dof in el3.TRANSLATIONS)))
+        load = structure.gravity(g, tuple(d.get(dof, 0.0) for dof in el3.TRANSLATIONS))
+        # on footings: the static state with the soil's static springs (its static flexibility Phi(0))
+        return with_gravity(structure, load, None if not self._foundations else structure.to_model().static_model().K)
 
     # ------------------------------------------------------------------ helpers
     def _tied(self, node, dof) -> bool:
@@ -678,9 +677,10 @@ class Structure3D(Structure):
         :class:`~unilateral.soil.FoundationModel` with ``Tx``, ``Ty`` and ``facets``
         (:func:`~unilateral.structure.foundation3d.to_plan_model`)."""
         if self.foundation is not None and self.foundation.sliding:
+            from .built import _soil_supported_definite
             from .foundation3d import to_plan_model
 
-            return to_plan_model(self)
+            return _soil_supported_definite(to_plan_model(self), self.geometric)
         return super().to_model()
 
     def gravity(self, g=STANDARD_GRAVITY, direction=(0.0, 0.0, -1.0)) -> np.ndarray:

@@ -47,10 +47,11 @@ def string(structure, axial) -> sp.csr_matrix:
     return _assemble(structure, axial, string_only=True)
 
 
-def with_gravity(structure, load):
+def with_gravity(structure, load, K=None):
     """``structure`` with the consistent P-Delta of the static ``load`` (n,) (its gravity): ``axial_forces``
-    of :meth:`~unilateral.structure.Structure.static_axial_forces` and their ``geometric`` stiffness."""
-    axial = structure.static_axial_forces(load)
+    of :meth:`~unilateral.structure.Structure.static_axial_forces` (solved with ``K`` (n, n) if given:
+    a frame on footings, with the soil's static springs) and their ``geometric`` stiffness."""
+    axial = structure.static_axial_forces(load, K)
     return replace(structure, geometric=structure.geometric_stiffness(axial), axial_forces=axial)
 
 
