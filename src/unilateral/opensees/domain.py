@@ -157,18 +157,15 @@ class Domain:
 
     def geomTransf(self, kind, tag, *args):
         """``geomTransf('Linear', tag)`` (3-D: ``tag, vecxz_x, vecxz_y, vecxz_z``), ``geomTransf('PDelta',
-        tag)`` in 2-D (the string stiffness of the axial forces, :mod:`.pdelta`); ``Corotational`` is
-        refused."""
+        tag)`` (the same arguments; the string stiffness of the axial forces, :mod:`.pdelta`);
+        ``Corotational`` is refused."""
         what = f"geomTransf({kind!r}, {tag!r})"
         self._need_model(what)
-        if kind == "PDelta" and self.ndm == 3:
-            refuse(what, "the string P-Delta of a 3-D transformation (two transverse planes) is not in this slice",
-                   "geomTransf('Linear', tag, vx, vy, vz), or a 2-D model for geomTransf('PDelta', tag)")
         if kind == "Corotational":
             refuse(what, "large rotations (corotational kinematics) make the structure geometrically nonlinear; "
                    "the method needs a linear structure", "geomTransf('Linear', tag)")
         if kind not in ("Linear", "PDelta"):
-            refuse(what, "only the Linear and (2-D) PDelta transformations are in this slice",
+            refuse(what, "only the Linear and PDelta transformations are in this slice",
                    "geomTransf('Linear', tag)")
         vecxz = None
         if self.ndm == 3:

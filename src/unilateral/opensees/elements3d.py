@@ -1,4 +1,4 @@
-"""The 3-D ``elasticBeamColumn`` (``-ndm 3 -ndf 6``) with a ``Linear`` transformation and its
+"""The 3-D ``elasticBeamColumn`` (``-ndm 3 -ndf 6``) with a ``Linear`` (or ``PDelta``: :mod:`.pdelta`) transformation and its
 ``vecxz``, as OpenSees's ``ElasticBeam3d`` and ``LinearCrdTransf3d``.
 
 Local axes: ``x'`` from ``i`` to ``j``, ``y' = vecxz x x'`` (normalised), ``z' = x' x y'``; the

@@ -1,10 +1,12 @@
-"""``geomTransf('PDelta', tag)`` in 2-D: the string (leaning-column) stiffness of each such element.
+"""``geomTransf('PDelta', tag)`` (2-D and 3-D): the string (leaning-column) stiffness of each such element.
 
 OpenSees's ``PDeltaCrdTransf2d`` adds to the linear transformation the end forces ``N (v_i - v_j) / L``
 and ``-N (v_i - v_j) / L`` across the chord, ``v = -s u_x + c u_y`` the transverse displacements
 and ``N = EA/L (u_j - u_i) . (c, s)`` the element's axial force (tension positive), and the
 tangent ``N/L [[1, -1], [-1, 1]]`` on ``(v_i, v_j)``: the string P-Delta, without the cubic terms
-of the consistent geometric stiffness (``6/5 N/L``, ``N L/10``). Here ``K`` becomes
+of the consistent geometric stiffness (``6/5 N/L``, ``N L/10``). ``PDeltaCrdTransf3d`` adds the same
+``N/L`` on both local transverse displacements: ``N/L [[P, -P], [-P, P]]`` on the translations at
+``i`` and ``j``, ``P = I - e e^T`` across the chord ``e`` (in 2-D ``t t^T``). Here ``K`` becomes
 ``K + K_G(N)``, linear in ``u`` for given ``N``:
 
 * a ``Static`` step iterates ``u -> N(u) -> K + K_G(N) -> u`` to the fixed point, the equilibrium
@@ -42,34 +44,36 @@ MAX_ITER = 200
 
 
 def pdelta_table(domain, row) -> dict:
-    """``{tag: (rows (4,), w (4,), L, EA / L, beta)}`` of the 2-D beams of a ``PDelta`` transformation.
+    """``{tag: (rows (2 ndm,), w (2 ndm,), L, EA / L, beta)}`` of the beams of a ``PDelta`` transformation.
 
     Parameters
     ----------
-    domain : Domain
+    domain : Domain (2-D or 3-D)
     row : dict node tag -> its first nodal row
 
     Returns
     -------
     dict
-        ``rows`` the nodal rows of ``(u_x, u_y)`` at ``i`` then ``j``; ``w`` the chord direction on
-        them (``(u_j - u_i) . (c, s) = w . U[rows]``); ``beta`` the Rayleigh factor of the current
-        and committed tangent, ``betaK + betaKcomm``, which include the string stiffness (``betaKinit``
-        multiplies the initial one, without it), or 0 for an element outside the ``rayleigh`` call.
+        ``rows`` the nodal rows of the translations (``ndm`` of them) at ``i`` then ``j``; ``w`` the
+        chord direction ``e`` on them (``(u_j - u_i) . e = w . U[rows]``, ``w = (-e, e)``); ``beta``
+        the Rayleigh factor of the current and committed tangent, ``betaK + betaKcomm``, which include
+        the string stiffness (``betaKinit`` multiplies the initial one, without it), or 0 for an
+        element outside the ``rayleigh`` call.
     """
     from .elements import BeamColumn
+    from .elements3d import BeamColumn3D
 
     factors, _, damped = domain.damping or ((0.0, 0.0, 0.0, 0.0), (), ())
     table = {}
     for tag, e in domain.elements.items():
-        if not isinstance(e, BeamColumn) or domain.transforms[e.transf][0] != "PDelta":
+        if not isinstance(e, (BeamColumn, BeamColumn3D)) or domain.transforms[e.transf][0] != "PDelta":
             continue
-        d = np.subtract(domain.nodes[e.j], domain.nodes[e.i])
-        L = float(np.hypot(*d))
-        c, s = d / L
-        rows = np.array([row[e.i], row[e.i] + 1, row[e.j], row[e.j] + 1])
+        d = np.subtract(domain.nodes[e.j], domain.nodes[e.i]).astype(float)
+        L = float(np.linalg.norm(d))
+        ndm = d.size
+        rows = np.concatenate([row[e.i] + np.arange(ndm), row[e.j] + np.arange(ndm)])
         beta = factors[1] + factors[3] if tag in damped else 0.0
-        table[tag] = (rows, np.array([-c, -s, c, s]), L, e.E * e.A / L, beta)
+        table[tag] = (rows, np.concatenate([-d / L, d / L]), L, e.E * e.A / L, beta)
     return table
 
 
@@ -78,24 +82,34 @@ def axial_forces(table, U) -> dict:
     return {tag: float(k * (w @ U[rows])) for tag, (rows, w, _, k, _) in table.items()}
 
 
+def _string(w, L, N) -> np.ndarray:
+    """The string stiffness (2 ndm, 2 ndm) ``N/L [[P, -P], [-P, P]]`` on the translations at ``i``,
+    ``j``, ``P = I - e e^T`` the projection across the chord ``e`` (2-D: ``t t^T``, ``t = (-s, c)``)."""
+    ndm = w.size // 2
+    e = w[ndm:]
+    P = np.eye(ndm) - np.outer(e, e)
+    return (N / L) * np.block([[P, -P], [-P, P]])
+
+
 def element_geometric(table, tag, N) -> np.ndarray:
-    """The (6, 6) string stiffness ``N/L t t^T`` of element ``tag`` on ``(ux, uy, rz)`` at ``i``, ``j``
-    (``t = (-s, c, 0, s, -c, 0)``: ``v_i - v_j``)."""
+    """The string stiffness (2 ndf, 2 ndf) of element ``tag`` on its end DOFs (2-D: ``(ux, uy, rz)``
+    at ``i``, ``j``; 3-D: the six DOFs of each end), zero on the rotations."""
     _, w, L, *_ = table[tag]
-    c, s = w[2], w[3]
-    t = np.array([-s, c, 0.0, s, -c, 0.0])
-    return (N / L) * np.outer(t, t)
+    ndm = w.size // 2
+    ndf = 3 if ndm == 2 else 6
+    at = np.concatenate([np.arange(ndm), ndf + np.arange(ndm)])
+    k = np.zeros((2 * ndf, 2 * ndf))
+    k[np.ix_(at, at)] = _string(w, L, N)
+    return k
 
 
 def _assembled(table, N, size, damping=False) -> sp.csr_matrix:
     """``K_G`` (size, size) on the nodal rows, or with ``damping`` its Rayleigh part ``beta K_G``."""
     rows, cols, vals = [], [], []
     for tag, (r, w, L, _, beta) in table.items():
-        c, s = w[2], w[3]
-        t = np.array([-s, c, s, -c])
-        k = ((beta if damping else 1.0) * N.get(tag, 0.0) / L) * np.outer(t, t)
-        rows.append(np.repeat(r, 4))
-        cols.append(np.tile(r, 4))
+        k = _string(w, L, (beta if damping else 1.0) * N.get(tag, 0.0))
+        rows.append(np.repeat(r, r.size))
+        cols.append(np.tile(r, r.size))
         vals.append(k.ravel())
     if not rows:
         return sp.csr_matrix((size, size))
