@@ -489,15 +489,23 @@ def backbone_hinge(beam_element, name, end, *, K, k, theta_plus, theta_minus) ->
     ``sum k_s <= K``), singular only without the elastic spring, along ``q ~ k`` (every spring flows).
     """
     row = END_ROWS[end]
-    node = end_node(beam_element, end)
+    unknowns, A = backbone_pairs(name, row, end_node(beam_element, end), K=K, k=k, theta_plus=theta_plus,
+                                 theta_minus=theta_minus)
+    return _with_unknowns(beam_element, in_series(beam_element.E, (row,), K), unknowns, A)
+
+
+def backbone_pairs(name, row, node, *, K, k, theta_plus, theta_minus) -> tuple[list, np.ndarray]:
+    """The yield pairs (2 n unknowns) on strain ``row`` of a spring ``K`` whose law is the convex
+    multi-linear backbone of the parallel springs ``k`` (n,) yielding at the deformations
+    ``theta_plus``, ``theta_minus`` (n,) (:func:`backbone_hinge`, where the algebra is), and their
+    interaction ``A`` (2 n, 2 n): ``name.plastic+-``, ``name.plastic2+-``, ... with ``r = K theta_s``."""
     unknowns = []
     for s, (r_plus, r_minus) in enumerate(zip(K * np.asarray(theta_plus), K * np.asarray(theta_minus))):
         tag = "" if s == 0 else str(s + 1)
         unknowns += [Unknown(f"{name}.plastic{tag}+", row, 1.0, float(r_plus), "yield", None, 0.0, node, K),
                      Unknown(f"{name}.plastic{tag}-", row, -1.0, float(r_minus), "yield", None, 0.0, node, K)]
     net = K * (np.diag(K / np.asarray(k, dtype=float)) - 1.0)
-    return _with_unknowns(beam_element, in_series(beam_element.E, (row,), K), unknowns,
-                          np.kron(net, kinematic_hardening(1.0)))
+    return unknowns, np.kron(net, kinematic_hardening(1.0))
 
 
 def polygon_hinge(beam_element, name, node, rows, polygon, moduli) -> Element:

@@ -198,12 +198,19 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         """
         bulk.add_beams(self, names, i, j, E=E, A=A, I=I, axial_strain=axial_strain, curvature=curvature)
 
-    def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
-        """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
+    def bar(self, name, i, j, E, A, *, axial_strain=0.0, Fy=None, Fy_t=None, Fy_c=None, hardening=0.0) -> None:
+        """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``).
+
+        ``Fy`` (or ``Fy_t`` and ``Fy_c``) [force]: the bar yields axially (a brace, a tie): its axial
+        force stays in ``-Fy_c <= N - Hk (v+ - v-) <= Fy_t``, the plastic elongation ``v+ - v-`` of the
+        pair ``"name.plastic+-"`` (as :meth:`yield_link` along the chord), kinematic hardening
+        ``Hk = hardening EA/L``. Without them the bar is elastic.
+        """
         where = self._label("bar", name)
         self._two_nodes(where, i, j)
-        self._add(el.bar(name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
-                         A=_real(where, "A", A, ">0"), axial_strain=_real(where, "axial_strain", axial_strain)))
+        bar = el.bar(name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
+                     A=_real(where, "A", A, ">0"), axial_strain=_real(where, "axial_strain", axial_strain))
+        self._add(self._axial_yield(where, bar, Fy, Fy_t, Fy_c, hardening))
 
     def spring(self, name, i, k, *, j=None, direction="uy") -> None:
         """Linear spring ``k`` from node ``i`` to the ground (``j=None``) or to node ``j``.

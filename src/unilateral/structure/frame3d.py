@@ -323,14 +323,17 @@ class Frame3D(support_motion.SupportMotions, _Frame):
         self._add(element)
         self._beams[name] = element
 
-    def bar(self, name, i, j, E, A, *, axial_strain=0.0) -> None:
-        """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``)."""
+    def bar(self, name, i, j, E, A, *, axial_strain=0.0, Fy=None, Fy_t=None, Fy_c=None, hardening=0.0) -> None:
+        """Axial bar from node ``i`` to node ``j`` (strain: elongation, stiffness ``EA/L``); ``Fy`` (or
+        ``Fy_t``, ``Fy_c``), ``hardening``: axial yield, as :meth:`Frame2D.bar
+        <unilateral.structure.Frame2D.bar>`."""
         where = self._label("bar", name)
         self._two_nodes(where, i, j)
-        self._add(el3.axial("bar", name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
-                            A=_real(where, "A", A, ">0"),
-                            theta=_real(where, "axial_strain", axial_strain) * el3.chord(
-                                where, i, self._coords[i], j, self._coords[j])[0]))
+        bar = el3.axial("bar", name, i, self._coords[i], j, self._coords[j], E=_real(where, "E", E, ">0"),
+                        A=_real(where, "A", A, ">0"),
+                        theta=_real(where, "axial_strain", axial_strain) * el3.chord(
+                            where, i, self._coords[i], j, self._coords[j])[0])
+        self._add(self._axial_yield(where, bar, Fy, Fy_t, Fy_c, hardening))
 
     def spring(self, name, i, k, *, j=None, direction="uz") -> None:
         """Linear spring ``k`` from node ``i`` to the ground (``j=None``) or to node ``j``.

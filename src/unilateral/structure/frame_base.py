@@ -7,13 +7,14 @@ from __future__ import annotations
 
 import numbers
 from abc import ABC, abstractmethod
+from dataclasses import replace
 from itertools import accumulate
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..model import ConstantStrain, NaturalForm
-from . import elements as el
+from . import elements as el, hinge_laws
 from .assembly import (_block_diagonal, _check_stiffness, _compatibility, _interaction, _lumped_mass, _nodal_mass,
                        _strain_names)
 from .checks import _hardening, _real, _yield_forces
@@ -234,8 +235,8 @@ class _Frame(ABC):
         self._hinges[(beam, end)] = name
         self._names.add(name)
 
-    def yield_link(self, name, node_i, node_j=None, *, k, Fy=None, Fy_t=None, Fy_c=None, direction="ux",
-                   hardening=0.0) -> None:
+    def yield_link(self, name, node_i, node_j=None, *, k=None, Fy=None, Fy_t=None, Fy_c=None, direction="ux",
+                   hardening=0.0, backbone=None) -> None:
         """Zero-length elastic-plastic spring from ``node_i`` to the ground (``node_j=None``) or to
         ``node_j``, along ``direction`` (as :meth:`spring`).
 
@@ -244,6 +245,15 @@ class _Frame(ABC):
         grow only while their face yields; the plastic deformation is ``v+ - v-``. Linear kinematic
         hardening ``Hk = hardening k`` gives the post-yield stiffness ``k h / (1 + h)``.
 
+        ``backbone`` (instead of ``k`` and the yield forces): the force-deformation law is the convex
+        multi-linear backbone through the points ``(e, F)``, as :meth:`Frame2D.hinge
+        <unilateral.structure.Frame2D.hinge>`'s moment-rotation one (slopes decreasing, > 0; beyond
+        the last point ``hardening`` times the initial slope; points with ``e < 0`` a compression
+        branch of the same slopes, else symmetric): elastic-perfectly-plastic springs in parallel,
+        one pair ``"name.plastic<s>+-"`` per segment (the first ``"name.plastic+-"``), unloading with
+        the initial stiffness and reloading by Masing's rule (OpenSees: a ``Parallel`` of
+        ``ElasticPP`` materials).
+
         Parameters
         ----------
         k : elastic stiffness, force/length (force length/rad along a rotation), > 0
@@ -251,13 +261,39 @@ class _Frame(ABC):
         Fy_t, Fy_c : yield forces in tension and compression, > 0 (e.g. a buckling-restrained
             brace, ``Fy_c > Fy_t``)
         hardening : ``h = Hk / k >= 0`` (0: perfectly plastic)
+        backbone : sequence of ``(e, F)`` pairs [length, force; along a rotation rad, force length], or None
         """
         where, ends, terms = self._ends("yield_link", name, node_i, node_j, direction, ("node_i", "node_j"))
+        if backbone is not None:
+            given = [arg for arg, value in (("k", k), ("Fy", Fy), ("Fy_t", Fy_t), ("Fy_c", Fy_c)) if value is not None]
+            if given:
+                raise ValueError(f"{where}: {given[0]} cannot go with a backbone, which gives the link's stiffness "
+                                 "and strengths (its first point: k = F1/e1, Fy = F1)")
+            K, ks, plus, minus = hinge_laws.backbone_springs(where, backbone, _hardening(where, hardening))
+            unknowns, A = el.backbone_pairs(name, 0, None, K=K, k=ks, theta_plus=plus, theta_minus=minus)
+            self._add(el.directional(name, "yield", *ends, terms, K, unknowns=unknowns, A=A, dof_names=self._dof_names))
+            return
+        if k is None:
+            raise ValueError(f"{where}: k is missing; give the elastic stiffness k (> 0) and the yield force(s), "
+                             "or a backbone")
         k = _real(where, "k", k, ">0")
         r = _yield_forces(where, Fy, Fy_t, Fy_c)
         A = el.kinematic_hardening(_hardening(where, hardening) * k)
         self._add(el.directional(name, "yield", *ends, terms, k, unknowns=el.pair(name, 0, "yield", r=r, k=k), A=A,
                                  dof_names=self._dof_names))
+
+    def _axial_yield(self, where, element, Fy, Fy_t, Fy_c, hardening):
+        """``element`` (a bar: one axial strain, stiffness ``EA/L``) with the axial yield pair
+        ``"name.plastic+-"`` of ``Fy`` or ``(Fy_t, Fy_c)`` and kinematic hardening ``hardening EA/L``,
+        or as it is when no yield force is given."""
+        if Fy is None and Fy_t is None and Fy_c is None:
+            if hardening:
+                raise ValueError(f"{where}: hardening={hardening!r} needs a yield force Fy (or Fy_t and Fy_c)")
+            return element
+        k = float(element.E[0, 0])
+        r = _yield_forces(where, Fy, Fy_t, Fy_c)
+        return replace(element, unknowns=el.pair(element.name, 0, "yield", r=r, k=k),
+                          A=el.kinematic_hardening(_hardening(where, hardening) * k))
 
     def slider(self, name, node, *, mu, N, k, direction="ux") -> None:
         """Flat sliding bearing under ``node``: a stick spring ``k`` in series with Coulomb
