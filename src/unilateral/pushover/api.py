@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from .control import as_structure_and_model, control_vector
+from .control import as_structure_and_model, control_vector, static_model_of
 from .geometry import with_p_delta
 from .path import follow_path
 from .patterns import direction_vector, load_pattern
@@ -75,7 +75,7 @@ def pushover(structure_or_model, pattern, *, node, dof="ux", target, gravity=Non
             raise ValueError(f"p_delta={p_delta!r} needs the beams' axial forces: give a structure (Frame2D or "
                              "Structure), not a bare Model (or put the geometric stiffness in the model's K)")
         structure = with_p_delta(structure, p_delta, q_g)
-        model = structure.to_model()
+        model = static_model_of(structure)
     e, label = control_vector(structure, model, node, dof)
     p = load_pattern(structure, model, pattern, dof)
     problem = parametric_lcp(model, p, q_g, e, solver=lcp)

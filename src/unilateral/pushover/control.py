@@ -27,7 +27,9 @@ def as_structure_and_model(target):
     TypeError
         Anything else.
     ValueError
-        Footings on a soil medium, or a law this pushover does not follow.
+        A law this pushover does not follow. Footings on a soil medium are carried by the soil's
+        static springs (:meth:`~unilateral.soil.FoundationModel.static_model`: the openings of the
+        patches are the unknowns).
     """
     structure = target
     if not isinstance(target, Model) and hasattr(target, "build") and not hasattr(target, "to_model"):
@@ -35,18 +37,24 @@ def as_structure_and_model(target):
     if isinstance(structure, Model):
         structure, model = None, structure
     elif hasattr(structure, "to_model") and hasattr(structure, "dofs"):
-        if getattr(structure, "foundation", None) is not None:
-            raise ValueError("structure_or_model: footings on a soil medium (Frame2D.foundation) are not supported "
-                             "by the pushover; model the soil by springs (Frame2D.soil)")
-        model = structure.to_model()
+        model = static_model_of(structure)
     else:
         raise TypeError(f"structure_or_model must be a Frame2D, a Structure or a unilateral.Model, got "
                         f"{type(target).__name__}")
     law = model.law
     if law.Q is not None or law.free.any():
-        raise ValueError("structure_or_model: free unknowns or an unknown map (footings on a soil medium) are "
-                         "not supported by the pushover")
+        raise ValueError("structure_or_model: free unknowns or an unknown map (a model whose law has them, such as "
+                         "a FoundationModel's dynamic form) are not supported by the pushover; give the structure, "
+                         "or the model's static_model()")
     return structure, model
+
+
+def static_model_of(structure) -> Model:
+    """The model of ``structure``'s static problem: its :meth:`to_model`, or with footings on a soil
+    medium that model's :meth:`~unilateral.soil.FoundationModel.static_model` (the soil's static
+    springs ``Phi(0)^-1``)."""
+    model = structure.to_model()
+    return model if getattr(structure, "foundation", None) is None else model.static_model()
 
 
 def control_vector(structure, model, node, dof) -> tuple[np.ndarray, str]:

@@ -24,6 +24,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..structure.geometric import string
+from .control import static_model_of
 
 #: The forms of the geometric stiffness a pushover may add.
 P_DELTA_FORMS = ("consistent", "string")
@@ -55,6 +56,9 @@ def with_p_delta(structure, form, q_gravity):
                          "'consistent' or 'string'")
     if not np.any(q_gravity):
         raise ValueError(f"p_delta={form!r} needs the gravity's axial forces: give gravity (g or a load vector)")
-    axial = structure.static_axial_forces(q_gravity)
+    K = None
+    if structure.foundation is not None:            # footings: the static state on the soil's static springs
+        K = static_model_of(replace(structure, geometric=None, axial_forces=None)).K
+    axial = structure.static_axial_forces(q_gravity, K)
     K_G = structure.geometric_stiffness(axial) if form == "consistent" else string(structure, axial)
     return replace(structure, geometric=K_G, axial_forces=axial)
