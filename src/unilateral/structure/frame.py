@@ -221,7 +221,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
 
     # ------------------------------------------------------------------ unilateral elements
     def soil(self, name, node, k, *, c=0.0, direction="uy", gap=0.0, capacity=0.0, mu=None, kt=None,
-             ct=0.0) -> None:
+             ct=0.0, bearing=None) -> None:
         """Tensionless soil element under ``node``: spring ``k`` and dashpot ``c`` in parallel (a
         Kelvin element, ``E_v = c``) in series with a unilateral contact.
 
@@ -240,6 +240,16 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         mu : Coulomb friction coefficient >= 0, or None (no friction: the node slides freely)
         kt : stick stiffness, force/length, > 0; required with ``mu``
         ct : viscosity of a Kelvin dashpot in parallel with ``kt``, force time/length (default 0)
+        bearing : the bearing capacity ``Q > 0`` of the spring, force (not a pressure: a footing of
+            area ``A`` on ``n`` springs with the ultimate pressure ``q_ult`` gives each ``q_ult A / n``),
+            or None (default: the soil carries any compression)
+
+        With ``bearing``, the compression never exceeds ``Q``: ``-sigma <= Q``; beyond it the soil
+        settles plastically by ``w >= 0``, the unknown ``"name.plastic-"`` (a one-sided yield face,
+        rate law: ``w' >= 0`` only while ``-sigma = Q``; :class:`~unilateral.constraints.Bearing`),
+        and the force is ``sigma = k (e - v + w + gap) + c (e' - v' + w')``. Unloading is elastic
+        with the permanent settlement ``w``; the tension side keeps its contact (lift-off at
+        ``capacity``). The settlement's work ``Q w`` is the ``plastic_work`` of the energy balance.
 
         With ``mu``, a tangential strain ``t . u_node`` (``t`` the direction turned 90 degrees
         clockwise: ``"ux"`` for ``"uy"``) carries the force ``T = kt (e_t - s+ + s-) + ct (...)'``
@@ -249,15 +259,20 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         """
         where = self._label("soil", name)
         self._node(where, "node", node)
-        self._add(self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap,
-                                capacity=capacity, friction=_friction(where, mu, kt, ct)))
+        element = self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap,
+                                capacity=capacity, friction=_friction(where, mu, kt, ct))
+        if bearing is not None:
+            element = replace(element, unknowns=element.unknowns + (
+                el.bearing_unknown(name, _real(where, "bearing", bearing, ">0"), element.E[0, 0]),))
+        self._add(element)
 
-    def soils(self, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy") -> None:
+    def soils(self, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy", bearing=None) -> None:
         """Many tensionless soil elements at once: :meth:`soil` ``(names[k], nodes[k], k[k], c=c[k],
-        gap=gap[k], capacity=capacity[k], direction=direction)`` for every row (the numbers: (n,) or
-        one for all; one ``direction``; without friction: contacts with friction by :meth:`soil`).
-        All rows are checked before any element is added."""
-        bulk.add_soils(self, names, nodes, k, c=c, gap=gap, capacity=capacity, direction=direction)
+        gap=gap[k], capacity=capacity[k], direction=direction, bearing=bearing[k])`` for every row
+        (the numbers: (n,) or one for all; ``bearing`` [force per spring] None for none; one
+        ``direction``; without friction: contacts with friction by :meth:`soil`). All rows are
+        checked before any element is added."""
+        bulk.add_soils(self, names, nodes, k, c=c, gap=gap, capacity=capacity, direction=direction, bearing=bearing)
 
     def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None, mu=None, kt=None, ct=0.0) -> None:
         """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
