@@ -274,6 +274,51 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         checked before any element is added."""
         bulk.add_soils(self, names, nodes, k, c=c, gap=gap, capacity=capacity, direction=direction, bearing=bearing)
 
+    def spring_footing(self, name, node, *, width, k, length=1.0, c=0.0, springs=8, q_ult=None, gap=0.0) -> None:
+        """A rigid footing under ``node`` on a bed of tensionless soil springs (Winkler) that may yield.
+
+        The footing (``width`` along the frame's x, centred on ``node``, ``length`` out of plane, area
+        ``A = width length``) is cut into ``springs`` equal strips; at each strip's centre a node
+        ``"name.<j>"`` (``j = 1 ...`` from left to right) rigidly linked to ``node`` rests on the
+        :meth:`soil` ``"name.<j>"`` of stiffness ``k A / springs``, viscosity ``c A / springs`` and
+        bearing capacity ``q_ult A / springs`` (:meth:`soils`). ``node`` carries the footing's ``uy``
+        and ``rz``; restrain its ``ux`` (:meth:`support`) or connect it horizontally otherwise.
+
+        Under a vertical load ``N`` the footing's moment capacity (the plateau of its static
+        moment-rotation curve) is ``M_n = M_ult - q_ult length h^2 f (1 - f) / 2``, ``h = width/springs``,
+        ``f`` the fractional part of ``N springs / (q_ult A)``; it tends to ``M_ult = N width / 2
+        (1 - N / N_ult)``, ``N_ult = q_ult A``, with the order 2 in ``1/springs``
+        (``tests/test_bearing_capacity.py``).
+
+        Parameters
+        ----------
+        width, length : float, length, > 0
+        k : modulus of subgrade reaction (stiffness per unit area), force/length^3, > 0
+        c : viscosity per unit area, force time/length^3, >= 0
+        springs : int >= 1, the number of springs
+        q_ult : the ultimate bearing pressure, force/length^2, > 0, or None (no bearing capacity)
+        gap : the springs' initial gap, length (negative: a penetration)
+        """
+        where = self._label("spring_footing", name)
+        self._node(where, "node", node)
+        width, length = _real(where, "width", width, ">0"), _real(where, "length", length, ">0")
+        if isinstance(springs, bool) or not isinstance(springs, int) or springs < 1:
+            raise ValueError(f"{where}: springs={springs!r} must be an int >= 1 (the number of soil springs)")
+        share = width * length / springs
+        k, c = _real(where, "k", k, ">0") * share, _real(where, "c", c, ">=0") * share
+        bearing = None if q_ult is None else _real(where, "q_ult", q_ult, ">0") * share
+        gap = _real(where, "gap", gap)
+        ids = [f"{name}.{j + 1}" for j in range(springs)]
+        x0, y0 = self._coords[node]
+        taken = [i for i in ids if i in self._coords or i in self._names]
+        if taken:
+            raise ValueError(f"{where}: {taken[0]!r} is already a node or an element name; rename the footing")
+        self.nodes(ids, x0 - width / 2 + (np.arange(springs) + 0.5) * (width / springs), np.full(springs, y0))
+        for i in ids:
+            self.rigid_link(node, i)
+        self.soils(ids, ids, k, c=c, gap=gap, bearing=bearing)
+        self._names.add(name)
+
     def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None, mu=None, kt=None, ct=0.0) -> None:
         """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
         (force/length, with a Kelvin dashpot ``c``, force time/length, in parallel) that engages
@@ -396,7 +441,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
 
     # ------------------------------------------------------------------ foundation on a soil medium
     def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
-                   horizontal="support", gap=0.0, mass=0.0, J=0.0, mu=None) -> None:
+                   horizontal="support", gap=0.0, mass=0.0, J=0.0, mu=None, q_ult=None) -> None:
         """A footing resting on a soil medium (half-space, cones or Winkler-Kelvin) through
         unilateral contacts; :meth:`Structure.to_model` then gives a
         :class:`~unilateral.soil.FoundationModel` (``docs/theory.md``, section 12).
@@ -442,10 +487,20 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         mass, J : float >= 0, mass and mass length^2
             The rigid footing's own mass (on ``ux``, ``uy`` of ``node``) and rotary inertia (on
             ``rz``); a flexible footing's masses are those of its nodes (:meth:`mass`).
+        q_ult : None
+            Refused: a bearing capacity on a soil medium would need a plastic settlement added to the
+            soil's surface displacement in the Laplace domain, which is not implemented. A footing
+            whose soil yields: :meth:`spring_footing` (``q_ult`` per unit area on soil springs).
         """
         from .foundation import build_foundation, horizontal_cone
 
         where = f"foundation {name!r}"
+        if q_ult is not None:
+            raise ValueError(f"{where}: q_ult={q_ult!r}: a bearing capacity is not available on a soil medium (the "
+                             "plastic settlement of a patch would add to the soil's surface displacement in the "
+                             "Laplace domain); put the footing on soil springs that yield instead: "
+                             "Frame2D.spring_footing(..., q_ult=...), or Frame2D.soils(..., bearing=...) under "
+                             "nodes rigidly linked to the footing")
         if not isinstance(name, str) or not name:
             raise TypeError(f"foundation name must be a non-empty str, got {name!r}")
         if name in self._names:
