@@ -16,6 +16,7 @@ unloads elastically with the permanent settlement. Defining properties:
 """
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -28,6 +29,7 @@ from unilateral.structure import Frame2D
 from unilateral.structure import forces as F
 
 K, Q = 1000.0, 10.0                     # kN/m, kN
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def one_spring(*, bulk=False, parallel=None, mass=None):
@@ -183,3 +185,23 @@ def test_a_footing_on_a_soil_medium_refuses_q_ult_and_names_the_springs_instead(
         fr.foundation("f", 1, width=2.0, length=1.0, soil={"model": "winkler-kelvin", "k": 1e4, "c": 0.0},
                       q_ult=150.0)
     assert not fr._foundations
+
+
+def test_a_model_file_soil_takes_a_bearing_capacity_on_a_2d_frame_only(tmp_path):
+    from unilateral.modelfile import ModelFileError, load_model_file
+    from unilateral.modelfile.dimensions import dimension_hint
+    from unilateral.modelfile.schema3d import Soil3D
+
+    text = (ROOT / "examples" / "liolios1990.toml").read_text()
+    text = text.replace('name = "soil3", node = 3, k = 200e3, c = 10e3 }',
+                        'name = "soil3", node = 3, k = 200e3, c = 10e3, bearing = 150.0 }')
+    (tmp_path / "model.toml").write_text(text)
+    spec = load_model_file(tmp_path / "model.toml")
+    assert "soil3.plastic-" in spec.structure.constraint_names
+    (unknown,) = [u for _, u in spec.structure.constraints if u.name == "soil3.plastic-"]
+    assert (unknown.r, unknown.b, unknown.kind) == (150.0, -1.0, "yield")
+    (tmp_path / "bad.toml").write_text(text.replace("bearing = 150.0", "bearing = 0.0"))
+    with pytest.raises(ModelFileError, match=r"unilateral\[0\]\.bearing = 0\.0"):
+        load_model_file(tmp_path / "bad.toml")
+    assert "bearing" not in Soil3D.model_fields
+    assert dimension_hint(Soil3D, "bearing").startswith("a key of 2-D frames only")
