@@ -38,6 +38,16 @@ _isfinite = math.isfinite
 _INF = math.inf
 
 
+def _no_bearing_capacity(where, q_ult) -> None:
+    """Refuse a bearing capacity ``q_ult`` (not None) on a footing on a soil medium."""
+    if q_ult is not None:
+        raise ValueError(f"{where}: q_ult={q_ult!r}: a bearing capacity is not available on a soil medium (the "
+                         "plastic settlement of a patch would add to the soil's surface displacement in the "
+                         "Laplace domain); put the footing on soil springs that yield instead: "
+                         "Frame2D.spring_footing(..., q_ult=...), or Frame2D.soils(..., bearing=...) under "
+                         "nodes rigidly linked to the footing")
+
+
 class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
     """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
 
@@ -495,12 +505,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         from .foundation import build_foundation, horizontal_cone
 
         where = f"foundation {name!r}"
-        if q_ult is not None:
-            raise ValueError(f"{where}: q_ult={q_ult!r}: a bearing capacity is not available on a soil medium (the "
-                             "plastic settlement of a patch would add to the soil's surface displacement in the "
-                             "Laplace domain); put the footing on soil springs that yield instead: "
-                             "Frame2D.spring_footing(..., q_ult=...), or Frame2D.soils(..., bearing=...) under "
-                             "nodes rigidly linked to the footing")
+        _no_bearing_capacity(where, q_ult)
         if not isinstance(name, str) or not name:
             raise TypeError(f"foundation name must be a non-empty str, got {name!r}")
         if name in self._names:
