@@ -205,3 +205,18 @@ def test_a_model_file_soil_takes_a_bearing_capacity_on_a_2d_frame_only(tmp_path)
         load_model_file(tmp_path / "bad.toml")
     assert "bearing" not in Soil3D.model_fields
     assert dimension_hint(Soil3D, "bearing").startswith("a key of 2-D frames only")
+
+
+def test_the_summary_of_a_run_reports_the_settlement_of_a_bearing_spring(tmp_path):
+    from unilateral.analysis.run import run_model_file
+
+    text = (ROOT / "examples" / "liolios1990.toml").read_text()
+    text = text.replace('name = "soil4", node = 4, k = 200e3, c = 10e3 }',
+                        'name = "soil4", node = 4, k = 200e3, c = 10e3, bearing = 250.0 }')
+    (tmp_path / "model.toml").write_text(text)
+    summary = run_model_file(tmp_path / "model.toml", tmp_path / "out", figures=(), t_end=0.3)
+    soil = summary["results"]["unilateral"]["yield_elements"]["soil4"]
+    assert soil["kind"] == "soil" and soil["yielded"]
+    assert soil["peak_force_ratio"]["value"] == pytest.approx(1.0, abs=1e-9)      # at Q, never beyond
+    assert soil["residual_plastic_deformation"] < 0                                # settled (shortened)
+    assert soil["yield_deformation"][1] == pytest.approx(250.0 / 200e3) and soil["ductility"]["value"] > 1
