@@ -220,3 +220,19 @@ def test_the_summary_of_a_run_reports_the_settlement_of_a_bearing_spring(tmp_pat
     assert soil["peak_force_ratio"]["value"] == pytest.approx(1.0, abs=1e-9)      # at Q, never beyond
     assert soil["residual_plastic_deformation"] < 0                                # settled (shortened)
     assert soil["yield_deformation"][1] == pytest.approx(250.0 / 200e3) and soil["ductility"]["value"] > 1
+
+
+def test_soils_makes_the_elements_of_soil_with_a_bearing_capacity():
+    def build(bulk):
+        fr = Frame2D()
+        fr.nodes([1, 2], [0.0, 1.0], [0.0, 0.0])
+        if bulk:
+            fr.soils(["a", "b"], [1, 2], [K, 2 * K], c=3.0, capacity=[0.0, 1.0], bearing=[Q, 2 * Q])
+        else:
+            fr.soil("a", 1, K, c=3.0, bearing=Q)
+            fr.soil("b", 2, 2 * K, c=3.0, capacity=1.0, bearing=2 * Q)
+        return fr._elements
+
+    for one, many in zip(build(False), build(True)):
+        assert one.unknowns == many.unknowns and one.dofs == many.dofs
+        assert np.array_equal(one.E, many.E) and np.array_equal(one.E_v, many.E_v)

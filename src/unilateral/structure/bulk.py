@@ -177,8 +177,9 @@ def add_soils(frame, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction
     viscosity = c.reshape(size, 1, 1).copy()
     make, contact, settle, elements = el._element, el.contact_unknown, el.bearing_unknown, frame._elements
     for p, (name, node) in enumerate(zip(names, nodes)):
+        unknowns = (contact(name, capacity[p]),)
+        if bearing is not None:                                 # the plastic settlement beyond the capacity
+            unknowns += (settle(name, bearing[p], float(k[p])),)
         elements.append(make(name, "soil", tuple((node, dof) for dof in moved), a[p], stiffness[p], theta[p],
-                             E_v=viscosity[p] if c[p] > 0 else None, unknowns=(contact(name, capacity[p]),) if
-                             bearing is None else (contact(name, capacity[p]), settle(name, bearing[p], float(k[p]))),
-                             A=None))
+                             E_v=viscosity[p] if c[p] > 0 else None, unknowns=unknowns, A=None))
     frame._names.update(names)
