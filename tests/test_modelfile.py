@@ -148,7 +148,7 @@ ERRORS = {
                      'spring); did you mean "beam"?'),
     "typo in a key": (modify(unilateral__1__k=None, unilateral__1__stifness=200.0),
                       'model.toml: unilateral[1].stifness: unknown key (did you mean "k"? valid keys: type, name, '
-                      "node, k, c, direction, gap, capacity, mu, kt, ct)"),
+                      "node, k, c, direction, gap, capacity, mu, kt, ct, bearing)"),
     "EI for I": (modify(elements__0__I=None, elements__0__EI=3e5),
                  'model.toml: elements[0].EI: unknown key (did you mean "I"?'),
     "E for e": (modify(elements__0__E=None, elements__0__e=3e5),

@@ -527,8 +527,9 @@ def _vector_peak(t, s) -> dict:
 
 
 def _ratio_peak(t, y, limits) -> dict:
-    """Peak of ``y / limits[0]`` (``y > 0``) and ``-y / limits[1]`` (``y < 0``), with its time."""
-    ratio = np.maximum(y / limits[0], -y / limits[1])
+    """Peak of ``y / limits[0]`` (``y > 0``) and ``-y / limits[1]`` (``y < 0``), with its time; a side
+    without a limit (NaN: the tension side of a soil spring's bearing capacity) left out."""
+    ratio = np.fmax(y / limits[0], -y / limits[1])
     i = int(np.argmax(ratio))
     return {"value": float(ratio[i]), "t": float(t[i])}
 

@@ -2,7 +2,8 @@
 
 A :class:`~unilateral.model.Model` is a linear structure plus constraint families
 (``Model(..., families=[...])``): :class:`Contact` (the paper's unilateral contact),
-:class:`Yield` (plastic multipliers), :class:`Friction` (Coulomb slips), :class:`RigidContact`
+:class:`Yield` (plastic multipliers; :class:`Bearing`: the one-sided settlement of a soil spring's
+bearing capacity), :class:`Friction` (Coulomb slips), :class:`RigidContact`
 (contacts without compliance, ``H = 0``, in the force form) and :class:`SoilContact` (footings
 on a soil given in the Laplace domain, :class:`~unilateral.soil.FoundationModel`, with
 :class:`SoilShear` and :class:`SoilFriction` for footings that slide). The
@@ -10,10 +11,10 @@ methods see only the :class:`StepLaw` assembled from them (``model.law``), which
 LCP of the paper into the LCP of the mixed problem with the same matrix ``W0``.
 """
 
-from .families import (ConstraintFamily, Contact, Friction, RigidContact, SoilContact, SoilFriction, SoilShear,
-                       Yield)
+from .families import (Bearing, ConstraintFamily, Contact, Friction, RigidContact, SoilContact, SoilFriction,
+                       SoilShear, Yield)
 from .law import StepLaw, contact_law, default_families, step_law
 
-__all__ = ["ConstraintFamily", "Contact", "Friction", "RigidContact", "SoilContact", "SoilFriction", "SoilShear",
-           "StepLaw", "Yield", "contact_law",
+__all__ = ["Bearing", "ConstraintFamily", "Contact", "Friction", "RigidContact", "SoilContact", "SoilFriction",
+           "SoilShear", "StepLaw", "Yield", "contact_law",
            "default_families", "step_law"]

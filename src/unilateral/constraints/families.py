@@ -201,6 +201,41 @@ class Yield(ConstraintFamily):
         return self._polygons
 
 
+class Bearing(Yield):
+    """One-sided plastic multipliers: the compression face of a contact with a bearing capacity.
+
+    A soil spring with a bearing capacity (:meth:`Frame2D.soil <unilateral.structure.Frame2D.soil>`
+    with ``bearing``) carries its contact ``v`` (holonomic, the opening: ``sigma <= r``) and a
+    plastic settlement ``w`` (rate: ``dw >= 0``, ``phi = -sigma - Q <= 0``, ``phi dw = 0``) on one
+    strain with opposite columns of ``B``. The two are never active together (``sigma = r >= 0``
+    against ``sigma = -Q < 0``); their block of ``W0`` is singular, so each settlement is the
+    ``partner`` of its contact (:meth:`ConstraintFamily.pairs`) for the pivoting solvers.
+
+    Parameters
+    ----------
+    indices : sequence of int, the settlement multipliers
+    contacts : sequence of int, per multiplier the index of its element's contact unknown
+    name : str, optional
+    """
+
+    def __init__(self, indices, *, contacts, name=None):
+        super().__init__(indices, two_sided=False, name=name or "bearing")
+        self.contacts = _indices("contacts", contacts)
+        if self.contacts.shape != self.indices.shape:
+            raise ValueError(f"contacts must name one contact per settlement multiplier ({self.indices.size}), "
+                             f"got {self.contacts.size}")
+
+    def pairs(self):
+        return tuple(zip(self.contacts.tolist(), self.indices.tolist()))
+
+    def check(self, m: int) -> None:
+        super().check(m)
+        bad = self.contacts[(self.contacts < 0) | (self.contacts >= m)]
+        if bad.size:
+            raise ValueError(f"bearing family {self.name!r} names contact {int(bad[0])}, but the model has "
+                             f"m = {m} unknowns")
+
+
 class Friction(ConstraintFamily):
     """Coulomb slip multipliers of 2D contacts: ``|T| <= mu N``, slip increments in the sense of ``T``.
 

@@ -296,7 +296,7 @@ def _add_element(fr: Frame2D, e, to_mass=1.0) -> None:
             fr.dashpot(e.name, e.node_i, e.c, j=e.node_j, direction=e.direction)
         case Soil():
             fr.soil(e.name, e.node, e.k, c=e.c, direction=e.direction, gap=e.gap, capacity=e.capacity, mu=e.mu,
-                    kt=e.kt, ct=e.ct)
+                    kt=e.kt, ct=e.ct, bearing=e.bearing)
         case Gap():
             fr.gap(e.name, e.node_i, e.node_j, e.k, gap=e.gap, c=e.c, direction=e.direction, mu=e.mu, kt=e.kt,
                    ct=e.ct)

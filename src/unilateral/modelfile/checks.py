@@ -31,7 +31,7 @@ from .errors import (ModelFileError, Problems, compact_ids, did_you_mean, key_pa
                      translate, value_problem)
 from .pushover_table import pushover_problems
 from .recorders import recorder_problems
-from .schema import (FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Gap, Hinge, ModelFile, Node, Soil, YieldLink,
+from .schema import (FILE_REF, FRAME_SECTIONS, NODE_REF, TIME_UNITS, Beam, Gap, Hinge, ModelFile, Node, SoilBase, YieldLink,
                      iter_fields)
 from .schema3d import DOFS_3D, Beam3D, Node3D
 
@@ -345,7 +345,7 @@ def _unilateral_problems(document: ModelFile) -> list[str]:
     hinged = {}
     for k, e in enumerate(document.unilateral):
         at = ("unilateral", k)
-        if isinstance(e, Soil | Gap):                   # (their 3-D forms are subclasses)
+        if isinstance(e, SoilBase | Gap):               # (their 3-D forms are subclasses)
             problems += _friction_problems(at, e)
         elif isinstance(e, YieldLink):
             problems += _yield_force_problems(at, e)

@@ -27,6 +27,7 @@ from .. import _LCP_NAMES as LCP_SOLVERS, _MATRIX_METHOD_NAMES as MATRIX_METHOD_
 from .pushover_table import PushoverTable, needs_time_step
 from .rigid import rigid_tables
 from .support_motion_table import support_motion_table
+from .values import _direction, _dof_ref, _gravity, _node_id, _pair, _vector
 from .walk import iter_fields  # noqa: F401 (the walk of a validated document, re-exported)
 from .recorders import OutputRecorders
 
@@ -51,50 +52,6 @@ FILE_REF = _Marker("file")
 
 
 # ---------------------------------------------------------------------- value types
-def _node_id(value):
-    if isinstance(value, bool) or not isinstance(value, int | str) or value == "":
-        raise PydanticCustomError("node_id", "expected an integer or a non-empty string")
-    return value
-
-
-def _dof_ref(value):
-    if isinstance(value, bool) or not isinstance(value, int | str) or value == "" or (
-            isinstance(value, int) and value < 0):
-        raise PydanticCustomError("dof_ref", "expected a DOF name or a 0-based index >= 0")
-    return value
-
-
-def _vector(value):
-    ok = (isinstance(value, list) and len(value) == 2
-          and all(isinstance(x, int | float) and not isinstance(x, bool) for x in value))
-    if not ok or not all(abs(x) < float("inf") for x in value) or not any(value):
-        raise PydanticCustomError("vector", "expected a nonzero vector [dx, dy] of two numbers")
-    return (float(value[0]), float(value[1]))
-
-
-def _pair(value):
-    if not (isinstance(value, list) and len(value) == 2 and all(isinstance(x, int | float) and not isinstance(x, bool)
-                                                                and abs(x) < float("inf") for x in value)):
-        raise PydanticCustomError("pair", "expected a pair [x, y] of two finite numbers")
-    return (float(value[0]), float(value[1]))
-
-
-def _direction(value):
-    if isinstance(value, str):
-        if value not in ("ux", "uy", "rz"):
-            raise PydanticCustomError("direction", 'expected "ux", "uy", "rz" or a vector [dx, dy]')
-        return value
-    return _vector(value)
-
-
-def _gravity(value):
-    if value == "standard":
-        return value
-    if isinstance(value, bool) or not isinstance(value, int | float) or not 0 < value < float("inf"):
-        raise PydanticCustomError("gravity", 'expected a number > 0 or "standard"')
-    return float(value)
-
-
 _NUMBER_SCHEMA = {"type": "number"}
 NodeId = Annotated[int | str, PlainValidator(_node_id), WithJsonSchema({"type": ["integer", "string"], "minLength": 1})]
 NodeRef = Annotated[NodeId, NODE_REF]
@@ -262,7 +219,7 @@ class Dashpot(_TwoNodes):
 Element = Annotated[Union[Beam, Bar, Spring, Dashpot], Field(discriminator="type", title="element type")]
 
 
-class Soil(Table):
+class SoilBase(Table):
     """Tensionless soil under a node: spring k and dashpot c in parallel, acting only in contact."""
 
     type: Literal["soil"]
@@ -276,6 +233,13 @@ class Soil(Table):
     mu: NonNegative | None = Field(None, description="Coulomb friction coefficient (none: no friction).")
     kt: Positive | None = Field(None, description="Stick stiffness along the soil [force/length]; required with mu.")
     ct: NonNegative = Field(0.0, description="Viscosity in parallel with kt [force time/length].")
+
+
+class Soil(SoilBase):
+    """Tensionless soil under a node of a 2-D frame, which may yield in compression (bearing)."""
+
+    bearing: Positive | None = Field(None, description="Bearing capacity of the spring: the largest compression "
+                                     "[force]; beyond it the soil settles plastically (none: no limit).")
 
 
 class Gap(_TwoNodes):

@@ -13,7 +13,7 @@ from pydantic import Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
 from .schema import (Bar, Cable, ConstantLoad, Dashpot, Figure, FoundationSoil, Gap, GravityValue, GroundMotion, Hinge,
-                     ModelFile, Name, NodeId, NodeRef, NonNegative, Output, Positive, Slider, Soil, Spring,
+                     ModelFile, Name, NodeId, NodeRef, NonNegative, Output, Positive, Slider, SoilBase, Spring,
                      SupportMotion, Table, TimeFunction, YieldLink, _NUMBER_SCHEMA, _TwoNodes)
 
 DOFS_3D = ("ux", "uy", "uz", "rx", "ry", "rz")
@@ -135,8 +135,8 @@ _FACETS = Field(None, description=(
     "With mu: the number of facets of the friction cone (an even integer >= 4; default 4)."))
 
 
-class Soil3D(Soil):
-    """Tensionless soil under a node of a 3-D frame (default direction uz)."""
+class Soil3D(SoilBase):
+    """Tensionless soil under a node of a 3-D frame (default direction uz; no bearing capacity)."""
 
     direction: Direction3 = Field("uz", description="Direction in which the node separates from the soil.")
     facets: Annotated[int, Field(ge=4)] | None = _FACETS

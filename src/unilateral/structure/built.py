@@ -11,7 +11,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..loads.units import STANDARD_GRAVITY
-from ..constraints import Contact, Friction, Yield
+from ..constraints import Bearing, Contact, Friction, Yield
 from ..model import ConstantStrain, Model, NaturalForm
 from . import elements as el, support_motion
 from .assembly import _nonzero_interaction
@@ -111,14 +111,19 @@ class Structure:
 
     def families(self) -> list:
         """The constraint families of the unknowns: one :class:`~unilateral.constraints.Contact`,
-        one :class:`~unilateral.constraints.Yield` and one :class:`~unilateral.constraints.Friction`
-        (each only if it has unknowns)."""
+        one :class:`~unilateral.constraints.Yield`, one :class:`~unilateral.constraints.Bearing` (the
+        settlements of soil springs with a bearing capacity, each the partner of its contact) and one
+        :class:`~unilateral.constraints.Friction` (each only if it has unknowns)."""
         pairs = self.constraints
         index = {u.name: k for k, (_, u) in enumerate(pairs)}
         of = {kind: [k for k, (_, u) in enumerate(pairs) if u.kind == kind] for kind in el.UNKNOWN_KINDS}
         families = [Contact(of["contact"])] if of["contact"] else []
-        if of["yield"]:
-            families.append(Yield(of["yield"], polygons=_yield_polygons(pairs, of["yield"])))
+        settled = [k for k in of["yield"] if pairs[k][0].kind == "soil"]     # bearing capacities of soil springs
+        paired = [k for k in of["yield"] if pairs[k][0].kind != "soil"]
+        if paired:
+            families.append(Yield(paired, polygons=_yield_polygons(pairs, paired)))
+        if settled:
+            families.append(Bearing(settled, contacts=[index[pairs[k][0].name] for k in settled]))
         if of["friction"]:
             slips = [pairs[k][1] for k in of["friction"]]
             normal = [-1 if u.normal is None else index[u.normal] for u in slips]

@@ -157,7 +157,7 @@ def add_masses(frame, nodes, m, *, J=0.0) -> None:
         mass[node] = row if before is None else before + row
 
 
-def add_soils(frame, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy") -> None:
+def add_soils(frame, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy", bearing=None) -> None:
     """:meth:`Frame2D.soils <unilateral.structure.Frame2D.soils>`."""
     where = "soils"
     nodes = ids(where, "nodes", nodes)
@@ -168,15 +168,18 @@ def add_soils(frame, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction
     k, c = reals(where, "k", k, size, ">0"), reals(where, "c", c, size, ">=0")
     theta = -reals(where, "gap", gap, size)
     capacity = reals(where, "capacity", capacity, size, ">=0").tolist()
+    bearing = None if bearing is None else reals(where, "bearing", bearing, size, ">0").tolist()
     template, row = el._relative(None, 0, (terms,))             # the DOFs and the row of one element
     moved = [dof for _, dof in template]
     a = np.empty((size, 1, row.shape[1]))
     a[:] = row
     stiffness, theta = k.reshape(size, 1, 1).copy(), theta.reshape(size, 1)
     viscosity = c.reshape(size, 1, 1).copy()
-    make, contact, elements = el._element, el.contact_unknown, frame._elements
+    make, contact, settle, elements = el._element, el.contact_unknown, el.bearing_unknown, frame._elements
     for p, (name, node) in enumerate(zip(names, nodes)):
+        unknowns = (contact(name, capacity[p]),)
+        if bearing is not None:                                 # the plastic settlement beyond the capacity
+            unknowns += (settle(name, bearing[p], float(k[p])),)
         elements.append(make(name, "soil", tuple((node, dof) for dof in moved), a[p], stiffness[p], theta[p],
-                             E_v=viscosity[p] if c[p] > 0 else None, unknowns=(contact(name, capacity[p]),),
-                             A=None))
+                             E_v=viscosity[p] if c[p] > 0 else None, unknowns=unknowns, A=None))
     frame._names.update(names)

@@ -31,7 +31,9 @@ family (``"contact"``, ``"yield"`` or ``"friction"``, :mod:`unilateral.constrain
   shortening) carries compression (a cable: tension) and at most the force ``r``;
 - a yield pair (``"name.plastic+"``, ``b = +1``, ``r = F_t``; ``"name.plastic-"``, ``b = -1``,
   ``r = F_c``) on one strain keeps its force in ``-F_c <= sigma <= F_t``; ``v`` are the cumulative
-  plastic multipliers, the plastic strain is ``v+ - v-``;
+  plastic multipliers, the plastic strain is ``v+ - v-``; a soil contact with a bearing capacity
+  ``Q`` has its compression face alone (``"name.plastic-"``, ``r = Q``, :func:`bearing_unknown`),
+  whose multiplier is the plastic settlement;
 - a slip pair (``"name.slip+"``, ``"name.slip-"``) on a tangential strain keeps
   ``|T| <= mu N``, ``N`` the compression of its contact ``"name"`` (or a constant ``N`` in ``r``);
 - a facet of a polygonal friction cone (3-D, :func:`.elements3d.frictional`) keeps
@@ -179,6 +181,15 @@ def contact_unknown(name, r=0.0) -> Unknown:
     unknown.__dict__.update(name=name, row=0, b=1.0, r=r, kind="contact", normal=None, mu=0.0, node=None, k=None,
                             extra=())
     return unknown
+
+
+def bearing_unknown(name, Q, k) -> Unknown:
+    """The plastic settlement ``"name.plastic-"`` of a soil contact with the bearing capacity ``Q``
+    [force]: a one-sided yield face on the contact's strain (row 0, ``b = -1``, ``r = Q``, the
+    spring ``k`` [force/length] in series), ``psi = -sigma - Q <= 0``; its multiplier ``w`` [length]
+    only grows (:class:`~unilateral.constraints.Bearing`) and enters the strain as ``+w``: the force
+    ``sigma = k (e - v + w - theta)``."""
+    return Unknown(f"{name}.plastic-", 0, -1.0, Q, "yield", None, 0.0, None, k)
 
 
 def _element(name, kind, dofs, a, E, theta, *, E_v=None, unknowns=(), A=None) -> Element:

@@ -38,6 +38,16 @@ _isfinite = math.isfinite
 _INF = math.inf
 
 
+def _no_bearing_capacity(where, q_ult) -> None:
+    """Refuse a bearing capacity ``q_ult`` (not None) on a footing on a soil medium."""
+    if q_ult is not None:
+        raise ValueError(f"{where}: q_ult={q_ult!r}: a bearing capacity is not available on a soil medium (the "
+                         "plastic settlement of a patch would add to the soil's surface displacement in the "
+                         "Laplace domain); put the footing on soil springs that yield instead: "
+                         "Frame2D.spring_footing(..., q_ult=...), or Frame2D.soils(..., bearing=...) under "
+                         "nodes rigidly linked to the footing")
+
+
 class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
     """Builder of a plane frame with unilateral elements (foundation uplift, pounding, cables).
 
@@ -228,7 +238,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
 
     # ------------------------------------------------------------------ unilateral elements
     def soil(self, name, node, k, *, c=0.0, direction="uy", gap=0.0, capacity=0.0, mu=None, kt=None,
-             ct=0.0) -> None:
+             ct=0.0, bearing=None) -> None:
         """Tensionless soil element under ``node``: spring ``k`` and dashpot ``c`` in parallel (a
         Kelvin element, ``E_v = c``) in series with a unilateral contact.
 
@@ -247,6 +257,16 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         mu : Coulomb friction coefficient >= 0, or None (no friction: the node slides freely)
         kt : stick stiffness, force/length, > 0; required with ``mu``
         ct : viscosity of a Kelvin dashpot in parallel with ``kt``, force time/length (default 0)
+        bearing : the bearing capacity ``Q > 0`` of the spring, force (not a pressure: a footing of
+            area ``A`` on ``n`` springs with the ultimate pressure ``q_ult`` gives each ``q_ult A / n``),
+            or None (default: the soil carries any compression)
+
+        With ``bearing``, the compression never exceeds ``Q``: ``-sigma <= Q``; beyond it the soil
+        settles plastically by ``w >= 0``, the unknown ``"name.plastic-"`` (a one-sided yield face,
+        rate law: ``w' >= 0`` only while ``-sigma = Q``; :class:`~unilateral.constraints.Bearing`),
+        and the force is ``sigma = k (e - v + w + gap) + c (e' - v' + w')``. Unloading is elastic
+        with the permanent settlement ``w``; the tension side keeps its contact (lift-off at
+        ``capacity``). The settlement's work ``Q w`` is the ``plastic_work`` of the energy balance.
 
         With ``mu``, a tangential strain ``t . u_node`` (``t`` the direction turned 90 degrees
         clockwise: ``"ux"`` for ``"uy"``) carries the force ``T = kt (e_t - s+ + s-) + ct (...)'``
@@ -256,15 +276,65 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         """
         where = self._label("soil", name)
         self._node(where, "node", node)
-        self._add(self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap,
-                                capacity=capacity, friction=_friction(where, mu, kt, ct)))
+        element = self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap,
+                                capacity=capacity, friction=_friction(where, mu, kt, ct))
+        if bearing is not None:
+            element = replace(element, unknowns=element.unknowns + (
+                el.bearing_unknown(name, _real(where, "bearing", bearing, ">0"), element.E[0, 0]),))
+        self._add(element)
 
-    def soils(self, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy") -> None:
+    def soils(self, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy", bearing=None) -> None:
         """Many tensionless soil elements at once: :meth:`soil` ``(names[k], nodes[k], k[k], c=c[k],
-        gap=gap[k], capacity=capacity[k], direction=direction)`` for every row (the numbers: (n,) or
-        one for all; one ``direction``; without friction: contacts with friction by :meth:`soil`).
-        All rows are checked before any element is added."""
-        bulk.add_soils(self, names, nodes, k, c=c, gap=gap, capacity=capacity, direction=direction)
+        gap=gap[k], capacity=capacity[k], direction=direction, bearing=bearing[k])`` for every row
+        (the numbers: (n,) or one for all; ``bearing`` [force per spring] None for none; one
+        ``direction``; without friction: contacts with friction by :meth:`soil`). All rows are
+        checked before any element is added."""
+        bulk.add_soils(self, names, nodes, k, c=c, gap=gap, capacity=capacity, direction=direction, bearing=bearing)
+
+    def spring_footing(self, name, node, *, width, k, length=1.0, c=0.0, springs=8, q_ult=None, gap=0.0) -> None:
+        """A rigid footing under ``node`` on a bed of tensionless soil springs (Winkler) that may yield.
+
+        The footing (``width`` along the frame's x, centred on ``node``, ``length`` out of plane, area
+        ``A = width length``) is cut into ``springs`` equal strips; at each strip's centre a node
+        ``"name.<j>"`` (``j = 1 ...`` from left to right) rigidly linked to ``node`` rests on the
+        :meth:`soil` ``"name.<j>"`` of stiffness ``k A / springs``, viscosity ``c A / springs`` and
+        bearing capacity ``q_ult A / springs`` (:meth:`soils`). ``node`` carries the footing's ``uy``
+        and ``rz``; restrain its ``ux`` (:meth:`support`) or connect it horizontally otherwise.
+
+        Under a vertical load ``N`` the footing's moment capacity (the plateau of its static
+        moment-rotation curve) is ``M_n = M_ult - q_ult length h^2 f (1 - f) / 2``, ``h = width/springs``,
+        ``f`` the fractional part of ``N springs / (q_ult A)``; it tends to ``M_ult = N width / 2
+        (1 - N / N_ult)``, ``N_ult = q_ult A``, with the order 2 in ``1/springs``
+        (``tests/test_bearing_capacity.py``).
+
+        Parameters
+        ----------
+        width, length : float, length, > 0
+        k : modulus of subgrade reaction (stiffness per unit area), force/length^3, > 0
+        c : viscosity per unit area, force time/length^3, >= 0
+        springs : int >= 1, the number of springs
+        q_ult : the ultimate bearing pressure, force/length^2, > 0, or None (no bearing capacity)
+        gap : the springs' initial gap, length (negative: a penetration)
+        """
+        where = self._label("spring_footing", name)
+        self._node(where, "node", node)
+        width, length = _real(where, "width", width, ">0"), _real(where, "length", length, ">0")
+        if isinstance(springs, bool) or not isinstance(springs, int) or springs < 1:
+            raise ValueError(f"{where}: springs={springs!r} must be an int >= 1 (the number of soil springs)")
+        share = width * length / springs
+        k, c = _real(where, "k", k, ">0") * share, _real(where, "c", c, ">=0") * share
+        bearing = None if q_ult is None else _real(where, "q_ult", q_ult, ">0") * share
+        gap = _real(where, "gap", gap)
+        ids = [f"{name}.{j + 1}" for j in range(springs)]
+        x0, y0 = self._coords[node]
+        taken = [i for i in ids if i in self._coords or i in self._names]
+        if taken:
+            raise ValueError(f"{where}: {taken[0]!r} is already a node or an element name; rename the footing")
+        self.nodes(ids, x0 - width / 2 + (np.arange(springs) + 0.5) * (width / springs), np.full(springs, y0))
+        for i in ids:
+            self.rigid_link(node, i)
+        self.soils(ids, ids, k, c=c, gap=gap, bearing=bearing)
+        self._names.add(name)
 
     def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None, mu=None, kt=None, ct=0.0) -> None:
         """Pounding (gap) link between nodes ``i`` and ``j``: compression-only contact spring ``k``
@@ -388,7 +458,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
 
     # ------------------------------------------------------------------ foundation on a soil medium
     def foundation(self, name, node, *, width=None, length, soil, patches=None, nodes=None,
-                   horizontal="support", gap=0.0, mass=0.0, J=0.0, mu=None) -> None:
+                   horizontal="support", gap=0.0, mass=0.0, J=0.0, mu=None, q_ult=None) -> None:
         """A footing resting on a soil medium (half-space, cones or Winkler-Kelvin) through
         unilateral contacts; :meth:`Structure.to_model` then gives a
         :class:`~unilateral.soil.FoundationModel` (``docs/theory.md``, section 12).
@@ -434,10 +504,15 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         mass, J : float >= 0, mass and mass length^2
             The rigid footing's own mass (on ``ux``, ``uy`` of ``node``) and rotary inertia (on
             ``rz``); a flexible footing's masses are those of its nodes (:meth:`mass`).
+        q_ult : None
+            Refused: a bearing capacity on a soil medium would need a plastic settlement added to the
+            soil's surface displacement in the Laplace domain, which is not implemented. A footing
+            whose soil yields: :meth:`spring_footing` (``q_ult`` per unit area on soil springs).
         """
         from .foundation import build_foundation, horizontal_cone
 
         where = f"foundation {name!r}"
+        _no_bearing_capacity(where, q_ult)
         if not isinstance(name, str) or not name:
             raise TypeError(f"foundation name must be a non-empty str, got {name!r}")
         if name in self._names:
