@@ -20,6 +20,7 @@ Strain and sign conventions of the elements are in :mod:`unilateral.structure.el
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from itertools import compress
 
 import numpy as np
