@@ -186,8 +186,9 @@ def _energy_below_equilibrium(block, theta, omega, side, linear) -> bool:
 
 
 def rocking_response(block, a_g, t_end, *, linear=False, pulse_end=None, criterion="tilt", settle=True,
-                     rtol=1e-11, atol=1e-13, max_impacts=400) -> RockingResponse:
-    """The rocking of ``block`` from rest under the base acceleration ``a_g(t)`` until ``t_end``.
+                     theta0=0.0, omega0=0.0, rtol=1e-11, atol=1e-13, max_impacts=400) -> RockingResponse:
+    """The rocking of ``block`` under the base acceleration ``a_g(t)`` until ``t_end``, from rest or
+    from the tilt ``theta0`` and its rate ``omega0`` at ``t = 0``.
 
     Parameters
     ----------
@@ -198,6 +199,8 @@ def rocking_response(block, a_g, t_end, *, linear=False, pulse_end=None, criteri
     pulse_end : time after which ``a_g = 0`` (a break of the integration; None: ``t_end``)
     criterion : ``"tilt"`` (the first passing of the equilibrium overturns) or ``"free"`` (see the
         module)
+    theta0, omega0 : the initial state (rad, rad/time); ``theta0 = 0`` with ``omega0 != 0``
+        pivots on the side ``omega0`` turns to
     settle : end the run once the base is at rest and the block cannot overturn any more (else
         follow its free rocking until ``t_end``)
     rtol, atol : of ``solve_ivp`` (``DOP853``)
@@ -213,7 +216,12 @@ def rocking_response(block, a_g, t_end, *, linear=False, pulse_end=None, criteri
     pulse_end = t_end if pulse_end is None else min(float(pulse_end), t_end)
     limit = math.tan(block.alpha) if linear else block.alpha
     r, out = block.restitution, RockingResponse()
-    t, y, side, past, count = 0.0, np.zeros(2), 0, False, 0
+    t, y, past, count = 0.0, np.array([theta0, omega0], dtype=float), False, 0
+    side = int(np.sign(theta0 if theta0 else omega0))
+    if side:
+        out.start = 0.0
+        if abs(theta0) >= limit:
+            raise ValueError(f"rocking_response: |theta0|={abs(theta0)!r} must be below the equilibrium {limit!r}")
     scan = min(pulse_end, t_end) / 4000 if pulse_end > 0 else t_end / 4000
     while t < t_end:
         if side == 0:
