@@ -130,7 +130,8 @@ def figure(result, frequencies, amplitudes, path):
         if pts:
             ax.scatter(*zip(*pts), c=colour, marker=marker, s=28, label=label)
     ax.axhline(1.0, color="gray", lw=1, ls="--")
-    ax.text(frequencies[-1], 0.75, "uplift: a_p = g tan(alpha)", fontsize=8, color="gray", ha="right")
+    ax.text(frequencies[-1], 0.45, "uplift: a_p = g tan(alpha)", fontsize=8, color="gray", ha="right")
+    ax.set_ylim(0.0, None)
     ax.set_xlabel("pulse frequency omega_p / p")
     ax.set_ylabel("pulse amplitude a_p / (g tan alpha)")
     ax.set_title("Rigid block (b/h = 0.2) under a one-sine pulse: overturning map (moreau-jean)", fontsize=10)

@@ -4,9 +4,9 @@
 Measured (the block of ``examples/overturning_map.py``, 0.5 x 2.5 m, ``rule="trapezoidal"``, the
 lift-off and the end of the pulse on the grid, ``dt = T / n``): the rotation history and the impact
 times of the linearised block equal the linearised reference's with errors ``C dt^2``, fitted order
-2.0 (n = 64 ... 1024; ``C = 0.96`` rad/s^2 and 2.7 s^-1 under ``a_p = sqrt(2) g tan(alpha)``,
-``omega_p = 4 p``, 0.64 and 1.9 under Zhang & Makris' pulse ``a_p = 2 g tan(alpha)``,
-``omega_p = 6 p``). A lift-off inside a step costs the same order with a constant that depends on
+2.0 (n = 64 ... 1024; ``C = 0.96-0.99`` rad/s^2 and 2.7 s^-1 under ``a_p = sqrt(2) g tan(alpha)``,
+``omega_p = 4 p``, 0.64-0.72 and 1.9-2.1 under Zhang & Makris' pulse ``a_p = 2 g tan(alpha)``,
+``omega_p = 6 p``). The tests take n = 64, 128, 256. A lift-off inside a step costs the same order with a constant that depends on
 where it falls (no clean fit).
 """
 

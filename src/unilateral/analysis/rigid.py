@@ -92,8 +92,10 @@ def block_results(structure, sol, name) -> dict:
     (N+1,) the larger opening of the two base corners (length), ``corners``
     (:func:`contact_results` of the two corners), ``peak_rotation`` (rad), ``peak_uplift``,
     ``overturned`` (bool) and ``overturn_time`` (s, or None): the first time the tilt passes
-    ``b / h``, the unstable equilibrium of the linearised rocking (beyond it the tilt grows
-    without bound: the block overturns), and ``impacts``: the located impacts on its corners
+    ``b / h``, the unstable equilibrium of the linearised free rocking (beyond it the free tilt
+    grows without bound: the block overturns; while the base still moves it can be pulled back,
+    so under a pulse this is not the overturn: ``examples/overturning_map.py`` decides it once the
+    pulse is over, ``docs/rocking.md``), and ``impacts``: the located impacts on its corners
     (time, the corner struck, the ratio of the angular velocities after/before).
     """
     block = structure.rigid.blocks[name]
