@@ -185,6 +185,21 @@ def _energy_below_equilibrium(block, theta, omega, side, linear) -> bool:
         and abs(theta) < block.alpha
 
 
+def _phase(block, a_g, span, y, side, *, limit, past, linear, rtol, atol):
+    """One rocking phase on the corner ``side`` over ``span``, to its end or the first event:
+    ``(event, time, state, dense, peak)``, ``event`` 0 impact, 1 ``pi / 2``, 2 the equilibrium
+    (outwards, or back in if ``past``), None the end of ``span``."""
+    events = [_event(lambda _, z: side * z[0], -1), _event(lambda _, z: side * z[0] - math.pi / 2, 1),
+              _event(lambda _, z: side * z[0] - limit, -1 if past else 1)]
+    sol = solve_ivp(_rhs(block, a_g, side, linear), span, y, method="DOP853", rtol=rtol, atol=atol, events=events,
+                    dense_output=True)
+    if sol.status < 0:
+        raise RuntimeError(f"rocking_response: solve_ivp failed at t = {sol.t[-1]!r}: {sol.message}")
+    hit = next((k for k in range(3) if sol.t_events[k].size), None)
+    t, y = (sol.t_events[hit][0], sol.y_events[hit][0].copy()) if hit is not None else (span[1], sol.y[:, -1].copy())
+    return hit, t, y, sol.sol, max(float(np.max(np.abs(sol.y[0]))), abs(float(y[0])))
+
+
 def rocking_response(block, a_g, t_end, *, linear=False, pulse_end=None, criterion="tilt", settle=True,
                      theta0=0.0, omega0=0.0, rtol=1e-11, atol=1e-13, max_impacts=400) -> RockingResponse:
     """The rocking of ``block`` under the base acceleration ``a_g(t)`` until ``t_end``, from rest or
@@ -232,26 +247,20 @@ def rocking_response(block, a_g, t_end, *, linear=False, pulse_end=None, criteri
             t, y, count = start, np.zeros(2), 0
             side = 1 if a_g(start + 1e-9 * scan) > 0 else -1
         stop = pulse_end if t < pulse_end else t_end
-        events = [_event(lambda _, z, s=side: s * z[0], -1),
-                  _event(lambda _, z, s=side: s * z[0] - math.pi / 2, 1),
-                  _event(lambda _, z, s=side: s * z[0] - limit, -1 if past else 1)]
-        sol = solve_ivp(_rhs(block, a_g, side, linear), (t, stop), y, method="DOP853", rtol=rtol, atol=atol,
-                        events=events, dense_output=True)
-        hit = [k for k in range(3) if sol.t_events[k].size]
-        t_new = sol.t_events[hit[0]][0] if hit else stop
-        y = sol.y_events[hit[0]][0].copy() if hit else sol.y[:, -1].copy()
-        out.pieces.append((t, t_new, sol.sol))
-        out.peak_rotation = max(out.peak_rotation, float(np.max(np.abs(sol.y[0]))), abs(float(y[0])))
+        hit, t_new, y, dense, peak = _phase(block, a_g, (t, stop), y, side, limit=limit, past=past, linear=linear,
+                                            rtol=rtol, atol=atol)
+        out.pieces.append((t, t_new, dense))
+        out.peak_rotation = max(out.peak_rotation, peak)
         t = t_new
-        if hit and hit[0] == 0:                                     # impact: the other corner
+        if hit == 0:                                     # impact: the other corner
             out.impacts.append((t, float(y[1]), r * float(y[1])))
             y, side, count = np.array([0.0, r * y[1]]), -side, count + 1
             if count >= max_impacts:
                 y, side = np.zeros(2), 0
-        elif hit and hit[0] == 1:                                   # lies on its side
+        elif hit == 1:                                              # lies on its side
             out.overturned, out.overturn_time = True, t
             break
-        elif hit:                                                   # the equilibrium, out or back in
+        elif hit == 2:                                              # the equilibrium, out or back in
             if not past:
                 out.tilt_time = t if out.tilt_time is None else out.tilt_time
                 if criterion == "tilt" or t >= pulse_end:
