@@ -49,8 +49,9 @@ def test_the_reference_block_is_the_rigid_block_of_the_frame():
 def test_linearised_reference_equals_the_closed_form_of_the_first_rocking_phase(psi):
     """Under a_p sin(omega_p t + psi) from the lift-off t_s to the first impact or the end of the
     pulse: theta = a - C sin(w t + psi) + A cosh(q tau) + B sinh(q tau), tau = t - t_s,
-    C = q^2 a_p / (g (q^2 + w^2)), from rest (Dimitrakopoulos & DeJong's form of the linearised
-    block under a sine pulse; q = p sqrt(cos alpha), a = tan alpha)."""
+    C = q^2 a_p / (g (q^2 + w^2)), from rest (q = p sqrt(cos alpha), a = tan alpha; derived here,
+    the kind of solution Dimitrakopoulos & DeJong 2012 build their spectra on, not checked against
+    their text)."""
     _, _, _, ref = _block()
     q, a = ref.p_linear, math.tan(ref.alpha)
     for amplitude, frequency in [(1.5, 1.0), (3.0, 4.0), (6.0, 2.0)]:
