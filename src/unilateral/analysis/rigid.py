@@ -92,8 +92,10 @@ def block_results(structure, sol, name) -> dict:
     (N+1,) the larger opening of the two base corners (length), ``corners``
     (:func:`contact_results` of the two corners), ``peak_rotation`` (rad), ``peak_uplift``,
     ``overturned`` (bool) and ``overturn_time`` (s, or None): the first time the tilt passes
-    ``b / h``, the unstable equilibrium of the linearised rocking (beyond it the tilt grows
-    without bound: the block overturns), and ``impacts``: the located impacts on its corners
+    ``b / h``, the unstable equilibrium of the linearised free rocking (beyond it the free tilt
+    grows without bound: the block overturns; while the base still moves it can be pulled back,
+    so under a pulse this is not the overturn: ``examples/overturning_map.py`` decides it once the
+    pulse is over, ``docs/rocking.md``), and ``impacts``: the located impacts on its corners
     (time, the corner struck, the ratio of the angular velocities after/before).
     """
     block = structure.rigid.blocks[name]
@@ -115,13 +117,32 @@ def block_results(structure, sol, name) -> dict:
             "impacts": impacts}
 
 
-def one_sine_pulse(a_p, omega_p):
-    """The one-sine acceleration pulse ``a_p sin(omega_p t)`` for ``0 <= t <= 2 pi / omega_p``,
-    0 after (a callable ``a_g(t)``, length/time^2; ``omega_p`` rad/time)."""
-    if not (math.isfinite(a_p) and math.isfinite(omega_p) and omega_p > 0):
-        raise ValueError(f"one_sine_pulse: a_p={a_p!r} must be finite and omega_p={omega_p!r} finite and > 0")
+def one_sine_pulse(a_p, omega_p, *, psi=0.0):
+    """The one-sine acceleration pulse ``a_p sin(omega_p t + psi)`` for ``0 <= t <= 2 pi / omega_p``,
+    0 after (a callable ``a_g(t)``, length/time^2; ``omega_p`` rad/time).
+
+    ``psi = 0`` (default): one full sine cycle from rest; a block lifts once ``a_g`` reaches
+    ``g tan(alpha)``, at ``asin(g tan(alpha) / a_p) / omega_p``, and sees the rest of the cycle.
+    ``psi = rocking_onset_phase(a_p, g tan(alpha))``: Zhang & Makris' (2001) one-sine (type-A)
+    pulse, the cycle started at the phase at which the block lifts (``t = 0``) and lasting a full
+    period from there, so that it ends with a jump from ``a_p sin(psi) = g tan(alpha)`` to 0 (the
+    ground velocity ``(a_p / omega_p) (cos(psi) - cos(omega_p t + psi))`` is back to zero).
+    """
+    if not (math.isfinite(a_p) and math.isfinite(omega_p) and omega_p > 0 and math.isfinite(psi)):
+        raise ValueError(f"one_sine_pulse: a_p={a_p!r}, psi={psi!r} must be finite and omega_p={omega_p!r} "
+                         f"finite and > 0")
     end = 2.0 * math.pi / omega_p
-    return lambda t: a_p * math.sin(omega_p * t) if 0.0 <= t <= end else 0.0
+    return lambda t: a_p * math.sin(omega_p * t + psi) if 0.0 <= t <= end else 0.0
+
+
+def rocking_onset_phase(a_p, uplift_acceleration) -> float:
+    """Zhang & Makris' phase ``psi = asin(g tan(alpha) / a_p)`` of a one-sine pulse of amplitude
+    ``a_p`` (``uplift_acceleration = g tan(alpha)``, ``RigidBlock.uplift_acceleration``): the block
+    lifts at ``t = 0``. ``a_p`` must reach the uplift acceleration (below it nothing lifts)."""
+    if not (math.isfinite(a_p) and uplift_acceleration > 0 and abs(a_p) >= uplift_acceleration):
+        raise ValueError(f"rocking_onset_phase: |a_p|={a_p!r} must be at least the uplift acceleration "
+                         f"{uplift_acceleration!r} (> 0): below it the block does not lift")
+    return math.asin(uplift_acceleration / abs(a_p))
 
 
 def frame_solution(structure, sol):
