@@ -19,7 +19,7 @@ import unilateral as ul
 from unilateral.cli import main
 from unilateral.modelfile import load_model_file
 from unilateral.opensees import OpenSeesRefused
-import unilateral.opensees.convert as convert
+from unilateral.opensees import convert
 from unilateral.opensees.convert_frame import NotConvertible
 from unilateral.opensees.toml_writer import dumps
 
@@ -84,6 +84,7 @@ TRANSIENT = {   # script -> the largest relative error allowed (u and v), measur
     "convert/beam_rayleigh_springs.py": 1e-12,   # eleLoad, masses, betaK with -doRayleigh, truss -rho, Linear
     "convert/frame3d_diaphragm.py": 1e-12,       # 3-D: vecxz, rigidDiaphragm, zeroLength, two components
     "tcl/portal_hinges.tcl": 1e-12,        # the Tcl front
+    "tcl/frame_on_ent.tcl": 1e-10,
 }
 
 
@@ -123,6 +124,22 @@ def test_converted_pushover_equals_the_script(tmp_path, monkeypatch):
     assert e_u <= 1e-12 and e_lam <= 1e-12
     summary = run_file(spec, tmp_path / "run", figures=())
     assert summary["success_all"] and not summary["not_applied"]
+
+
+def test_pushover_pattern_pushing_the_other_way(tmp_path):
+    """A pattern towards -x with increments towards +x: OpenSees's load factor is negative, the model
+    file's pattern is turned to push towards its target (the same path)."""
+    from unilateral.pushover.files import run_file
+
+    text = (SCRIPTS / "convert" / "pushover_portal.py").read_text()
+    script = tmp_path / "push.py"
+    script.write_text(text.replace("ops.load(3, 1.0, 0.0, 0.0)", "ops.load(3, -1.0, 0.0, 0.0)")
+                      .replace("ops.load(4, 1.0, 0.0, 0.0)", "ops.load(4, -1.0, 0.0, 0.0)"))
+    out = tmp_path / "push.toml"
+    convert.convert_script(script, out)
+    spec = load_model_file(out)
+    assert [f.ux for f in spec.document.pushover.pattern] == [1.0, 1.0]
+    assert run_file(spec, tmp_path / "run", figures=())["success_all"]
 
 
 def test_cli_convert_then_run(tmp_path):

@@ -57,6 +57,7 @@ class Stage:
     time: float = 0.0
     control: tuple | None = None    # (node, dof) of a DisplacementControl
     end: float | None = None        # the control DOF's displacement at the end
+    sign: float = 1.0               # +1, or -1 if the pattern pushes the control DOF the other way
     closed: bool = False            # wipe() was called after it began
 
 
@@ -96,6 +97,7 @@ class CaptureSession(Session):
         stage.time = d.time
         if stage.control is not None:
             stage.end = float(nodal(a, "u", *stage.control))
+            stage.sign = a.path.scale                   # the sense the pattern pushes the control DOF
         return code
 
     def _begin(self, integrator, dt) -> Stage:
@@ -327,6 +329,8 @@ def _check_same_model(spec, stage):
             _differs(f"{label} (by {abs(A - B).max() / scale:.2e} of its largest entry)")
     if stage.kind == "transient":
         _check_same_loads(spec, stage, index)
+    else:
+        _check_same_pushover(spec, stage, index)
 
 
 def _check_same_loads(spec, stage, index):
@@ -341,6 +345,22 @@ def _check_same_loads(spec, stage, index):
     static = float(np.abs(before[index] - theirs[0]).max(initial=0.0))
     if max(error, static) > TOLERANCE * scale:
         _differs(f"the loads (by {max(error, static) / scale:.2e} of the largest)")
+
+
+def _check_same_pushover(spec, stage, index):
+    """The pushover's gravity and pattern (reduced) against the script's held load and Linear patterns."""
+    from .control import _loads
+
+    table = spec.document.pushover
+    p, q0 = _loads(types.SimpleNamespace(built=stage.built, domain=stage.domain))
+    pattern = sum(spec.structure.nodal_load(f.node, **f.components) for f in table.pattern)   # as run_file
+    gravity = np.asarray(spec.load.constant, dtype=float) if table.gravity else None
+    for label, ours, theirs in (("the pushover's pattern", pattern, stage.sign * p),
+                                ("the gravity", np.zeros(p.size) if gravity is None else gravity, q0 + stage.t0 * p)):
+        ours = np.asarray(ours, dtype=float)[index]
+        scale = max(float(np.abs(theirs).max(initial=0.0)), float(np.abs(ours).max(initial=0.0)), 1e-300)
+        if float(np.abs(ours - theirs).max(initial=0.0)) > TOLERANCE * scale:
+            _differs(label)
 
 
 def _differs(what):

@@ -136,7 +136,8 @@ def _fixities(domain):
         if sorted(dofs) == list(range(1, nf + 1)) and domain.nodes[master] == domain.nodes[slave]:
             links.append({"master": master, "slave": slave})
             continue
-        not_convertible(f"equalDOF({master}, {slave}, {', '.join(map(str, dofs))})", "the model file has no key "
+        bar = f" (or rigidLink('bar', {master}, {slave}))" if tuple(dofs) == tuple(range(1, domain.ndm + 1)) else ""
+        not_convertible(f"equalDOF({master}, {slave}, {', '.join(map(str, dofs))}){bar}", "the model file has no key "
                         f"for DOFs tied between nodes: DOFs {free} are not fixed ([[supports]] hold a DOF tied to a "
                         "fixed one, [[rigid_links]] tie every DOF of a rigid body)", "equalDOF to a fixed node, "
                         "every DOF of two nodes at one point (a rigid link), rigidLink('beam', ...), or a stiff "

@@ -115,6 +115,7 @@ def pushover_tables(stage, masses, fixed) -> tuple[dict, dict, dict]:
         else:
             reference += p.factor * d.series[p.series].factor * f
     held += stage.t0 * reference
+    reference *= stage.sign                         # the pattern pushes the control DOF towards the target
     names, nf = _dof_names(d.ndf), d.ndf
     pattern = []
     for tag in d.nodes:
@@ -126,7 +127,7 @@ def pushover_tables(stage, masses, fixed) -> tuple[dict, dict, dict]:
         loads["gravity"] = {"g": gravity, "direction": [0.0, -1.0] if d.ndm == 2 else [0.0, 0.0, -1.0]}
     node, dof = stage.control
     table = {"pattern": pattern, "node": node, "dof": names[dof - 1], "target": float(stage.end),
-             "control": "displacement", "gravity": gravity is not None}
+             "control": "displacement", "gravity": gravity is not None, "max_events": 100_000}
     return loads, {"type": "pushover", "lcp": "bpp"}, table
 
 
