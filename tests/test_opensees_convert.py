@@ -50,6 +50,7 @@ class Recording(convert.CaptureSession):
 def converted(script, folder, monkeypatch):
     """Convert ``script`` into ``folder``: the model file's path and the script's recorded history."""
     monkeypatch.setattr(convert, "CaptureSession", Recording)
+    monkeypatch.chdir(folder)                                   # the files a script writes go there
     out = folder / (Path(script).stem + ".toml")
     result = convert.convert_script(script, out)
     assert result["path"] == out and out.exists()
