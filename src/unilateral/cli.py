@@ -293,6 +293,41 @@ def opensees(script):
         raise click.ClickException(str(exc)) from None
 
 
+@main.command()
+@click.argument("script", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--out", type=click.Path(dir_okay=False, path_type=Path), default=None, metavar="OUT.toml",
+              help="The model file to write (default: SCRIPT with the suffix .toml); its records and tables are "
+                   "written beside it (OUT.ground<tag>.txt, OUT.pattern<tag>.txt).")
+@click.option("--force", is_flag=True, help="Replace OUT and its records and tables if they exist.")
+def convert(script, out, force):
+    """Write the model of an OpenSees script (structure, loads, analysis) as a model file.
+
+    SCRIPT (model.py, OpenSeesPy; model.tcl, Tcl) runs on unilateral.opensees as `unilateral
+    opensees` runs it; its main analysis (the first transient one, after any static gravity
+    analysis, or a DisplacementControl pushover) becomes the model file's [analysis]. The file is
+    read back and its model checked against the script's before anything is written. A command
+    the model file cannot express is refused, naming it (docs/opensees.md, Conversion).
+    """
+    out = out or script.with_suffix(".toml")
+    if script.suffix.lower() not in (".py", ".tcl"):
+        raise click.BadParameter(f"{script}: an OpenSees script is a .py (OpenSeesPy) or a .tcl file",
+                                 param_hint="'SCRIPT'")
+    if out.suffix.lower() != ".toml":
+        raise click.BadParameter(f"{out}: a model file ends in .toml", param_hint="'-o' / '--out'")
+    if out.exists() and not force:
+        raise click.ClickException(f"{out} exists: give --force to replace it")
+    from .opensees import OpenSeesRefused
+    from .opensees.convert import convert_script
+
+    try:
+        result = convert_script(script, out, force=force)
+    except (OpenSeesRefused, RuntimeError, ValueError, OSError) as exc:
+        raise click.ClickException(str(exc)) from None
+    for path in [result["path"], *result["files"]]:
+        click.echo(path)
+    click.echo(f"{result['kind']} analysis of {result['steps']} steps: unilateral run {result['path']}", err=True)
+
+
 @main.command(context_settings={"ignore_unknown_options": True, "allow_extra_args": True,
                                 "help_option_names": []})
 @click.pass_context

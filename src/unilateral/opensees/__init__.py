@@ -6,7 +6,8 @@ a :class:`unilateral.Simulation` or follows its static path (:mod:`.stepping`, :
 and the queries and recorders answer in OpenSees's layout and signs (:mod:`.queries`,
 :mod:`.recorders`). What is outside the subset raises :class:`OpenSeesRefused` at once
 (:mod:`.refusals`). Tcl scripts run through Python's Tcl interpreter (:mod:`.tcl`,
-``unilateral opensees model.tcl``). See ``docs/opensees.md``."""
+``unilateral opensees model.tcl``). :mod:`.convert` writes a script's model as a model file
+(``unilateral convert model.py -o model.toml``). See ``docs/opensees.md``."""
 
 from __future__ import annotations
 
@@ -19,8 +20,16 @@ globals().update(_commands)
 
 __all__ = ["OpenSeesRefused", *_commands]
 
+#: The submodules not imported with the package (``from unilateral.opensees import convert`` imports them).
+_LAZY_MODULES = ("convert", "convert_frame", "convert_loads", "toml_writer", "tcl")
+
+
 def __getattr__(name):
     """Every other OpenSeesPy command: a function that refuses it when called."""
     if name.startswith("__"):
         raise AttributeError(name)
+    if name in _LAZY_MODULES:
+        import importlib
+
+        return importlib.import_module(f"{__name__}.{name}")
     return refused_command(name)
