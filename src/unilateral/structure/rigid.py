@@ -108,6 +108,10 @@ class RigidBlock:
         """Weight ``m g``, force."""
         return self.mass * self.g
 
+    def geometric_terms(self) -> tuple:
+        """The second-order term of the weight on the base: ``(("rz", -W h),)``."""
+        return (("rz", -self.W * self.h),)
+
     @property
     def I0(self) -> float:
         """Rotary inertia about a base corner, ``J + m (b^2 + h^2)``, force length time^2."""
@@ -177,8 +181,8 @@ class RigidPart:
     N : (n, mr) csr, the columns of ``F`` of the contacts (``N = T^T e_d``)
     gap : (mr,) initial openings, length
     geometric : (n, n) csr, the blocks' second-order gravity terms (``-W h`` on each block's
-        ``rz``), added to ``K``
-    blocks : dict name -> RigidBlock
+        ``rz``, on each 3-D box's ``rx`` and ``ry``), added to ``K``
+    blocks : dict name -> RigidBlock (or :class:`~unilateral.structure.rigid3d.RigidBox` in 3-D)
     tangent : (n, mr) csr, the tangent columns of the contacts with friction (zero columns without)
     """
 
@@ -338,8 +342,9 @@ def attach(frame, structure):
         if N[:, j].nnz == 0:
             raise ValueError(f"contact {c.name!r}: node {c.node!r} cannot move along the normal (supported); "
                              "the contact would act on nothing")
-    rows = [dofs.index(block.base, "rz") for block in parts["blocks"].values() if block.g]
-    vals = [-block.W * block.h for block in parts["blocks"].values() if block.g]
+    terms = [(dofs.index(block.base, dof), value) for block in parts["blocks"].values() if block.g
+             for dof, value in block.geometric_terms()]       # a block's rz; a box's rx, ry (rigid3d.py)
+    rows, vals = [r for r, _ in terms], [v for _, v in terms]
     geometric = sp.csr_matrix((vals, (rows, rows)), shape=(dofs.n, dofs.n))
     Tt = sp.hstack([_column(c, dofs, c.tangent_terms).T if c.mu else sp.csr_matrix((dofs.n, 1)) for c in contacts],
                    format="csr")
