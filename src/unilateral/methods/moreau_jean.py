@@ -201,10 +201,10 @@ def _held_static(system, n):
     k = NA.shape[1]
     saddle = np.block([[s.K, -NA], [NA.T, np.zeros((k, k))]])
     rhs = np.concatenate([np.asarray(s.q(0.0), dtype=float), s.g(0.0)[A], np.zeros(F.size)])
-    try:
+    if k and np.linalg.matrix_rank(NA) < k:            # redundant held rows (two corners' tangents, a 3-D box's
+        x = np.linalg.lstsq(saddle, rhs, rcond=None)[0]     # four corners on uz, rx, ry): the least-norm forces
+    else:
         x = np.linalg.solve(saddle, rhs)
-    except np.linalg.LinAlgError:                      # redundant held rows (two corners' tangents): least norm
-        x = np.linalg.lstsq(saddle, rhs, rcond=None)[0]
     lam, shear = x[n:n + A.size], x[n + A.size:]
     if np.any(np.abs(shear) > s.mu[F] * lam[np.searchsorted(A, F)] * (1 + 1e-9)):
         return None, None, ("the static state with the touching rigid contacts held needs more friction than mu "
