@@ -67,6 +67,9 @@ def test_box_model_is_the_linearised_rocking_in_both_planes():
     assert box.uplift_acceleration == pytest.approx((g * bx / h, g * by / h))
     with pytest.raises(ValueError, match="not planar"):
         box.diagonal()
+    for helper in (rigid.block_rotation, rigid.block_energy, rigid.impacts):      # the 2-D block's
+        with pytest.raises(TypeError, match="3-D rigid box"):
+            helper(st, None, "B")
 
 
 # ---------------------------------------------------------------------- (a), (b): rocking on an edge
@@ -334,3 +337,12 @@ def test_a_3d_model_file_contact_bounces_by_its_restitution(tmp_path):
     first = sol.stats["impacts"][0]
     assert first["time"] == pytest.approx(math.sqrt(2 * 0.2 / 9.81), abs=1e-12)
     assert first["after"][0] == pytest.approx(-0.5 * first["before"][0], rel=1e-12)
+
+
+def test_a_3d_model_file_box_needs_vertical_gravity(tmp_path):
+    from unilateral.modelfile import ModelFileError, load_model_file
+
+    path = _box_file(tmp_path, BOX)
+    path.write_text(path.read_text().replace("g = 9.81\n", "g = 9.81\ndirection = [0.0, -1.0, 0.0]\n"))
+    with pytest.raises(ModelFileError, match=r"rigid_blocks\[0\]: a rigid box needs gravity along -z"):
+        load_model_file(path)

@@ -500,9 +500,18 @@ def _accelerations(M, K, R) -> np.ndarray:
     return out
 
 
+def _block_2d(structure, name) -> RigidBlock:
+    """The 2-D block ``name``; ``TypeError`` for a 3-D box (its results: :mod:`.rigid3d`)."""
+    block = structure.rigid.blocks[name]
+    if not isinstance(block, RigidBlock):
+        raise TypeError(f"{name!r} is a 3-D rigid box: use unilateral.structure.rigid3d.box_tilts, box_energy "
+                        "or unilateral.analysis.rigid.block_results")
+    return block
+
+
 def block_rotation(structure, sol, name) -> np.ndarray:
     """History (N+1,) of the rotation ``rz`` (rad, counter-clockwise) of the block ``name``."""
-    block = structure.rigid.blocks[name]
+    block = _block_2d(structure, name)
     return structure.node_displacement(sol, block.base, "rz")
 
 
@@ -510,7 +519,7 @@ def block_energy(structure, sol, name) -> np.ndarray:
     """Mechanical energy (N+1,) of the block ``name`` in the linearised model, force length:
     ``m uy'^2 / 2 + (J + m h^2) theta'^2 / 2 - W h theta^2 / 2 + W uy`` (``uy``, ``theta`` of the
     base node; constant while the block pivots on a corner or flies, lost at the impacts)."""
-    block = structure.rigid.blocks[name]
+    block = _block_2d(structure, name)
     T = structure.dofs.T
     rows = [T[structure.dofs.full_index(block.base, dof)] for dof in ("uy", "rz")]
     (uy, th), (vy, om) = ([np.asarray(r @ x.T).ravel() for r in rows] for x in (sol.u, sol.udot))
@@ -529,7 +538,7 @@ def impacts(structure, sol, name) -> list[dict]:
     pivoting phase is ``I0 omega^2 / 2`` at ``theta = 0``); ``nan`` if no extreme follows.
     Housner's value is :attr:`RigidBlock.restitution`.
     """
-    block = structure.rigid.blocks[name]
+    block = _block_2d(structure, name)
     theta = block_rotation(structure, sol, name)
     omega = np.asarray(structure.dofs.T[structure.dofs.full_index(block.base, "rz")] @ sol.udot.T).ravel()
     energy = block_energy(structure, sol, name)
