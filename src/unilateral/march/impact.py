@@ -33,6 +33,12 @@ is the plain Moreau-Jean scheme: the active set is the contacts whose opening pr
 mid-step, ``N^T (u0 + h v0 / 2) - g``, is not positive, and an impact is applied at the end of the
 step in which the contact arrives (first order in the impact's effect).
 
+**Redundant contacts.** Where more contacts close than the DOFs they move (a 3-D box's four
+corners on ``uz``, ``rx``, ``ry``), the LCP's matrix is singular and its impulses are not unique
+(the velocities are): :func:`spread` takes the least-norm member of the solution set (a box at rest
+carries ``W / 4`` on each corner), so that a vertex solution's unloaded corner does not show as a
+contact change. Contacts that are never redundant (every 2-D case) keep the LCP's solution.
+
 **Energy.** With ``x_th`` as above, every step satisfies exactly
 
     Delta (v^T M v / 2 + u^T K u / 2) = h q_th^T v_th - h v_th^T C v_th + P^T N^T v_th

@@ -19,7 +19,8 @@ class MoreauJean(Method):
     with Newton's impact law, each impact located within its step by the root of the contact's
     opening and applied there as a jump of the velocity (:mod:`unilateral.march.impact`).
 
-    For models whose every unknown is a rigid contact (``Frame2D.contact``, ``Frame2D.rigid_block``;
+    For models whose every unknown is a rigid contact (``Frame2D.contact``, ``Frame2D.rigid_block``,
+    ``Frame3D.contact``, ``Frame3D.rigid_box``: a box on four corners, :mod:`unilateral.structure.rigid3d`;
     the family :class:`~unilateral.constraints.RigidContact`, whose ``restitution`` is Newton's
     ``e`` of each contact). The rule is the theta-method's weight: ``rule="trapezoidal"``
     (``theta = 1/2``: second order between impacts, no numerical dissipation: the energy balance
@@ -61,8 +62,8 @@ class MoreauJean(Method):
             return reason
         others = _not_rigid(model)
         if not model.m:
-            return ("method='moreau-jean' is for rigid contacts (Frame2D.contact, rigid_block); this model has no "
-                    "unknowns: use method='direct'")
+            return ("method='moreau-jean' is for rigid contacts (Frame2D/Frame3D.contact, rigid_block, rigid_box); "
+                    "this model has no unknowns: use method='direct'")
         if others:
             return (f"method='moreau-jean' solves models whose every unknown is a rigid contact (H = 0: "
                     f"Frame2D.contact, rigid_block); {len(others)} are not ({', '.join(map(repr, others[:4]))}"

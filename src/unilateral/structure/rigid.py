@@ -40,6 +40,9 @@ family :class:`~unilateral.constraints.RigidContact`, not among the model's unkn
 height ``2 h`` with its centre of mass at a node, standing on its two base corners; see
 :class:`RigidBlock` and ``docs/rocking.md`` for the linearised equations of rocking it reproduces
 (Housner 1963).
+
+In 3-D (``Frame3D.contact``, ``Frame3D.rigid_box``: a box on four corners) the builders are those of
+:mod:`unilateral.structure.rigid3d`; the assembly and the model here are shared.
 """
 
 from __future__ import annotations
