@@ -63,10 +63,10 @@ def test_every_example_is_listed_in_the_readme_and_tested():
     # ida.toml: tests/test_batch.py; building3d.py: tests/test_example_building3d.py; rocking_block.py:
     # tests/test_rocking_block.py; pushover_portal.py, pushover_cyclic.py: tests/test_pushover_example.py;
     # pushover_portal.toml: tests/test_pushover_files.py; overturning_map.py, rocking_block.toml: tests/test_moreau_jean.py;
-    # support_motion.toml: tests/test_support_motion.py
+    # support_motion.toml: tests/test_support_motion.py; rocking_box.toml: tests/test_rigid_box3d.py
     assert files == sorted((*SCRIPTS, *MODEL_FILES, "ida.toml", "make_ida_records.py", "building3d.py",
                             "rocking_block.py", "pushover_portal.py", "pushover_cyclic.py", "pushover_portal.toml",
-                            "overturning_map.py", "rocking_block.toml", "support_motion.toml"))
+                            "overturning_map.py", "rocking_block.toml", "support_motion.toml", "rocking_box.toml"))
     for name in files:
         assert f"[{name}]({name})" in readme, f"{name} is not listed in examples/README.md"
         assert f"examples/{name}" in readme, f"examples/README.md gives no command for {name}"

@@ -233,6 +233,8 @@ def compute_results(cases: dict, *, structure=None, units=None, figure=None, tit
         ds = _with_constraint_coords(ds, structure)
         if model is not None:
             results_of = structure_results_3d if three_d else _structure_results
+            if three_d and getattr(structure, "rigid", None) is not None:    # rigid contacts: analysis/rigid3d.py
+                from .rigid3d import structure_results_rigid_3d as results_of
             extra_results = results_of(structure, model, computed, load=load, units=units, rule=rule, point=point,
                                        storeys=storeys)
             ds = _with_results(ds, extra_results, "case" in ds.dims, list(cases))

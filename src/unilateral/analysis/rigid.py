@@ -96,9 +96,14 @@ def block_results(structure, sol, name) -> dict:
     grows without bound: the block overturns; while the base still moves it can be pulled back,
     so under a pulse this is not the overturn: ``examples/overturning_map.py`` decides it once the
     pulse is over, ``docs/rocking.md``), and ``impacts``: the located impacts on its corners
-    (time, the corner struck, the ratio of the angular velocities after/before).
+    (time, the corner struck, the ratio of the angular velocities after/before). A 3-D box
+    (``Frame3D.rigid_box``): :func:`~unilateral.structure.rigid3d.box_results`.
     """
     block = structure.rigid.blocks[name]
+    if hasattr(block, "by"):                    # a 3-D box on four corners
+        from ..structure.rigid3d import box_results
+
+        return box_results(structure, sol, name, contact_results(sol, block.corners))
     T = structure.dofs.T
     rows = {dof: T[structure.dofs.full_index(block.base, dof)] for dof in ("uy", "rz")}
     theta = np.asarray(rows["rz"] @ sol.u.T).ravel()

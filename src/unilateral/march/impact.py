@@ -33,6 +33,12 @@ is the plain Moreau-Jean scheme: the active set is the contacts whose opening pr
 mid-step, ``N^T (u0 + h v0 / 2) - g``, is not positive, and an impact is applied at the end of the
 step in which the contact arrives (first order in the impact's effect).
 
+**Redundant contacts.** Where more contacts close than the DOFs they move (a 3-D box's four
+corners on ``uz``, ``rx``, ``ry``), the LCP's matrix is singular and its impulses are not unique
+(the velocities are): :func:`spread` takes the least-norm member of the solution set (a box at rest
+carries ``W / 4`` on each corner), so that a vertex solution's unloaded corner does not show as a
+contact change. Contacts that are never redundant (every 2-D case) keep the LCP's solution.
+
 **Energy.** With ``x_th`` as above, every step satisfies exactly
 
     Delta (v^T M v / 2 + u^T K u / 2) = h q_th^T v_th - h v_th^T C v_th + P^T N^T v_th
@@ -131,7 +137,7 @@ def forces_at_rest(system, u, udot, t=0.0) -> tuple[np.ndarray, np.ndarray]:
         res = get_lcp_solver("bpp").solve(NA.T @ X[:, 1:], NA.T @ X[:, 0])
         if not res.success:
             raise ValueError("no contact forces hold the initial state: " + res.message)
-        lam_A = res.v
+        lam_A = spread(NA.T @ X[:, 1:], NA.T @ X[:, 0], res.v)
         lam[touching] = lam_A
         return lam, X[:, 0] + X[:, 1:] @ lam_A
     return lam, X[:, 0]
@@ -266,7 +272,7 @@ class MoreauJeanMarch:
         self.log.iterations += res.iterations
         self.log.max_iterations = max(self.log.max_iterations, res.iterations)
         self.log.max_error = max(self.log.max_error, res.error)
-        return res.v, "" if res.success else res.message
+        return spread(A, b, res.v), "" if res.success else res.message
 
     # ------------------------------------------------------------------ the step
     def _touching(self, u, t) -> np.ndarray:
@@ -361,6 +367,27 @@ class MoreauJeanMarch:
                 break
             self.done = k + 1
         return self.done
+
+
+def spread(A, b, p) -> np.ndarray:
+    """The least-norm impulses (or forces) ``p' >= 0`` of the LCP ``w = A p + b`` with the same ``w``
+    as its solution ``p`` (k,), where ``A`` (k, k; symmetric positive semidefinite) is singular on the
+    contacts that close (``w = 0``): more contacts than the DOFs they move (a 3-D box's four corners
+    on ``uz``, ``rx``, ``ry``), whose LCP solution is one vertex of a set of equal motions. The
+    least-norm member ``p_S + null(A_SS)`` spreads them as the symmetry does (four equal corners at
+    rest); ``p`` itself where ``A_SS`` has full rank (every 2-D case) or the spread has a negative
+    entry."""
+    scale = 1.0 + float(np.max(np.abs(b), initial=0.0))
+    S = np.flatnonzero(A @ p + b <= 1e-12 * scale)
+    if S.size < 2:
+        return p
+    A_SS = A[np.ix_(S, S)]
+    x, _, rank, _ = np.linalg.lstsq(A_SS, A_SS @ p[S], rcond=1e-10)
+    if rank == S.size or x.min() < -1e-12 * (1.0 + float(np.abs(p).max())):
+        return p
+    out = np.zeros_like(p)
+    out[S] = np.maximum(x, 0.0)
+    return out
 
 
 def _small_lcp(A, b) -> np.ndarray:

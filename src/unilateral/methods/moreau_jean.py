@@ -19,7 +19,8 @@ class MoreauJean(Method):
     with Newton's impact law, each impact located within its step by the root of the contact's
     opening and applied there as a jump of the velocity (:mod:`unilateral.march.impact`).
 
-    For models whose every unknown is a rigid contact (``Frame2D.contact``, ``Frame2D.rigid_block``;
+    For models whose every unknown is a rigid contact (``Frame2D.contact``, ``Frame2D.rigid_block``,
+    ``Frame3D.contact``, ``Frame3D.rigid_box``: a box on four corners, :mod:`unilateral.structure.rigid3d`;
     the family :class:`~unilateral.constraints.RigidContact`, whose ``restitution`` is Newton's
     ``e`` of each contact). The rule is the theta-method's weight: ``rule="trapezoidal"``
     (``theta = 1/2``: second order between impacts, no numerical dissipation: the energy balance
@@ -61,8 +62,8 @@ class MoreauJean(Method):
             return reason
         others = _not_rigid(model)
         if not model.m:
-            return ("method='moreau-jean' is for rigid contacts (Frame2D.contact, rigid_block); this model has no "
-                    "unknowns: use method='direct'")
+            return ("method='moreau-jean' is for rigid contacts (Frame2D/Frame3D.contact, rigid_block, rigid_box); "
+                    "this model has no unknowns: use method='direct'")
         if others:
             return (f"method='moreau-jean' solves models whose every unknown is a rigid contact (H = 0: "
                     f"Frame2D.contact, rigid_block); {len(others)} are not ({', '.join(map(repr, others[:4]))}"
@@ -201,10 +202,10 @@ def _held_static(system, n):
     k = NA.shape[1]
     saddle = np.block([[s.K, -NA], [NA.T, np.zeros((k, k))]])
     rhs = np.concatenate([np.asarray(s.q(0.0), dtype=float), s.g(0.0)[A], np.zeros(F.size)])
-    try:
+    if k and np.linalg.matrix_rank(NA) < k:            # redundant held rows (two corners' tangents, a 3-D box's
+        x = np.linalg.lstsq(saddle, rhs, rcond=None)[0]     # four corners on uz, rx, ry): the least-norm forces
+    else:
         x = np.linalg.solve(saddle, rhs)
-    except np.linalg.LinAlgError:                      # redundant held rows (two corners' tangents): least norm
-        x = np.linalg.lstsq(saddle, rhs, rcond=None)[0]
     lam, shear = x[n:n + A.size], x[n + A.size:]
     if np.any(np.abs(shear) > s.mu[F] * lam[np.searchsorted(A, F)] * (1 + 1e-9)):
         return None, None, ("the static state with the touching rigid contacts held needs more friction than mu "

@@ -221,7 +221,7 @@ def _build_structure_3d(document: ModelFile, folder: Path) -> Structure:
                                                                             ("ux", "uy", "uz", "rx", "ry", "rz")}))
     _each(document, "rigid_links", lambda link: fr.rigid_link(link.master, link.slave))
     _each(document, "rigid_diaphragms", lambda diaphragm: fr.rigid_diaphragm(diaphragm.master, diaphragm.slaves))
-    add_rigid(fr, document, to_mass, _each)                     # refused in 3-D
+    add_rigid(fr, document, to_mass, _each, _gravity_value(document) if document.loads.gravity else None)
     for section in ("elements", "unilateral"):
         _each(document, section, lambda element: _add_element_3d(fr, element, to_mass))
     _each(document, "masses", lambda mass: fr.mass(mass.node, mass.m * to_mass, Jx=mass.Jx * to_mass,

@@ -1,9 +1,11 @@
 """``[[contacts]]`` and ``[[rigid_blocks]]`` of a model file: rigid contacts (no compliance) and
-rigid rocking blocks (:mod:`unilateral.structure.rigid`, ``docs/rocking.md``).
+rigid rocking blocks (:mod:`unilateral.structure.rigid`, ``docs/rocking.md``); in a 3-D frame rigid
+boxes on four corners (``width``, ``width_y``: :mod:`unilateral.structure.rigid3d`).
 
 The tables are made by :func:`rigid_tables` from the value types of
-:mod:`unilateral.modelfile.schema` (which calls it; this module imports no other module of the
-package), and built by :func:`add_rigid`. Run them with ``method = "moreau-jean"`` (Newton's
+:mod:`unilateral.modelfile.schema` (which calls it), those of a 3-D frame by :func:`rigid_tables_3d`
+(called by :mod:`unilateral.modelfile.schema3d`; this module imports no other module of the package
+at its top), and built by :func:`add_rigid`. Run them with ``method = "moreau-jean"`` (Newton's
 impact law) and ``rule = "trapezoidal"`` or ``"bdf1"``.
 """
 
@@ -52,27 +54,80 @@ def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative):
     return Contact, RigidBlock
 
 
+_NO_FRICTION_3D = ("Not available in a 3-D frame (method = \"moreau-jean\" takes friction on one tangent per "
+                   "contact, in 2-D): leave it out.")
+
+
+def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNegative):
+    """The pydantic tables ``(Contact3D, RigidBox)`` of ``[[contacts]]`` and ``[[rigid_blocks]]`` of a
+    3-D frame (``[frame] dimensions = 3``: :meth:`Frame3D.contact`, :meth:`Frame3D.rigid_box
+    <unilateral.structure.Frame3D.rigid_box>`), built on the schema's ``Table``, the 2-D ``Contact`` and
+    the value types (``Direction3`` of :mod:`unilateral.modelfile.schema3d`)."""
+
+    class Contact3D(Contact):
+        """[[contacts]] of a 3-D frame: a rigid unilateral contact of a node with the fixed ground."""
+
+        EXAMPLE: ClassVar[str] = '[[contacts]] name = "stop", node = 1, direction = "uz", gap = 0.01'
+        direction: Direction3 = Field("uz", description="The normal, from the ground to the node: the "
+                                      "direction in which the node separates.")
+        mu: NonNegative | None = Field(None, description=_NO_FRICTION_3D)
+
+    class RigidBox(Table):
+        """[[rigid_blocks]] of a 3-D frame: a rigid box rocking on its four base corners (Housner in
+        both planes); its corners are the contacts "<name>.sw", ".se", ".ne", ".nw"."""
+
+        EXAMPLE: ClassVar[str] = ('[[rigid_blocks]] name = "B", node = "c", width = 0.4, width_y = 0.6, '
+                                  'height = 1.2, mass = 1.0')
+        name: Name
+        node: NodeRef = Field(description=(
+            "The centre of mass (a node of [[nodes]], free: no support)."))
+        width: Positive = Field(description="Plan dimension 2 bx along x [length].")
+        width_y: Positive = Field(description="Plan dimension 2 by along y [length].")
+        height: Positive = Field(description="Height 2h [length].")
+        mass: Positive = Field(description="Mass [mass].")
+        Jx: NonNegative | None = Field(None, description=(
+            "Rotary inertia about x through the centre [mass length^2]; none: the solid box's m (by^2 + h^2) / 3."))
+        Jy: NonNegative | None = Field(None, description=(
+            "Rotary inertia about y through the centre [mass length^2]; none: the solid box's m (bx^2 + h^2) / 3."))
+        Jz: NonNegative | None = Field(None, description=(
+            "Rotary inertia about z through the centre [mass length^2]; none: the solid box's m (bx^2 + by^2) / 3."))
+        restitution: float = Field(0.0, ge=0.0, le=1.0, description=(
+            "Newton's e of the corners (0: Housner's impact, the angular momentum about the new edge kept)."))
+        mu: NonNegative | None = Field(None, description=_NO_FRICTION_3D)
+
+    return Contact3D, RigidBox
+
+
 def add_rigid(fr, document, to_mass, each, g=None) -> None:
     """Add the ``[[contacts]]`` and ``[[rigid_blocks]]`` of ``document`` to the frame ``fr``.
 
     ``each(document, section, action)`` calls ``action(table)`` with the table's key path as the
     context of its errors; ``g`` the gravity of ``[loads.gravity]`` in the model's units (the
-    blocks' second-order term; None: no gravity, no term). A 3-D frame is refused.
+    blocks' second-order term; None: no gravity, no term). A 3-D frame (``fr.rigid_box``) takes
+    boxes; its gravity must be vertical (along -z).
     """
     if not (document.contacts or document.rigid_blocks):
         return
-    if not hasattr(fr, "rigid_block"):
-        section = "contacts" if document.contacts else "rigid_blocks"
-        each(document, section, lambda table: _refuse_3d(section))
     each(document, "contacts", lambda c: fr.contact(c.name, c.node, direction=c.direction, gap=c.gap,
                                                     restitution=c.restitution, mu=c.mu))
-    each(document, "rigid_blocks", lambda b: fr.rigid_block(
-        b.name, b.node, width=b.width, height=b.height, mass=b.mass * to_mass,
-        J=None if b.J is None else b.J * to_mass, restitution=b.restitution, mu=b.mu, g=0.0 if g is None else g))
+    g = 0.0 if g is None else g
+    if not hasattr(fr, "rigid_box"):
+        each(document, "rigid_blocks", lambda b: fr.rigid_block(
+            b.name, b.node, width=b.width, height=b.height, mass=b.mass * to_mass,
+            J=None if b.J is None else b.J * to_mass, restitution=b.restitution, mu=b.mu, g=g))
+        return
+    scaled = lambda J: None if J is None else J * to_mass
+    each(document, "rigid_blocks", lambda b: _vertical(document) or fr.rigid_box(
+        b.name, b.node, width_x=b.width, width_y=b.width_y, height=b.height, mass=b.mass * to_mass, Jx=scaled(b.Jx),
+        Jy=scaled(b.Jy), Jz=scaled(b.Jz), restitution=b.restitution, mu=b.mu, g=g))
 
 
-def _refuse_3d(section):
-    raise ValueError(f"[[{section}]] are not available in a 3-D frame (rigid contacts and blocks are 2-D: Frame2D)")
+def _vertical(document) -> None:
+    """Raise unless the gravity of a 3-D document (if any) acts along -z (a box's second-order term)."""
+    gravity = document.loads.gravity
+    if gravity is not None and tuple(gravity.direction) != (0.0, 0.0, -1.0):
+        raise ValueError(f"a rigid box needs gravity along -z ([loads.gravity] direction = [0, 0, -1]), got "
+                         f"{list(gravity.direction)}: its second-order term -W h is that of a vertical weight")
 
 
 def ground_inertia(structure, direction):
@@ -81,6 +136,10 @@ def ground_inertia(structure, direction):
     whose ``ux`` is held), or None for a frame without them (the caller's ``-M r``)."""
     if getattr(structure, "rigid", None) is None:
         return None
+    if len(next(iter(structure.coords.values()))) == 3:          # a 3-D frame: "ux", "uy", "uz" or a vector
+        from ..structure.rigid3d import ground_motion
+
+        return ground_motion(structure, lambda t: 0.0, direction)[0]
     if direction not in ("ux", "uy"):
         raise ValueError(f"direction={direction!r}: a ground motion of a frame with rigid contacts acts along "
                          "'ux' or 'uy'")

@@ -12,7 +12,8 @@ from typing import Annotated, ClassVar, Literal, Union
 from pydantic import Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
-from .schema import (Bar, Cable, ConstantLoad, Dashpot, Figure, FoundationSoil, Gap, GravityValue, GroundMotion, Hinge,
+from .rigid import rigid_tables_3d
+from .schema import (Bar, Cable, Contact, ConstantLoad, Dashpot, Figure, FoundationSoil, Gap, GravityValue, GroundMotion, Hinge,
                      ModelFile, Name, NodeId, NodeRef, NonNegative, Output, Positive, Slider, SoilBase, Spring,
                      SupportMotion, Table, TimeFunction, YieldLink, _NUMBER_SCHEMA, _TwoNodes)
 
@@ -301,6 +302,9 @@ class Output3D(Output):
         "The point [x, y, z] the base moments Mx, My, Mz are taken about (default: the centre of the base)."))
 
 
+Contact3D, RigidBox = rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNegative)  # modelfile/rigid.py
+
+
 class ModelFile3D(ModelFile):
     """A unilateral model file of a 3-D frame ([frame] dimensions = 3)."""
 
@@ -311,6 +315,8 @@ class ModelFile3D(ModelFile):
     elements: list[Element3D] = []
     unilateral: list[Unilateral3D] = []
     masses: list[Mass3D] = []
+    contacts: list[Contact3D] = []
+    rigid_blocks: list[RigidBox] = []
     foundation: Foundation3D | None = None
     foundations: list[Foundation3D] = Field([], description=(
         "Several footings: on a half-space they share it (give each the same soil), elsewhere uncoupled."))

@@ -30,7 +30,7 @@ import scipy.sparse as sp  # noqa: F401  (the annotations of the fields Structur
 
 from ..loads.units import STANDARD_GRAVITY
 from ..model import NaturalForm  # noqa: F401  (the annotations of the fields Structure3D inherits resolve here)
-from . import elements as el, support_motion
+from . import elements as el, rigid, support_motion
 from . import elements3d as el3
 from .built import Structure
 from .checks import _friction, _hardening, _real, _strength
@@ -38,9 +38,10 @@ from .dofs import DofMap  # noqa: F401  (likewise)
 from .dofs3d import IN_PLANE, DofMap3D
 from .frame_base import _Frame
 from .geometric import with_gravity
+from .rigid3d import RigidBoxes
 
 
-class Frame3D(support_motion.SupportMotions, _Frame):
+class Frame3D(RigidBoxes, support_motion.SupportMotions, _Frame):
     """Builder of a space frame with unilateral elements (foundation uplift, pounding, cables).
 
     Nodes have the DOFs ``ux``, ``uy``, ``uz`` (along global x, y, z) and ``rx``, ``ry``, ``rz``
@@ -65,7 +66,8 @@ class Frame3D(support_motion.SupportMotions, _Frame):
     the beam) yield under the end moments about both bending axes, within a polygonal interaction
     surface (an ellipse's circumscribed polygon, a diamond or a box). Flexible footings in plan
     (:meth:`foundation` with ``nodes``: a patch under each node of a grid). Second-order effects of
-    gravity: :meth:`p_delta`.
+    gravity: :meth:`p_delta`. Rigid contacts (:meth:`contact`) and rigid boxes rocking on their four
+    corners (:meth:`rigid_box`), for ``method="moreau-jean"`` (:mod:`unilateral.structure.rigid3d`).
     """
 
     _dof_names = el3.DOF_NAMES
@@ -559,6 +561,7 @@ class Frame3D(support_motion.SupportMotions, _Frame):
             on_soil |= {(node, dof) for terms in rows for node, dof, _ in terms}
         rotated |= {(node, dof) for node, dof in on_soil if dof in el3.ROTATIONS}
         dofs = DofMap3D(self._coords, self._restrained, rotated, self._ties)
+        on_soil |= rigid.exempt_dofs(self, dofs)        # held by rigid contacts (rigid3d.py)
         if any(not footing.rigid for footing in self._foundations):
             # a flexible footing's node may follow a master (rigid links): the soil stiffens the master's DOFs
             from .foundation import _rows_matrix
@@ -575,7 +578,7 @@ class Frame3D(support_motion.SupportMotions, _Frame):
             fields["foundation"] = Footings3D(self._foundations, first=len(fields["constraint_names"]))
         structure = support_motion.attach(self, Structure3D(**fields))
         if self._p_delta is None:
-            return structure
+            return rigid.attach(self, structure)
         g, d = self._p_delta
         load = structure.gravity(g, tuple(d.get(dof, 0.0) for dof in el3.TRANSLATIONS))
         # on footings: the static state with the soil's static springs (its static flexibility Phi(0))

@@ -40,6 +40,9 @@ family :class:`~unilateral.constraints.RigidContact`, not among the model's unkn
 height ``2 h`` with its centre of mass at a node, standing on its two base corners; see
 :class:`RigidBlock` and ``docs/rocking.md`` for the linearised equations of rocking it reproduces
 (Housner 1963).
+
+In 3-D (``Frame3D.contact``, ``Frame3D.rigid_box``: a box on four corners) the builders are those of
+:mod:`unilateral.structure.rigid3d`; the assembly and the model here are shared.
 """
 
 from __future__ import annotations
@@ -107,6 +110,10 @@ class RigidBlock:
     def W(self) -> float:
         """Weight ``m g``, force."""
         return self.mass * self.g
+
+    def geometric_terms(self) -> tuple:
+        """The second-order term of the weight on the base: ``(("rz", -W h),)``."""
+        return (("rz", -self.W * self.h),)
 
     @property
     def I0(self) -> float:
@@ -177,8 +184,8 @@ class RigidPart:
     N : (n, mr) csr, the columns of ``F`` of the contacts (``N = T^T e_d``)
     gap : (mr,) initial openings, length
     geometric : (n, n) csr, the blocks' second-order gravity terms (``-W h`` on each block's
-        ``rz``), added to ``K``
-    blocks : dict name -> RigidBlock
+        ``rz``, on each 3-D box's ``rx`` and ``ry``), added to ``K``
+    blocks : dict name -> RigidBlock (or :class:`~unilateral.structure.rigid3d.RigidBox` in 3-D)
     tangent : (n, mr) csr, the tangent columns of the contacts with friction (zero columns without)
     """
 
@@ -338,8 +345,9 @@ def attach(frame, structure):
         if N[:, j].nnz == 0:
             raise ValueError(f"contact {c.name!r}: node {c.node!r} cannot move along the normal (supported); "
                              "the contact would act on nothing")
-    rows = [dofs.index(block.base, "rz") for block in parts["blocks"].values() if block.g]
-    vals = [-block.W * block.h for block in parts["blocks"].values() if block.g]
+    terms = [(dofs.index(block.base, dof), value) for block in parts["blocks"].values() if block.g
+             for dof, value in block.geometric_terms()]       # a block's rz; a box's rx, ry (rigid3d.py)
+    rows, vals = [r for r, _ in terms], [v for _, v in terms]
     geometric = sp.csr_matrix((vals, (rows, rows)), shape=(dofs.n, dofs.n))
     Tt = sp.hstack([_column(c, dofs, c.tangent_terms).T if c.mu else sp.csr_matrix((dofs.n, 1)) for c in contacts],
                    format="csr")
@@ -495,9 +503,18 @@ def _accelerations(M, K, R) -> np.ndarray:
     return out
 
 
+def _block_2d(structure, name) -> RigidBlock:
+    """The 2-D block ``name``; ``TypeError`` for a 3-D box (its results: :mod:`.rigid3d`)."""
+    block = structure.rigid.blocks[name]
+    if not isinstance(block, RigidBlock):
+        raise TypeError(f"{name!r} is a 3-D rigid box: use unilateral.structure.rigid3d.box_tilts, box_energy "
+                        "or unilateral.analysis.rigid.block_results")
+    return block
+
+
 def block_rotation(structure, sol, name) -> np.ndarray:
     """History (N+1,) of the rotation ``rz`` (rad, counter-clockwise) of the block ``name``."""
-    block = structure.rigid.blocks[name]
+    block = _block_2d(structure, name)
     return structure.node_displacement(sol, block.base, "rz")
 
 
@@ -505,7 +522,7 @@ def block_energy(structure, sol, name) -> np.ndarray:
     """Mechanical energy (N+1,) of the block ``name`` in the linearised model, force length:
     ``m uy'^2 / 2 + (J + m h^2) theta'^2 / 2 - W h theta^2 / 2 + W uy`` (``uy``, ``theta`` of the
     base node; constant while the block pivots on a corner or flies, lost at the impacts)."""
-    block = structure.rigid.blocks[name]
+    block = _block_2d(structure, name)
     T = structure.dofs.T
     rows = [T[structure.dofs.full_index(block.base, dof)] for dof in ("uy", "rz")]
     (uy, th), (vy, om) = ([np.asarray(r @ x.T).ravel() for r in rows] for x in (sol.u, sol.udot))
@@ -524,7 +541,7 @@ def impacts(structure, sol, name) -> list[dict]:
     pivoting phase is ``I0 omega^2 / 2`` at ``theta = 0``); ``nan`` if no extreme follows.
     Housner's value is :attr:`RigidBlock.restitution`.
     """
-    block = structure.rigid.blocks[name]
+    block = _block_2d(structure, name)
     theta = block_rotation(structure, sol, name)
     omega = np.asarray(structure.dofs.T[structure.dofs.full_index(block.base, "rz")] @ sol.udot.T).ravel()
     energy = block_energy(structure, sol, name)

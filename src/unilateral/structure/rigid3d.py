@@ -1,0 +1,271 @@
+"""Rigid unilateral contacts and rigid rocking boxes for :class:`~unilateral.structure.Frame3D`.
+
+The 3-D counterpart of :mod:`unilateral.structure.rigid` (whose assembly, model and impact law the
+3-D frame shares: the contacts are columns ``N = T^T e_d`` of ``F`` with ``H = 0``, the family
+:class:`~unilateral.constraints.RigidContact`, solved by ``method="moreau-jean"``).
+
+**Rigid contact** (``Frame3D.contact``, :meth:`RigidBoxes.contact`): a node against the fixed
+ground along a normal ``d`` (``"ux"``, ``"uy"``, ``"uz"`` or a vector), with Newton's coefficient
+of restitution. Friction is refused in 3-D: ``method="moreau-jean"`` takes Coulomb's law on one
+tangent per contact (the 2-D tangent), not a friction cone in the tangent plane.
+
+**Rigid box** (``Frame3D.rigid_box``, :class:`RigidBox`): a rectangular box of plan ``2 bx x 2 by``
+and height ``2 h`` with its centre of mass at a node, standing on its four base corners. Its base
+centre (the master) moves by ``uz``, ``rx``, ``ry`` (``ux``, ``uy``, ``rz`` held: no slip, no
+twist). With the corners in the plane of the base, a corner ``(x, y)`` (from the base centre)
+rises by ``uz + rx y - ry x``; the centre's height drops by ``h (rx^2 + ry^2) / 2`` at second
+order, so the weight ``W = m g`` adds ``-W h`` on the base's ``rx`` and ``ry`` to ``K``. Rocking
+about an edge parallel to y (tilt ``ry``, the x-z plane) is then Housner's block of half-width
+``bx``, ``I0 = Jy + m (bx^2 + h^2)``; about an edge parallel to x (tilt ``rx``), of half-width
+``by``, ``I0 = Jx + m (by^2 + h^2)`` (:meth:`RigidBox.plane`). A box with ``Jx = Jy`` (a square
+plan, solid) rocking about a corner with its tilt axis perpendicular to the diagonal stays in that
+plane: Housner's block of half-width ``d = sqrt(bx^2 + by^2)`` (:meth:`RigidBox.diagonal`).
+See ``docs/rocking.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..loads.units import STANDARD_GRAVITY
+from . import elements as el
+from . import elements3d as el3
+from .rigid import RigidBlock, RigidContact, _number, _parts
+
+#: The corners of a box: name suffix -> (sign of x, sign of y) from the base centre.
+CORNERS = {"sw": (-1.0, -1.0), "se": (1.0, -1.0), "ne": (1.0, 1.0), "nw": (-1.0, 1.0)}
+
+
+@dataclass(frozen=True)
+class RigidBox:
+    """A rigid rectangular box rocking on its four base corners (:mod:`unilateral.structure.rigid3d`).
+
+    Attributes
+    ----------
+    name : str
+    node : the centre-of-mass node (a slave of ``base``), carrying ``mass``, ``Jx``, ``Jy``, ``Jz``
+    base : the base-centre node (the master: ``uz``, ``rx``, ``ry`` free; ``ux``, ``uy``, ``rz`` held)
+    corners : the four corner nodes ``"<name>.sw"``, ``".se"``, ``".ne"``, ``".nw"`` (x to the east,
+        y to the north), each in rigid contact with the ground (the contacts have their names)
+    bx, by, h : half-widths along x and y and half-height, length
+    mass : mass;  Jx, Jy, Jz : rotary inertias about the centre, mass length^2
+    g : gravity of the second-order term, length/time^2 (0: none)
+    """
+
+    name: str
+    node: object
+    base: object
+    corners: tuple
+    bx: float
+    by: float
+    h: float
+    mass: float
+    Jx: float
+    Jy: float
+    Jz: float
+    g: float
+
+    @property
+    def W(self) -> float:
+        """Weight ``m g``, force."""
+        return self.mass * self.g
+
+    def geometric_terms(self) -> tuple:
+        """The second-order term of the weight on the base: ``((dof, -W h), ...)`` on ``rx`` and ``ry``."""
+        return (("rx", -self.W * self.h), ("ry", -self.W * self.h))
+
+    def plane(self, axis) -> RigidBlock:
+        """The 2-D block of the rocking about an edge: ``axis="y"`` (an edge parallel to y, the tilt
+        ``ry``, rocking in the x-z plane: half-width ``bx``, ``J = Jy``) or ``"x"`` (tilt ``rx``,
+        the y-z plane: ``by``, ``Jx``). Its ``p``, ``restitution``, ``impact_times``, ... are
+        Housner's closed forms of that rocking."""
+        if axis not in ("x", "y"):
+            raise ValueError(f"axis={axis!r} is not valid; use 'x' or 'y' (the direction of the edge)")
+        b, J = (self.bx, self.Jy) if axis == "y" else (self.by, self.Jx)
+        return RigidBlock(self.name, self.node, self.base, self.corners, b, self.h, self.mass, J, self.g)
+
+    def diagonal(self) -> RigidBlock:
+        """The 2-D block of the rocking about a corner with the tilt axis perpendicular to the
+        diagonal: half-width ``d = sqrt(bx^2 + by^2)``, ``J = Jx``; the motion stays in that plane,
+        and the flat landing is Housner's impact onto the opposite corner, where ``Jx = Jy`` (a
+        square solid box; otherwise the motion couples the two tilts). ``ValueError`` otherwise."""
+        if not math.isclose(self.Jx, self.Jy, rel_tol=1e-12, abs_tol=0.0):
+            raise ValueError(f"rigid box {self.name!r}: Jx={self.Jx:g} != Jy={self.Jy:g}: the diagonal rocking "
+                             "is not planar (give a square plan or Jx = Jy)")
+        return RigidBlock(self.name, self.node, self.base, self.corners, math.hypot(self.bx, self.by), self.h,
+                          self.mass, self.Jx, self.g)
+
+    @property
+    def uplift_acceleration(self) -> tuple:
+        """Horizontal ground accelerations ``(g bx / h, g by / h)`` along x and y at which a corner
+        lifts, length/time^2."""
+        return (self.g * self.bx / self.h, self.g * self.by / self.h)
+
+
+class RigidBoxes:
+    """The rigid contacts and boxes of :class:`~unilateral.structure.Frame3D` (a base of it)."""
+
+    def contact(self, name, node, *, direction="uz", gap=0.0, mu=None, restitution=0.0) -> None:
+        """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``), as
+        :meth:`Frame2D.contact <unilateral.structure.Frame2D.contact>`.
+
+        Parameters
+        ----------
+        name : str, the contact's name (its unknown and row, after the frame's own unknowns)
+        node : the node (a slave of a rigid link too)
+        direction : ``"ux"``, ``"uy"``, ``"uz"`` or a vector ``(dx, dy, dz)``: the normal, from the
+            ground to the node (the direction in which the node separates); default ``"uz"``
+        gap : initial opening at ``u = 0``, length, >= 0
+        mu : None only: friction on a rigid contact is not available in 3-D (``ValueError``)
+        restitution : Newton's coefficient ``e`` in [0, 1] of ``method="moreau-jean"``
+
+        The contact's unknown ``v`` is the compressive force (force), ``-psi`` the opening (length).
+        """
+        where = self._label("contact", name)
+        self._node(where, "node", node)
+        _no_friction(where, mu)
+        terms = el.direction_terms(where, direction, el3.DOF_NAMES, el3.AXES)
+        if any(dof in el3.ROTATIONS for dof, _ in terms):
+            raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy', 'uz' or a vector "
+                             "(dx, dy, dz)")
+        e = _restitution(where, restitution)
+        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0"), e, 0.0))
+        self._names.add(name)
+
+    def rigid_box(self, name, node, *, width_x, width_y, height, mass, Jx=None, Jy=None, Jz=None, base=None,
+                  g=STANDARD_GRAVITY, restitution=0.0, mu=None) -> RigidBox:
+        """A rigid rectangular box rocking on its four base corners, its centre of mass at ``node``.
+
+        Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
+        ``node`` as the master of the box (its ``ux``, ``uy``, ``rz`` supported: the base cannot
+        slide or twist; ``uz``, ``rx``, ``ry`` free), links ``node`` and the corners ``"<name>.sw"``,
+        ``".se"``, ``".ne"``, ``".nw"`` (at ``(-+ width_x / 2, -+ width_y / 2)`` on the base plane)
+        rigidly to it, puts ``mass`` and the inertias on ``node``, a vertical rigid contact with the
+        ground (named after the corner) at each corner, and the second-order term of the weight,
+        ``-W h`` on the base's ``rx`` and ``ry`` (:class:`RigidBox`, ``docs/rocking.md``).
+
+        Parameters
+        ----------
+        name : str;  node : the centre-of-mass node, defined, free (not supported, not a slave)
+        width_x, width_y, height : ``2 bx``, ``2 by`` and ``2 h``, length, > 0
+        mass : mass, > 0
+        Jx, Jy, Jz : rotary inertias about the centre, mass length^2, >= 0; None: the solid box's
+            ``m (by^2 + h^2) / 3``, ``m (bx^2 + h^2) / 3``, ``m (bx^2 + by^2) / 3``
+        base : id of the base-centre node to create, or None
+        g : gravity of the weight's second-order term (length/time^2, >= 0; the load of the weight
+            itself is ``Structure3D.gravity(g)``); 0: none
+        restitution : Newton's ``e`` of the corners' contacts, [0, 1] (default 0: Housner's impact)
+        mu : None only (the base held); friction is not available in 3-D (``ValueError``)
+
+        Returns
+        -------
+        RigidBox
+        """
+        where = self._label("rigid_box", name)
+        self._node(where, "node", node)
+        _no_friction(where, mu)
+        bx = _number(where, "width_x", width_x, ">0") / 2
+        by = _number(where, "width_y", width_y, ">0") / 2
+        h = _number(where, "height", height, ">0") / 2
+        m = _number(where, "mass", mass, ">0")
+        solid = {"Jx": by * by + h * h, "Jy": bx * bx + h * h, "Jz": bx * bx + by * by}
+        given = {"Jx": Jx, "Jy": Jy, "Jz": Jz}
+        J = {k: m * solid[k] / 3.0 if given[k] is None else _number(where, k, given[k], ">=0") for k in solid}
+        g = _number(where, "g", g, ">=0")
+        e = _restitution(where, restitution)
+        base = f"{name}.base" if base is None else base
+        corners = tuple(f"{name}.{c}" for c in CORNERS)
+        x, y, z = (float(c) for c in self._coords[node])
+        self.node(base, x, y, z - h)
+        for corner, (sx, sy) in zip(corners, CORNERS.values()):
+            self.node(corner, x + sx * bx, y + sy * by, z - h)
+        self.support(base, ux=True, uy=True, uz=False, rx=False, ry=False, rz=True)
+        for slave in (node, *corners):
+            self.rigid_link(base, slave)
+        self.mass(node, m, Jx=J["Jx"], Jy=J["Jy"], Jz=J["Jz"])
+        self._names.add(name)
+        for corner in corners:
+            self.contact(corner, corner, direction="uz", restitution=e)
+        box = RigidBox(name, node, base, corners, bx, by, h, m, J["Jx"], J["Jy"], J["Jz"], g)
+        _parts(self)["blocks"][name] = box
+        return box
+
+
+def _no_friction(where, mu) -> None:
+    if mu is not None:
+        raise ValueError(f"{where}: mu={mu!r}: friction on a rigid contact is not available in 3-D "
+                         "(method='moreau-jean' takes Coulomb's law on one tangent per contact, the 2-D "
+                         "Frame2D.contact; not a friction cone in the tangent plane); leave mu out")
+
+
+def _restitution(where, restitution) -> float:
+    e = _number(where, "restitution", restitution, ">=0")
+    if e > 1.0:
+        raise ValueError(f"{where}: restitution={restitution!r} must lie in [0, 1] (Newton's coefficient: "
+                         "0 perfectly plastic, 1 elastic)")
+    return e
+
+
+# ---------------------------------------------------------------------- loads and results
+def ground_motion(structure, a_g, direction="ux") -> tuple:
+    """The term ``(-T^T M_full r_full, a_g)`` of a ground acceleration ``a_g(t)`` (length/time^2) along
+    ``direction`` (``"ux"``, ``"uy"``, ``"uz"`` or a vector ``(dx, dy, dz)``) of a 3-D frame with
+    rigid boxes: every node's inertia, a box's centre (a slave of its held base) included, as
+    :func:`unilateral.structure.rigid.ground_motion` in 2-D."""
+    terms = dict(el.direction_terms("ground motion", direction, el3.DOF_NAMES, el3.AXES))
+    if any(dof in el3.ROTATIONS for dof in terms):
+        raise ValueError(f"direction={direction!r} is not valid for a ground motion; valid: 'ux', 'uy', 'uz' "
+                         "or a vector (dx, dy, dz)")
+    if not callable(a_g):
+        raise TypeError(f"a_g must be a time function a_g(t), got {a_g!r}")
+    return -structure.gravity(1.0, tuple(terms.get(d, 0.0) for d in el3.TRANSLATIONS)), a_g
+
+
+def box_tilts(structure, sol, name) -> tuple:
+    """``(rx, ry, uz)`` (N+1,) each: the base's tilts (rad) and rise (length) of the box ``name``."""
+    box = structure.rigid.blocks[name]
+    T = structure.dofs.T
+    return tuple(np.asarray(T[structure.dofs.full_index(box.base, dof)] @ sol.u.T).ravel()
+                 for dof in ("rx", "ry", "uz"))
+
+
+def box_energy(structure, sol, name) -> np.ndarray:
+    """Mechanical energy (N+1,) of the box ``name`` in the linearised model, force length:
+    ``m uz'^2 / 2 + (Jx + m h^2) rx'^2 / 2 + (Jy + m h^2) ry'^2 / 2 - W h (rx^2 + ry^2) / 2 + W uz``."""
+    box = structure.rigid.blocks[name]
+    T = structure.dofs.T
+    rows = [T[structure.dofs.full_index(box.base, dof)] for dof in ("uz", "rx", "ry")]
+    (uz, rx, ry), (vz, wx, wy) = ([np.asarray(r @ x.T).ravel() for r in rows] for x in (sol.u, sol.udot))
+    m, h, W = box.mass, box.h, box.W
+    return (0.5 * m * vz ** 2 + 0.5 * (box.Jx + m * h * h) * wx ** 2 + 0.5 * (box.Jy + m * h * h) * wy ** 2
+            - 0.5 * W * h * (rx ** 2 + ry ** 2) + W * uz)
+
+
+def box_results(structure, sol, name, corners) -> dict:
+    """The rocking of the rigid box ``name`` (:func:`unilateral.analysis.rigid.block_results` of a
+    box): ``rotation`` (N+1,) the tilt ``sqrt(rx^2 + ry^2)`` (rad), ``rotation_x``, ``rotation_y``
+    (rad), ``omega`` (N+1,) its rate ``|(rx', ry')|`` (rad/time), ``uplift`` (N+1,) the largest
+    opening of the four corners (length), ``corners`` (``corners``: the contact results of the four),
+    ``peak_rotation``, ``peak_uplift``, ``overturned`` and ``overturn_time``: the first time the
+    centre's plan offset ``(h ry, -h rx)`` leaves the base (``h |ry| > bx`` or ``h |rx| > by``, the
+    linearised loss of the restoring moment), and ``impacts`` (time, the corner struck, loss)."""
+    box = structure.rigid.blocks[name]
+    T = structure.dofs.T
+    rows = [T[structure.dofs.full_index(box.base, dof)] for dof in ("rx", "ry")]
+    rx, ry = (np.asarray(r @ sol.u.T).ravel() for r in rows)
+    wx, wy = (np.asarray(r @ sol.udot.T).ravel() for r in rows)
+    uplift = np.max([corners[c]["opening"] for c in box.corners], axis=0)
+    tilt = np.hypot(rx, ry)
+    past = np.flatnonzero((box.h * np.abs(ry) > box.bx) | (box.h * np.abs(rx) > box.by))
+    impacts = []
+    for ev in sol.stats.get("impacts", ()):
+        struck = [c for c in ev["contacts"] if c in box.corners]
+        if struck:
+            impacts.append({"time": ev["time"], "corner": struck[0], "loss": ev["loss"]})
+    return {"rotation": tilt, "rotation_x": rx, "rotation_y": ry, "omega": np.hypot(wx, wy), "uplift": uplift,
+            "corners": corners, "peak_rotation": float(np.max(tilt)), "peak_uplift": float(np.max(uplift)),
+            "overturned": bool(past.size), "overturn_time": float(sol.t[past[0]]) if past.size else None,
+            "impacts": impacts}
