@@ -44,7 +44,7 @@ from ..model import Model
 from ..structure import forces as F
 from .energy import energy_balance, unknown_kinds
 from .footing_results import footing_histories, footing_peaks, footing_variables
-from .rigid import frame_solution, rigid_summary
+from .rigid import frame_solution, rigid_ground_reactions, rigid_summary
 from .inelastic import Inelastic
 from .residual import residual_peaks
 from ..structure.modes import modes
@@ -68,10 +68,13 @@ def ground_terms(structure, load) -> list:
     names = getattr(structure.dofs, "dof_names", ("ux", "uy", "rz"))
     axes = [d for d in ("ux", "uy", "uz") if d in names]
     patterns = np.column_stack([-np.asarray(structure.M @ structure.influence(d)).ravel() for d in axes])
+    # -T^T M_full r_full: with a mass on a slave of a held master that rotates (a rigid box's centre
+    # over its held base) it differs from -M r (rigid.ground_motion builds the terms so)
+    weights = np.column_stack([-structure.gravity(1.0, tuple(float(a == d) for a in axes)) for d in axes])
     for term, (vector, _) in enumerate(getattr(load, "terms", ())):
         vector = np.asarray(vector, dtype=float)
         single = [d for k, d in enumerate(axes)
-                  if patterns[:, k].any() and np.allclose(vector, patterns[:, k], rtol=1e-12, atol=0.0)]
+                  if any(p[:, k].any() and np.allclose(vector, p[:, k], rtol=1e-12, atol=0.0) for p in (patterns, weights))]
         if single:
             out.append((single[0], term, 1.0))
             continue
@@ -163,6 +166,22 @@ def motions_at(ground_motions, t) -> list:
             for d, a_g in ground_motions]
 
 
+def step_means(ground_motions, sol) -> list:
+    """``ground_motions`` as ``sol``'s accelerations read them: for a run of ``method="moreau-jean"``,
+    whose accelerations are the means of the steps (:meth:`~unilateral.structure.forces.Histories.from_solution`),
+    the theta-weighted means ``theta a_k + (1 - theta) a_{k-1}`` of the samples the step integrated
+    (``[(direction, (N+1,))]``); the samples themselves for any other run."""
+    stats = getattr(sol, "stats", None) or {}
+    if stats.get("method") != "moreau-jean" or not ground_motions:
+        return ground_motions
+    theta, out = float(stats.get("theta", 0.5)), []
+    for direction, a in motions_at(ground_motions, sol.t):
+        mean = a.copy()
+        mean[1:] = theta * a[1:] + (1.0 - theta) * a[:-1]
+        out.append((direction, mean))
+    return out
+
+
 class _Scaled:
     """``c f(t)``: the component of a ground acceleration ``f`` along one axis."""
 
@@ -202,8 +221,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     """
     units = dict(units or {})
     L, Fu, T = (units.get(k, "") for k in ("length", "force", "time"))
-    acc_unit = f"{L}/{T}^2" if L and T else ""
-    moment_unit = f"{Fu} {L}".strip()
+    acc_unit, moment_unit = (f"{L}/{T}^2" if L and T else ""), f"{Fu} {L}".strip()
     point = F.base_point(structure) if point is None else (float(point[0]), float(point[1]))
     variables: dict = {}
     peaks: dict = {}
@@ -223,7 +241,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
         h = F.Histories.from_solution(structure, sol, rule, load0=q0)
         t = h.t
-        acceleration_results(variables, coords, structure, h, ground_motions, case=case, unit=acc_unit)
+        motions = step_means(ground_motions, sol)
+        acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
         ends = F.end_forces(structure, h)
         end = element_end_forces(coords, structure, ends, F.END_COMPONENTS, steps=len(t))
         put("end_force", ("time", "element", "end_component"), case, end,
@@ -233,7 +252,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
             "(moment of a rotational spring)", Fu)
         reaction, footings = _reactions(variables, coords, structure, h, case=case, foundation=foundation,
-                                        contact_sol=contact_sol, units=units)
+                                        contact_sol=contact_sol, units=units, motions=motions)
         base = F.base_forces(structure, reaction, point)
         per_frame = F.base_forces_per_frame(structure, reaction, point)
         if per_frame:                       # several frames (pounding buildings): each its own
@@ -274,7 +293,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
                                     keys=energy_keys, unit=moment_unit, rule=pairing_rule(sol, rule),
                                     stats=sol.stats)
-        peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=ground_motions,
+        peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=motions,
                              structure=structure)
         if per_frame:
             peaks[case]["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
@@ -302,9 +321,10 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
             "attrs": {"overturning_point": list(point)}}
 
 
-def _reactions(variables, coords, structure, h, *, case, foundation, contact_sol, units) -> tuple[dict, dict | None]:
+def _reactions(variables, coords, structure, h, *, case, foundation, contact_sol, units, motions=()) -> tuple[dict, dict | None]:
     """The reactions of a case (:func:`~unilateral.structure.forces.reactions`, the soil's contact forces
-    added as ground reactions at the footings) and the footings' results
+    added as ground reactions at the footings, the rigid contacts' and blocks' of
+    :func:`~unilateral.analysis.rigid.rigid_ground_reactions`) and the footings' results
     (:func:`~unilateral.analysis.footing_results.footing_histories`, None without footings on a soil),
     with their variables ``support_reaction``, ``ground_reaction`` and ``footing_*`` of ``case`` put in
     ``variables``."""
@@ -315,6 +335,10 @@ def _reactions(variables, coords, structure, h, *, case, foundation, contact_sol
         _put(variables, name, dims, case, array, long_name, unit)
 
     reaction, footings = F.reactions(structure, h), None
+    if getattr(structure, "rigid", None) is not None:
+        forces, at = rigid_ground_reactions(structure, h, contact_sol, motions_at(motions, h.t) if motions else [])
+        reaction["ground_elements"].update(forces)
+        reaction["at"].update(at)
     if foundation is not None:
         forces, at = foundation.ground_reactions(structure, contact_sol)
         reaction["ground_elements"].update(forces)

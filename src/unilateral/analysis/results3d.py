@@ -26,12 +26,11 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
     from .inelastic import Inelastic
     from .results import (_abs_peak, _energy_keys, _extreme, _put, acceleration_peaks, acceleration_results,
                           bilateral_modes, element_end_forces, energy_peaks, energy_results, ground_motion_samples,
-                          load_samples_of, pairing_rule)
+                          load_samples_of, pairing_rule, step_means)
 
     units = units or {}
     force, length, time = units.get("force", ""), units.get("length", ""), units.get("time", "")
-    acc_unit = f"{length}/{time}^2" if length and time else ""
-    moment = f"{force} {length}".strip()
+    acc_unit, moment = (f"{length}/{time}^2" if length and time else ""), f"{force} {length}".strip()
     main = max(cases.values(), key=lambda sol: len(sol.t))
     samples = load_samples_of(load, main.t, main.stats.get("dt"))
     motions = ground_motion_samples(structure, load, main.t, main.stats.get("dt"))
@@ -46,8 +45,9 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
         if sol.u is None or len(sol.t) < 2:
             continue
         h = F3.histories(structure, sol, rule, load0=None if samples is None else samples[0])
-        acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
-        _node_accelerations(variables, structure, h, motions, case=case, unit=acc_unit)
+        case_motions = step_means(motions, sol)
+        acceleration_results(variables, coords, structure, h, case_motions, case=case, unit=acc_unit)
+        _node_accelerations(variables, structure, h, case_motions, case=case, unit=acc_unit)
         ends = F3.end_forces(structure, h)
         end = element_end_forces(coords, structure, ends, F3.END_COMPONENTS)
         _put(variables, "end_force", ("time", "element", "end_component"), case, end,
@@ -82,7 +82,7 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
                 _put(variables, name, ("time", "foundation"), case, values, long_name, unit)
             peaks[case]["footings"] = footing_peaks(h.t, footings)
         if motions:
-            peaks[case]["absolute_acceleration"] = acceleration_peaks(structure, h, motions, ("ux", "uy", "uz"))
+            peaks[case]["absolute_acceleration"] = acceleration_peaks(structure, h, case_motions, ("ux", "uy", "uz"))
         energy = None
         if samples is not None:
             fnd = structure.foundation

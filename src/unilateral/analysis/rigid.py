@@ -165,6 +165,39 @@ def frame_solution(structure, sol):
     return load, frame
 
 
+def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
+    """The ground's forces on the structure through its rigid contacts and blocks: ``(forces, at)``.
+
+    ``forces[contact]``: the compressive force ``v`` (force) along the contact's normal at its node;
+    ``forces["<block>.base"]``: the horizontal force of the ground on a block or box (its held base,
+    or its corners' friction), ``m a`` with ``a`` the horizontal absolute acceleration of its centre
+    (the block is rigid and the ground the only horizontal force on it; at the base's level, so with
+    no moment about a point there). Each (N+1, 3) ``(fx, fy, mz)`` in 2-D, (N+1, 6) ``(fx, fy, fz, mx,
+    my, mz)`` in 3-D; ``at``: the node of each. ``h``: the frame's histories (its accelerations of
+    the rule, the mean of each step for ``moreau-jean``); ``motions``: ``[(direction, a_g (N+1,))]``
+    the ground's accelerations at its times, read as ``h``'s (:func:`~unilateral.analysis.results.step_means`)."""
+    names = tuple(structure.dofs.dof_names)
+    axes = tuple(d for d in ("ux", "uy", "uz") if d in names)
+    m, steps = structure.m, len(h.t)
+    forces, at = {}, {}
+    for j, contact in enumerate(structure.rigid.contacts):
+        d, f = dict(contact.terms), np.zeros((steps, len(names)))
+        for k, dof in enumerate(axes):
+            f[:, k] = d.get(dof, 0.0) * sol.v[:, m + j]
+        forces[contact.name], at[contact.name] = f, contact.node
+    ground = np.zeros((steps, len(axes)))
+    for direction, a_g in motions:
+        ground[:, axes.index(direction)] += a_g
+    accelerations, nodes = structure.dofs.nodal(h.uddot), list(structure.dofs.nodes)
+    horizontal = len(axes) - 1                       # ux (2-D); ux, uy (3-D)
+    for name, block in structure.rigid.blocks.items():
+        f = np.zeros((steps, len(names)))
+        f[:, :horizontal] = block.mass * (accelerations[:, nodes.index(block.node), :horizontal]
+                                          + ground[:, :horizontal])
+        forces[f"{name}.base"], at[f"{name}.base"] = f, block.base
+    return forces, at
+
+
 def add_rigid_energy(energy: dict, structure, u, udot, stats) -> dict:
     """The frame's energy balance (:func:`unilateral.analysis.energy.energy_balance` with the work
     of the rigid contacts' forces as ``contact_dissipated``, as for a soil) completed for rigid

@@ -3,7 +3,8 @@
 
 Those of :func:`unilateral.analysis.results3d.structure_results_3d` on the frame's own part of the
 solution (:func:`unilateral.analysis.rigid.frame_solution`), completed for the rigid contacts: their
-forces join the ground's reactions in the base forces, the energy balance takes the work of their
+forces and the boxes' held bases join the ground's reactions in the base forces
+(:func:`unilateral.analysis.rigid.rigid_ground_reactions`), the energy balance takes the work of their
 forces and the march's own terms (:func:`unilateral.analysis.rigid.add_rigid_energy`: the energy lost
 at impacts, closing to round-off with the trapezoidal rule), and ``rigid_contacts`` holds the summary
 of the contacts and boxes (:func:`unilateral.analysis.rigid.rigid_summary`).
@@ -27,9 +28,10 @@ def structure_results_rigid_3d(structure, model, cases, *, load, units, rule, po
     load, units, rule, point, storeys : as for ``structure_results_3d``
     """
     from ..structure import forces3d as F3
-    from .results import _energy_keys, _extreme, energy_peaks, energy_results, load_samples_of, pairing_rule
+    from .results import (_energy_keys, _extreme, energy_peaks, energy_results, ground_motion_samples, load_samples_of,
+                          motions_at, pairing_rule, step_means)
     from .results3d import structure_results_3d
-    from .rigid import frame_solution, rigid_summary
+    from .rigid import frame_solution, rigid_ground_reactions, rigid_summary
 
     parts = {case: frame_solution(structure, sol) for case, sol in cases.items()}
     out = structure_results_3d(structure, model, {case: frame for case, (_, frame) in parts.items()}, load=load,
@@ -38,6 +40,7 @@ def structure_results_rigid_3d(structure, model, cases, *, load, units, rule, po
     moment = f"{units.get('force', '')} {units.get('length', '')}".strip()
     main = max(cases.values(), key=lambda sol: len(sol.t))
     samples = load_samples_of(load, main.t, main.stats.get("dt"))
+    motions = ground_motion_samples(structure, load, main.t, main.stats.get("dt"))
     keys = _energy_keys(structure)
     for case, sol in cases.items():
         if case not in out["peaks"]:
@@ -45,8 +48,9 @@ def structure_results_rigid_3d(structure, model, cases, *, load, units, rule, po
         contact, frame = parts[case]
         h = F3.histories(structure, frame, rule, load0=None if samples is None else samples[0])
         reaction = F3.reactions(structure, h, frame)
-        reaction["ground_elements"] = {**reaction["ground_elements"], **contact_reactions(structure, sol)}
-        reaction["at"] = {**reaction["at"], **{c.name: c.node for c in structure.rigid.contacts}}
+        forces, at = rigid_ground_reactions(structure, h, sol, motions_at(step_means(motions, sol), h.t))
+        reaction["ground_elements"] = {**reaction["ground_elements"], **forces}
+        reaction["at"] = {**reaction["at"], **at}
         base = F3.base_forces(structure, reaction, out["attrs"]["base_point"])
         for key, values in base.items():
             out["variables"][f"base_{key}"][1][case] = np.asarray(values, dtype=float)
@@ -58,16 +62,3 @@ def structure_results_rigid_3d(structure, model, cases, *, load, units, rule, po
         out["peaks"][case]["rigid_contacts"] = rigid_summary(structure, sol)
     return out
 
-
-def contact_reactions(structure, sol) -> dict:
-    """Per rigid contact its force on the structure, (N+1, 6) ``(fx, fy, fz, mx, my, mz)`` at its node
-    (force; no moment): the compressive force ``v`` (force) along its normal ``d``."""
-    m = structure.m
-    out = {}
-    for j, contact in enumerate(structure.rigid.contacts):
-        d = dict(contact.terms)
-        f = np.zeros((len(sol.t), 6))
-        for k, dof in enumerate(("ux", "uy", "uz")):
-            f[:, k] = d.get(dof, 0.0) * sol.v[:, m + j]
-        out[contact.name] = f
-    return out

@@ -182,7 +182,9 @@ class Histories:
         """Rates of a :class:`~unilateral.Solution` of ``structure`` by ``rule`` (name or Rule).
 
         ``load0`` (n,) is the applied load at t = 0 the run used (for the initial acceleration,
-        ``M u''_0 = q_0 - internal forces`` on the DOFs with mass); default: zero acceleration.
+        ``M u''_0 = q_0 - internal forces`` on the DOFs with mass); default: zero acceleration. A run
+        of ``method="moreau-jean"`` (velocities that jump at impacts) has for ``uddot`` the mean
+        acceleration of each step, ``(u'_k - u'_{k-1}) / dt`` (impulsive at an impact step).
         """
         from ..rules import get_rule
 
@@ -199,7 +201,12 @@ class Histories:
                 f = f - structure.C @ sol.udot[0]
             a0 = _solve_massive(structure.M, f)
         vdot, _ = rates(sol.v, rule, dt)
-        _, uddot = rates(sol.u, rule, dt, rate0=sol.udot[0], second0=a0)
+        if (getattr(sol, "stats", None) or {}).get("method") == "moreau-jean" and len(sol.t) > 1:
+            # velocities that jump at impacts: the mean acceleration of each step, (u'_k - u'_k-1)/dt
+            # (the rule's recurrence from u would ring at every jump: +-1e5 after one impact)
+            uddot = np.vstack([a0[None], np.diff(np.asarray(sol.udot, dtype=float), axis=0) / dt])
+        else:
+            _, uddot = rates(sol.u, rule, dt, rate0=sol.udot[0], second0=a0)
         return cls(t=np.asarray(sol.t, dtype=float), u=np.asarray(sol.u, dtype=float),
                    udot=np.asarray(sol.udot, dtype=float), uddot=uddot, v=np.asarray(sol.v, dtype=float),
                    vdot=vdot)
