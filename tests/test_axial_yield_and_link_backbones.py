@@ -150,3 +150,99 @@ def test_bad_bar_yield_forces_are_refused(kwargs, words):
     fr.node("b", 1.0, 0.0)
     with pytest.raises(ValueError, match=words):
         fr.bar("br", "a", "b", E=E, A=A, **kwargs)
+
+
+MODEL_FILE = """
+[units]
+length = "m"
+force = "kN"
+time = "s"
+
+[[nodes]]
+id = "a"
+x = 0.0
+y = 0.0
+[[nodes]]
+id = "b"
+x = 3.0
+y = 4.0
+[[nodes]]
+id = "m"
+x = 10.0
+y = 0.0
+
+[[supports]]
+node = "a"
+ux = true
+uy = true
+rz = true
+[[supports]]
+node = "b"
+ux = false
+uy = true
+rz = true
+[[supports]]
+node = "m"
+ux = false
+uy = true
+rz = true
+
+[[elements]]
+type = "bar"
+name = "br"
+node_i = "a"
+node_j = "b"
+E = 2e8
+A = 1e-3
+Fy_t = 100.0
+Fy_c = 50.0
+hardening = 0.05
+
+[[unilateral]]
+type = "yield"
+name = "L"
+node = "m"
+direction = "ux"
+backbone = [[0.002, 100.0], [0.006, 140.0], [0.02, 160.0]]
+
+[[masses]]
+node = "b"
+m = 1.0
+[[masses]]
+node = "m"
+m = 2.0
+
+[analysis]
+dt = 0.01
+t_end = 0.1
+"""
+
+
+def test_a_model_file_takes_axial_yield_and_link_backbones(tmp_path):
+    from unilateral.modelfile import load_model_file
+
+    path = tmp_path / "m.toml"
+    path.write_text(MODEL_FILE)
+    spec = load_model_file(path)
+    fr = Frame2D()
+    for node, x, y in (("a", 0.0, 0.0), ("b", LX, LY), ("m", 10.0, 0.0)):
+        fr.node(node, x, y)
+    fr.support("a", ux=True, uy=True, rz=True)
+    fr.support("b", ux=False, uy=True, rz=True)
+    fr.support("m", ux=False, uy=True, rz=True)
+    fr.bar("br", "a", "b", E=E, A=A, Fy_t=FY, Fy_c=0.5 * FY, hardening=0.05)
+    fr.yield_link("L", "m", backbone=BACKBONE, direction="ux")
+    fr.mass("b", 1.0)
+    fr.mass("m", 2.0)
+    model = fr.build().to_model()
+    assert spec.model.constraint_names == model.constraint_names
+    for key in ("K", "M"):
+        np.testing.assert_array_equal(getattr(spec.model, key).toarray(), getattr(model, key).toarray())
+    np.testing.assert_array_equal(spec.model.H, model.H)
+    np.testing.assert_array_equal(np.asarray(spec.model.F), np.asarray(model.F))
+    np.testing.assert_array_equal(spec.model.g(0.0), model.g(0.0))               # the yield forces
+    bad = MODEL_FILE.replace('backbone = [[0.002, 100.0], [0.006, 140.0], [0.02, 160.0]]',
+                             'k = 5e4\nbackbone = [[0.002, 100.0]]')
+    path.write_text(bad)
+    with pytest.raises(ValueError, match=r"unilateral\[0\]\.k .*cannot go with a backbone"):
+        load_model_file(path)

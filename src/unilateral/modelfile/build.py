@@ -255,7 +255,8 @@ def _add_element_3d(fr: Frame3D, e, to_mass=1.0) -> None:
             fr.beam(e.name, e.node_i, e.node_j, E=e.E, A=e.A, Iy=e.Iy, Iz=e.Iz, G=e.G, J=e.J, vecxz=e.vecxz,
                     axial_strain=e.axial_strain, rho=None if e.rho is None else e.rho * to_mass)
         case Bar():
-            fr.bar(e.name, e.node_i, e.node_j, e.E, e.A, axial_strain=e.axial_strain)
+            fr.bar(e.name, e.node_i, e.node_j, e.E, e.A, axial_strain=e.axial_strain, Fy=e.Fy, Fy_t=e.Fy_t,
+                   Fy_c=e.Fy_c, hardening=e.hardening)
         case Spring3D():
             fr.spring(e.name, e.node_i, e.k, j=e.node_j, direction=e.direction)
         case Dashpot3D():
@@ -270,7 +271,7 @@ def _add_element_3d(fr: Frame3D, e, to_mass=1.0) -> None:
             fr.cable(e.name, e.node_i, e.node_j, e.E, e.A, slack=e.slack, capacity=e.capacity)
         case YieldLink3D():
             fr.yield_link(e.name, e.node, e.node_j, k=e.k, Fy=e.Fy, Fy_t=e.Fy_t, Fy_c=e.Fy_c, direction=e.direction,
-                          hardening=e.hardening)
+                          hardening=e.hardening, backbone=e.backbone)
         case Hinge3D():
             fr.hinge(e.name, e.beam, e.end, My=e.My, Mz=e.Mz, shape=e.shape, k=e.k, hardening=e.hardening, **facets)
         case Slider3D():
@@ -289,7 +290,8 @@ def _add_element(fr: Frame2D, e, to_mass=1.0) -> None:
             fr.beam(e.name, e.node_i, e.node_j, e.E, e.A, e.I, axial_strain=e.axial_strain, curvature=e.curvature,
                     rho=None if e.rho is None else e.rho * to_mass)
         case Bar():
-            fr.bar(e.name, e.node_i, e.node_j, e.E, e.A, axial_strain=e.axial_strain)
+            fr.bar(e.name, e.node_i, e.node_j, e.E, e.A, axial_strain=e.axial_strain, Fy=e.Fy, Fy_t=e.Fy_t,
+                   Fy_c=e.Fy_c, hardening=e.hardening)
         case Spring():
             fr.spring(e.name, e.node_i, e.k, j=e.node_j, direction=e.direction)
         case Dashpot():
@@ -304,7 +306,7 @@ def _add_element(fr: Frame2D, e, to_mass=1.0) -> None:
             fr.cable(e.name, e.node_i, e.node_j, e.E, e.A, slack=e.slack, capacity=e.capacity)
         case YieldLink():
             fr.yield_link(e.name, e.node, e.node_j, k=e.k, Fy=e.Fy, Fy_t=e.Fy_t, Fy_c=e.Fy_c, direction=e.direction,
-                          hardening=e.hardening)
+                          hardening=e.hardening, backbone=e.backbone)
         case Hinge2D():
             fr.hinge(e.name, e.beam, e.end, My=e.My, k=e.k, hardening=e.hardening, backbone=e.backbone,
                      interaction=e.interaction, Ny=e.Ny)

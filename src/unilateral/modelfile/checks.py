@@ -388,7 +388,12 @@ def _friction_problems(at, e) -> list[str]:
 
 
 def _yield_force_problems(at, e) -> list[str]:
-    """A yield link takes ``Fy``, or ``Fy_t`` and ``Fy_c``."""
+    """A yield link takes ``k`` and ``Fy``, or ``Fy_t`` and ``Fy_c``; or a ``backbone`` alone."""
+    if e.backbone is not None:
+        return [value_problem((*at, key), getattr(e, key), "cannot go with a backbone, which gives the link's "
+                              "stiffness and strengths") for key in ("k", "Fy", "Fy_t", "Fy_c") if getattr(e, key) is not None]
+    if e.k is None:
+        return [f"{key_path((*at, 'k'))}: missing key (give the elastic stiffness k [F/L] > 0, or a backbone)"]
     if e.Fy is not None:
         return [value_problem((*at, key), getattr(e, key), "give either Fy (both ways) or Fy_t and Fy_c, not both")
                 for key in ("Fy_t", "Fy_c") if getattr(e, key) is not None]

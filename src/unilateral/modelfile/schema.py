@@ -192,6 +192,10 @@ class Bar(_TwoNodes):
     E: Positive = Field(description="Young's modulus [force/length^2].")
     A: Positive = Field(description="Cross-section area [length^2].")
     axial_strain: float = Field(0.0, description="Imposed (e.g. thermal) axial strain.")
+    Fy: Positive | None = Field(None, description="Axial yield force both ways [force] (none: elastic); or Fy_t, Fy_c.")
+    Fy_t: Positive | None = Field(None, description="Axial yield force in tension [force].")
+    Fy_c: Positive | None = Field(None, description="Axial yield force in compression [force].")
+    hardening: NonNegative = Field(0.0, description="Kinematic hardening over EA/L (with a yield force).")
 
 
 class Spring(_TwoNodes):
@@ -281,11 +285,15 @@ class YieldLink(_TwoNodes):
     node: NodeRef
     node_j: NodeRef | None = None
     direction: Direction = "ux"
-    k: Positive = Field(description="Elastic stiffness [force/length] ([force length] along rz).")
+    k: Positive | None = Field(None, description="Elastic stiffness [force/length] ([force length] along rz); "
+                               "none with a backbone.")
     Fy: Positive | None = Field(None, description="Yield force both ways [force]; or give Fy_t and Fy_c.")
     Fy_t: Positive | None = Field(None, description="Yield force in tension [force].")
     Fy_c: Positive | None = Field(None, description="Yield force in compression [force].")
-    hardening: NonNegative = Field(0.0, description="Kinematic hardening modulus over k (post-yield k h/(1+h)).")
+    hardening: NonNegative = Field(0.0, description="Kinematic hardening modulus over k (post-yield k h/(1+h)); "
+                                   "backbone: last slope/first.")
+    backbone: list[Pair] | None = Field(None, min_length=1, description="Convex multi-linear backbone [[e, F], ...] "
+                                        "[length, force] instead of k and Fy (e < 0: compression branch).")
 
 
 class Hinge(Table):
