@@ -25,7 +25,7 @@ import unilateral as ul
 from unilateral.analysis.energy import energy_balance
 from unilateral.constraints import Bearing, Contact
 from unilateral.pushover import pushover
-from unilateral.structure import Frame2D
+from unilateral.structure import Frame2D, Frame3D
 from unilateral.structure import forces as F
 
 K, Q = 1000.0, 10.0                     # kN/m, kN
@@ -187,9 +187,8 @@ def test_a_footing_on_a_soil_medium_refuses_q_ult_and_names_the_springs_instead(
     assert not fr._foundations
 
 
-def test_a_model_file_soil_takes_a_bearing_capacity_on_a_2d_frame_only(tmp_path):
+def test_a_model_file_soil_takes_a_bearing_capacity(tmp_path):
     from unilateral.modelfile import ModelFileError, load_model_file
-    from unilateral.modelfile.dimensions import dimension_hint
     from unilateral.modelfile.schema3d import Soil3D
 
     text = (ROOT / "examples" / "liolios1990.toml").read_text()
@@ -203,8 +202,7 @@ def test_a_model_file_soil_takes_a_bearing_capacity_on_a_2d_frame_only(tmp_path)
     (tmp_path / "bad.toml").write_text(text.replace("bearing = 150.0", "bearing = 0.0"))
     with pytest.raises(ModelFileError, match=r"unilateral\[0\]\.bearing = 0\.0"):
         load_model_file(tmp_path / "bad.toml")
-    assert "bearing" not in Soil3D.model_fields
-    assert dimension_hint(Soil3D, "bearing").startswith("a key of 2-D frames only")
+    assert "bearing" in Soil3D.model_fields                        # 3-D soils take it too
 
 
 def test_the_summary_of_a_run_reports_the_settlement_of_a_bearing_spring(tmp_path):
@@ -236,3 +234,41 @@ def test_soils_makes_the_elements_of_soil_with_a_bearing_capacity():
     for one, many in zip(build(False), build(True)):
         assert one.unknowns == many.unknowns and one.dofs == many.dofs
         assert np.array_equal(one.E, many.E) and np.array_equal(one.E_v, many.E_v)
+
+
+def _plane_footing(frame, n=6, B=2.0, q_ult=100.0, m=10.0):
+    """A rigid footing ``c`` of width ``B`` on ``n`` bearing springs (k 1e4 per unit area, 1 m long),
+    in the x-y plane of a Frame2D or the x-z plane of a Frame3D (its out-of-plane DOFs held)."""
+    three = isinstance(frame, Frame3D)
+    at = (lambda x, z: (x, 0.0, z)) if three else (lambda x, z: (x, z))
+    frame.node("c", *at(0.0, 0.0))
+    if three:
+        frame.support("c", ux=True, uy=True, uz=False, rx=True, ry=False, rz=True)
+        frame.mass("c", m, Jy=m * B * B / 12)
+    else:
+        frame.support("c", ux=True, uy=False, rz=False)
+        frame.mass("c", m, J=m * B * B / 12)
+    for j in range(n):
+        x = -B / 2 + B * (j + 0.5) / n
+        frame.node(f"s{j}", *at(x, 0.0))
+        frame.rigid_link("c", f"s{j}")
+        frame.soil(f"s{j}", f"s{j}", 1e4 * B / n, c=50.0 * B / n, bearing=q_ult * B / n)
+    return frame.build()
+
+
+def test_a_3d_footing_on_bearing_springs_in_a_plane_is_the_2d_one():
+    st2, st3 = _plane_footing(Frame2D()), _plane_footing(Frame3D())
+    assert st3.constraint_names == st2.constraint_names
+    dt, t_end, g = 2e-3, 3.0, 10.0
+    runs = []
+    for st, rot in ((st2, dict(rz=1.0)), (st3, dict(ry=-1.0))):          # ry about +y is -rz of the plane
+        t = dt * np.arange(int(round(t_end / dt)) + 1)
+        q = np.tile(st.gravity(g, (0.0, -1.0) if st is st2 else (0.0, 0.0, -1.0)), (t.size, 1))
+        q += np.outer(40.0 * np.sin(2 * np.pi * t), st.nodal_load("c", **rot))
+        sol = ul.solve(st.to_model(), q, dt=dt, t_end=t_end, method="direct", rule="trapezoidal")
+        assert sol.success, sol.message
+        runs.append(sol)
+    a, b = runs
+    plastic = [k for k, name in enumerate(st2.constraint_names) if name.endswith(".plastic-")]
+    assert a.v[-1, plastic].max() > 1e-3                                    # the soil yields
+    np.testing.assert_allclose(b.v, a.v, rtol=0, atol=1e-10 * np.abs(a.v).max())

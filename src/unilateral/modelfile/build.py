@@ -263,7 +263,7 @@ def _add_element_3d(fr: Frame3D, e, to_mass=1.0) -> None:
             fr.dashpot(e.name, e.node_i, e.c, j=e.node_j, direction=e.direction)
         case Soil3D():
             fr.soil(e.name, e.node, e.k, c=e.c, direction=e.direction, gap=e.gap, capacity=e.capacity, mu=e.mu,
-                    kt=e.kt, ct=e.ct, **facets)
+                    kt=e.kt, ct=e.ct, bearing=e.bearing, **facets)
         case Gap3D():
             fr.gap(e.name, e.node_i, e.node_j, e.k, gap=e.gap, c=e.c, direction=e.direction, mu=e.mu, kt=e.kt,
                    ct=e.ct, **facets)

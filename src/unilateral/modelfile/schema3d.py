@@ -137,9 +137,11 @@ _FACETS = Field(None, description=(
 
 
 class Soil3D(SoilBase):
-    """Tensionless soil under a node of a 3-D frame (default direction uz; no bearing capacity)."""
+    """Tensionless soil under a node of a 3-D frame (default direction uz), which may yield in compression."""
 
     direction: Direction3 = Field("uz", description="Direction in which the node separates from the soil.")
+    bearing: Positive | None = Field(None, description="Bearing capacity of the spring: the largest compression "
+                                     "[force]; beyond it the soil settles plastically (none: no limit).")
     facets: Annotated[int, Field(ge=4)] | None = _FACETS
 
 

@@ -192,6 +192,17 @@ def bearing_unknown(name, Q, k) -> Unknown:
     return Unknown(f"{name}.plastic-", 0, -1.0, Q, "yield", None, 0.0, None, k)
 
 
+def with_bearing(element, name, Q) -> Element:
+    """The soil contact ``element`` with the bearing capacity ``Q`` [force] on its strain (row 0):
+    the settlement :func:`bearing_unknown` after its unknowns, uncoupled (``A`` padded with zeros)."""
+    n = len(element.unknowns)
+    A = None
+    if element.A is not None:
+        A = np.zeros((n + 1, n + 1))
+        A[:n, :n] = element.A
+    return replace(element, unknowns=element.unknowns + (bearing_unknown(name, Q, float(element.E[0, 0])),), A=A)
+
+
 def _element(name, kind, dofs, a, E, theta, *, E_v=None, unknowns=(), A=None) -> Element:
     """``Element(name, kind, dofs, a, E, theta, E_v, unknowns, A)``, made without the frozen
     dataclass's ``__setattr__`` per field (the builder makes thousands): the same fields, defaults

@@ -20,7 +20,6 @@ Strain and sign conventions of the elements are in :mod:`unilateral.structure.el
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from itertools import compress
 
 import numpy as np
@@ -280,8 +279,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         element = self._contact("soil", where, name, None, node, k=k, c=c, direction=direction, gap=gap,
                                 capacity=capacity, friction=_friction(where, mu, kt, ct))
         if bearing is not None:
-            element = replace(element, unknowns=element.unknowns + (
-                el.bearing_unknown(name, _real(where, "bearing", bearing, ">0"), element.E[0, 0]),))
+            element = el.with_bearing(element, name, _real(where, "bearing", bearing, ">0"))
         self._add(element)
 
     def soils(self, names, nodes, k, *, c=0.0, gap=0.0, capacity=0.0, direction="uy", bearing=None) -> None:

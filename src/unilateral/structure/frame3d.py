@@ -353,7 +353,7 @@ class Frame3D(RigidBoxes, support_motion.SupportMotions, _Frame):
 
     # ------------------------------------------------------------------ unilateral elements
     def soil(self, name, node, k, *, c=0.0, direction="uz", gap=0.0, capacity=0.0, mu=None, kt=None, ct=0.0,
-             tangent=None, facets=4) -> None:
+             tangent=None, facets=4, bearing=None) -> None:
         """Tensionless soil element under ``node``: spring ``k`` and dashpot ``c`` in parallel (a
         Kelvin element) in series with a unilateral contact, as
         :meth:`Frame2D.soil <unilateral.structure.Frame2D.soil>`.
@@ -369,6 +369,9 @@ class Frame3D(RigidBoxes, support_motion.SupportMotions, _Frame):
         direction : ``"ux"``, ``"uy"``, ``"uz"`` or a vector ``(dx, dy, dz)``
         gap : initial gap between node and soil (imposed strain ``-gap``), length
         capacity : the tension ``r >= 0`` carried before separating, force (default 0)
+        bearing : the bearing capacity ``Q > 0`` of the spring, force, or None: the compression never
+            exceeds it, beyond it the soil settles plastically (the unknown ``"name.plastic-"``), as
+            :meth:`Frame2D.soil <unilateral.structure.Frame2D.soil>`
         mu : Coulomb friction coefficient >= 0, or None (no friction: the node slides freely)
         kt : stick stiffness, force/length, > 0, along each tangent axis; required with ``mu``
         ct : viscosity of a Kelvin dashpot in parallel with ``kt``, force time/length (default 0)
@@ -421,8 +424,11 @@ class Frame3D(RigidBoxes, support_motion.SupportMotions, _Frame):
         method).
         """
         where, ends, terms = self._ends("soil", name, node, None, direction, ("node", None))
-        self._add(self._contact("soil", where, name, ends, terms, k=k, c=c, gap=gap, capacity=capacity,
-                                friction=(_friction(where, mu, kt, ct), tangent, _facets(where, mu, facets))))
+        element = self._contact("soil", where, name, ends, terms, k=k, c=c, gap=gap, capacity=capacity,
+                                friction=(_friction(where, mu, kt, ct), tangent, _facets(where, mu, facets)))
+        if bearing is not None:
+            element = el.with_bearing(element, name, _real(where, "bearing", bearing, ">0"))
+        self._add(element)
 
     def gap(self, name, i, j, k, *, gap=0.0, c=0.0, direction=None, mu=None, kt=None, ct=0.0,
             tangent=None, facets=4) -> None:
