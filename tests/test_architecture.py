@@ -114,10 +114,10 @@ PACKAGE_CYCLES = {
 LONG_MODULES = {
 }
 LONG_FUNCTIONS = {
-    "analysis/results.py:structure_results": 127,
     "soil/structure_weights.py:structure_weights": 100,
     "loads/site_response.py:free_field": 100,
-    "batch/runner.py:run_study": 95, "analysis/results3d.py:structure_results_3d": 96,
+    "batch/runner.py:run_study": 95,
+    "analysis/results3d.py:structure_results_3d": 96,
     "march/event_config.py:__init__": 86,
 }
 
