@@ -117,7 +117,6 @@ LONG_FUNCTIONS = {
     "soil/structure_weights.py:structure_weights": 100,
     "loads/site_response.py:free_field": 100,
     "batch/runner.py:run_study": 95,
-    "analysis/results3d.py:structure_results_3d": 96,
     "march/event_config.py:__init__": 86,
 }
 
