@@ -114,7 +114,6 @@ PACKAGE_CYCLES = {
 LONG_MODULES = {
 }
 LONG_FUNCTIONS = {
-    "soil/structure_weights.py:structure_weights": 100,
     "loads/site_response.py:free_field": 100,
     "batch/runner.py:run_study": 95,
     "march/event_config.py:__init__": 86,
