@@ -171,32 +171,45 @@ def _shifted(shift, h, v_b, c, rhs, cp):
 
 
 @njit(cache=True, fastmath=REASSOCIATE)
-def _record_full_space(k, it, c, vn, psin, v, v_b, dv, stats):
-    """The statistics of step k's LCP solved in ``it`` trial sets: ``dv = vn - v_b`` (m,), the
-    contact changes against ``v[k-1]`` and the error ``|min(v, -psi)| / (1 + |c|)`` (``c`` (m,)
-    the free reactions) into ``stats`` (4,)."""
+def _record_full_space(k, it, c, vn, psin, v, stats):
+    """The statistics of step k's LCP solved in ``it`` trial sets into ``stats`` (4,): the contact
+    changes of ``vn`` (m,) against ``v[k-1]`` and the error ``|min(v, -psi)| / (1 + |c|)``
+    (``psin`` (m,) its ``psi``, ``c`` (m,) the free reactions)."""
     err, norm_c = 0.0, 0.0
     for b in range(vn.shape[0]):
         e = min(vn[b], -psin[b])
         err += e * e
         norm_c += c[b] * c[b]
         stats[2] += (vn[b] > 0.0) != (v[k - 1, b] > 0.0)
-        dv[b] = vn[b] - v_b[b]
     stats[0] += it
     stats[1] = max(stats[1], it)
     stats[3] = max(stats[3], np.sqrt(err) / (1.0 + np.sqrt(norm_c)))
 
 
 @njit(cache=True, fastmath=REASSOCIATE)
-def _store_permuted(k, perm, c0, c1, x, h1, h2, ud, acc, du, dud):
-    """Row k of ``du`` and ``dud`` (N+1, n, original DOF order) from the step's ``x = du`` (n,
-    envelope order), with its rates ``ud = c1 du - h1`` and ``acc = c0 du - h2`` (n,) for the
-    rule state (``h1``, ``h2`` (n,) its history; :func:`~unilateral.march.compiled._advance`)."""
+def _increment(vn, v_b, dv):
+    """The step's increment ``dv = vn - v_b`` (m,) of the unknowns over the base deformations."""
+    for b in range(vn.shape[0]):
+        dv[b] = vn[b] - v_b[b]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _rates(c0, c1, x, h1, h2, ud, acc):
+    """The rates of the step's ``x = du`` (n,) for the rule state
+    (:func:`~unilateral.march.compiled._advance`): ``ud = du' = c1 du - h1``, ``acc = du'' = c0 du -
+    h2`` (``h1``, ``h2`` (n,) the rule's history)."""
+    for i in range(x.shape[0]):
+        ud[i] = c1 * x[i] - h1[i]
+        acc[i] = c0 * x[i] - h2[i]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _store_permuted(k, perm, x, ud, du, dud):
+    """Row k of ``du`` and ``dud`` (N+1, n, original DOF order) from the step's ``x = du`` and
+    ``ud = du'`` (n, envelope order; ``perm`` (n,) the original index of each row)."""
     for i in range(x.shape[0]):
         du[k, perm[i]] = x[i]
-        ud[i] = c1 * x[i] - h1[i]
         dud[k, perm[i]] = ud[i]
-        acc[i] = c0 * x[i] - h2[i]
 
 
 @njit(cache=True, fastmath=REASSOCIATE)
@@ -269,8 +282,10 @@ def full_space_steps(rule, env, cons, mats, tables, carry, steps):
             it = full_space_lcp(env, cons, a, (rhs, cp, x, vn, psin), lcp_state, max_iter)
             if it < 0:
                 return k
-            _record_full_space(k, it, c, vn, psin, v, v_b, dv, stats)
-        _store_permuted(k, perm, c0, c1, x, h1, h2, ud, acc, du, dud)
+            _record_full_space(k, it, c, vn, psin, v, stats)
+            _increment(vn, v_b, dv)
+        _rates(c0, c1, x, h1, h2, ud, acc)
+        _store_permuted(k, perm, x, ud, du, dud)
         _advance(us, x, ud, acc)
         if viscous:
             _kelvin_rates(c0, c1, dv, k1, k2, dvd, dvdd)
