@@ -114,7 +114,6 @@ PACKAGE_CYCLES = {
 LONG_MODULES = {
 }
 LONG_FUNCTIONS = {
-    "march/event_config.py:__init__": 86,
 }
 
 
