@@ -481,192 +481,6 @@ def direct_start(N1, n, m, v_b, psi0, ustart):
             np.zeros(m))
 
 
-# The pieces of a step of :func:`direct_steps`. Each is loops over arrays and calls nothing: numba
-# then prunes the reference counts of its arrays, which a piece that calls another function (or
-# one inlined into the step's loop) pays in every step, about 10 % of a small model's step. The
-# compiled callees (:func:`_matvec_add`, :func:`_advance`, the solvers) are called from the loop.
-@njit(cache=True)
-def _direct_workspace(n, m):
-    """Per-step arrays of :func:`direct_steps`: ``h1, h2, rhs, x, ud, acc`` (n,) and ``k1, k2, c,
-    dv, dvd, dvdd, o, t1`` (m,), of which ``k1``, ``k2``, ``dv`` and ``o`` are zero."""
-    return (np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
-            np.zeros(m), np.zeros(m), np.empty(m), np.zeros(m), np.empty(m), np.empty(m),
-            np.zeros(m), np.empty(m))
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _scaled_row(a, table, k, out):
-    """``out = a table[k]``: a row of a table (N+1, n), such as the load increments ``a f_k``."""
-    for i in range(out.shape[0]):
-        out[i] = a * table[k, i]
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _hht_loads(k, f, F, F_v, dv_prev, vs, acc):
-    """HHT-alpha's loads of the previous step: ``acc = f_{k-1} + F dv + F_v dv'`` (n,) of the
-    previous increment ``dv_prev`` (m,) and rate ``dv' = vs[2]`` (``vs`` (5, m) the rule state of
-    ``dv``; ``F``, ``F_v`` (n, m)); the step then subtracts ``C u' + K u``."""
-    for i in range(acc.shape[0]):
-        acc[i] = f[k - 1, i]
-        for b in range(dv_prev.shape[0]):
-            acc[i] += F[i, b] * dv_prev[b] + F_v[i, b] * vs[2, b]
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _add_scaled(alpha, acc, rhs):
-    """``rhs += alpha acc`` (n,): HHT-alpha's share of the previous step."""
-    for i in range(rhs.shape[0]):
-        rhs[i] += alpha * acc[i]
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _kelvin_terms(a, F_v, F_vT, H_v, h1, k1, rhs, c):
-    """The Kelvin dashpots' terms of the free step, in place: ``rhs -= a F_v k1`` (n,) and
-    ``c -= F_v^T h1 - H_v k1`` (m,).
-
-    ``F_v`` (n, m), ``F_vT`` (m, n) its transpose, ``H_v`` (m, m); ``h1`` (n,) and ``k1`` (m,) the
-    rule's histories of ``du`` and ``dv`` (1/s times displacements); ``a = 1 - alpha``.
-    """
-    n, m = rhs.shape[0], c.shape[0]
-    for i in range(n):
-        t = 0.0
-        for b in range(m):
-            t += F_v[i, b] * k1[b]
-        rhs[i] -= a * t
-    for b in range(m):
-        t = 0.0
-        for i in range(n):
-            t += F_vT[b, i] * h1[i]
-        for e in range(m):
-            t -= H_v[b, e] * k1[e]
-        c[b] -= t
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _free_reactions(FpT, x, c):
-    """``c += Fp^T x`` (m,): the reactions ``psi`` of the free step ``x = du_free`` (n,), ``FpT =
-    (F + c1 F_v)^T`` (m, n)."""
-    for b in range(c.shape[0]):
-        t = c[b]
-        for i in range(x.shape[0]):
-            t += FpT[b, i] * x[i]
-        c[b] = t
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _held(v_b, vn, dv):
-    """A bilateral step: ``v`` held at ``v_b``, ``vn = v_b`` and ``dv = 0`` (m,)."""
-    for b in range(v_b.shape[0]):
-        vn[b] = v_b[b]
-        dv[b] = 0.0
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _lcp_vector(c, base, q):
-    """``q = -(c + W0 v_b)`` (m,): the step LCP's vector of the free reactions ``c`` (m,) and
-    ``base = W0 v_b`` (m,), before the law's :func:`law_vector`."""
-    for b in range(q.shape[0]):
-        q[b] = -(c[b] + base[b])
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _solved_by_zero(q, vn, wn, active):
-    """Whether ``v = 0`` solves the LCP (``q >= 0``, no linear solve, as in
-    :meth:`unilateral.lcp.LCPSolver.solve`); then ``vn = 0``, ``wn = q`` and no contact is open."""
-    q_min = 0.0
-    for b in range(q.shape[0]):
-        q_min = min(q_min, q[b])
-    if q_min < 0.0:
-        return False
-    for b in range(q.shape[0]):
-        vn[b] = 0.0
-        wn[b] = q[b]
-        active[b] = False
-    return True
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _record_lcp(step, tol, code, o, v_b, active, previous, vn, dv, stats):
-    """Take the LCP result ``step = (solves, error, fallback)``: False if it failed (no solution,
-    or an error over ``tol``), else ``vn += o`` (the law's rate part, ``code != 0``), ``dv = vn -
-    v_b`` (m,) and the statistics of :func:`march_naive` (``stats`` (5,); ``active``,
-    ``previous`` (m,) the contact sets, ``previous`` updated)."""
-    it, err, fallback = step
-    stats[4] += fallback
-    if it < 0 or err > tol:
-        return False
-    if code != 0:
-        for b in range(vn.shape[0]):
-            vn[b] += o[b]
-    stats[0] += it
-    stats[1] = max(stats[1], it)
-    stats[3] = max(stats[3], err)
-    for b in range(vn.shape[0]):
-        if active[b] != previous[b]:
-            stats[2] += 1
-        previous[b] = active[b]
-        dv[b] = vn[b] - v_b[b]
-    return True
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _correct(X, dv, x):
-    """The corrected step ``du = du_free + X dv`` in place (``x`` (n,), ``X`` (n, m), ``dv`` (m,));
-    nothing to do if ``dv`` is zero."""
-    nonzero = False
-    for b in range(dv.shape[0]):
-        nonzero = nonzero or dv[b] != 0.0
-    if nonzero:
-        for i in range(x.shape[0]):
-            t = x[i]
-            for b in range(dv.shape[0]):
-                t += X[i, b] * dv[b]
-            x[i] = t
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _store_displacements(k, c0, c1, x, h1, h2, ud, acc, du, dud):
-    """Row k of ``du`` and ``dud`` (N+1, n) from the step's ``x = du`` (n,), with its rates ``ud =
-    du' = c1 du - h1`` and ``acc = du'' = c0 du - h2`` (n,) for the rule state (:func:`_advance`)."""
-    for i in range(x.shape[0]):
-        du[k, i] = x[i]
-        ud[i] = c1 * x[i] - h1[i]
-        dud[k, i] = ud[i]
-        acc[i] = c0 * x[i] - h2[i]
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _kelvin_rates(c0, c1, dv, k1, k2, dvd, dvdd):
-    """The rates of the step's ``dv`` (m,) for the rule state of ``dv`` (:func:`_advance`):
-    ``dvd = c1 dv - k1``, ``dvdd = c0 dv - k2`` (``k1``, ``k2`` (m,) the rule's history)."""
-    for b in range(dv.shape[0]):
-        dvd[b] = c1 * dv[b] - k1[b]
-        dvdd[b] = c0 * dv[b] - k2[b]
-
-
-@njit(cache=True, fastmath=REASSOCIATE)
-def _store_reactions(k, c, W0, code, P, dv, vn, v, psi, dv_prev, t1):
-    """Row k of ``v`` and ``psi`` (N+1, m): ``v_k = vn``, the constraint functions ``psi_k = P (c -
-    W0 dv)`` (``P`` (m, m) of the law, applied if its ``code`` is 2; ``c`` the free reactions,
-    ``t1`` (m,) work space) and ``dv_prev = dv``."""
-    m = c.shape[0]
-    for b in range(m):
-        t = c[b]
-        for e in range(m):
-            t -= W0[b, e] * dv[e]
-        t1[b] = t
-        v[k, b] = vn[b]
-        dv_prev[b] = dv[b]
-    for b in range(m):
-        if code == 2:
-            t = 0.0
-            for e in range(m):
-                t += P[b, e] * t1[e]
-            psi[k, b] = t
-        else:
-            psi[k, b] = t1[b]
-
-
 @njit(cache=True, fastmath=REASSOCIATE)
 def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
     """Steps ``steps[0] <= k < steps[1]`` of the direct march, compiled; the failed step or 0.
@@ -674,8 +488,9 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
     The operations of :func:`unilateral.march.direct.march_direct` with
     :class:`~unilateral.march.stepper.StructureStepper` (``predict``, the condensed LCP on
     ``W0`` by :func:`~unilateral.lcp.pivoting.solve_step` warm-started from the previous contact
-    set, ``correct``), for every rule: ``kind`` :data:`RULE_BDF1`, :data:`RULE_BDF2` or
-    :data:`RULE_NEWMARK` (trapezoidal, Newmark, HHT-alpha).
+    set, ``correct``), for every
+    rule: ``kind`` :data:`RULE_BDF1`, :data:`RULE_BDF2` or :data:`RULE_NEWMARK` (trapezoidal,
+    Newmark, HHT-alpha).
 
     Parameters
     ----------
@@ -700,42 +515,121 @@ def direct_steps(kind, rp, mats, sparse, tables, v_b, flags, law, carry, steps):
     f, offset, base = tables
     c0, alpha, viscous, bilateral, max_iter, tol = flags
     du, dud, v, psi, stats, active, previous, us, vs, dv_prev = carry
+    n, m = f.shape[1], offset.shape[1]
+    c1 = rp[7]
+    a = 1.0 - alpha
+    h1, h2, k1, k2 = np.empty(n), np.empty(n), np.zeros(m), np.zeros(m)
+    rhs, x, ud, acc = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    c, dv, dvd, dvdd = np.empty(m), np.zeros(m), np.empty(m), np.empty(m)
+    q, vn, wn, idx, S, work_rhs, work_x = _workspace(m)
     code, rate, P, partner, group = law
-    h1, h2, rhs, x, ud, acc, k1, k2, c, dv, dvd, dvdd, o, t1 = _direct_workspace(f.shape[1], offset.shape[1])
-    q, vn, wn, idx, S, work_rhs, work_x = _workspace(offset.shape[1])
-    c1, a, WL = rp[7], 1.0 - alpha, law_matrix(code, P, W0)
+    WL = law_matrix(code, P, W0)
+    o, t1 = np.zeros(m), np.empty(m)
     for k in range(steps[0], steps[1]):
         _rule_history(kind, rp, us, h1, h2)
         if viscous:
             _rule_history(kind, rp, vs, k1, k2)
-        _scaled_row(a, f, k, rhs)           # free_terms: rhs = a f + M h2 + a C h1 ...
+        for i in range(n):                  # free_terms: rhs = a f + M h2 + a C h1 ...
+            rhs[i] = a * f[k, i]
         _matvec_add(M, h2, 1.0, rhs)
         _matvec_add(C, h1, a, rhs)
         if alpha != 0.0:                    # HHT: alpha (f_prev - C u' - K u + F dv + F_v dv')
-            _hht_loads(k, f, F, F_v, dv_prev, vs, acc)
+            for i in range(n):
+                acc[i] = f[k - 1, i]
+                for b in range(m):
+                    acc[i] += F[i, b] * dv_prev[b] + F_v[i, b] * vs[2, b]
             _matvec_add(C, us[2], -1.0, acc)
             _matvec_add(K, us[0], -1.0, acc)
-            _add_scaled(alpha, acc, rhs)
-        _scaled_row(1.0, offset, k, c)
+            for i in range(n):
+                rhs[i] += alpha * acc[i]
+        for b in range(m):
+            c[b] = offset[k, b]
         if viscous:
-            _kelvin_terms(a, F_v, F_vT, H_v, h1, k1, rhs, c)
+            for i in range(n):
+                t = 0.0
+                for b in range(m):
+                    t += F_v[i, b] * k1[b]
+                rhs[i] -= a * t
+            for b in range(m):
+                t = 0.0
+                for i in range(n):
+                    t += F_vT[b, i] * h1[i]
+                for e in range(m):
+                    t -= H_v[b, e] * k1[e]
+                c[b] -= t
         _lu_solve_by_columns(luT, piv, rhs, x)  # predict: du_free, psi_free
-        _free_reactions(FpT, x, c)
+        for b in range(m):
+            t = c[b]
+            for i in range(n):
+                t += FpT[b, i] * x[i]
+            c[b] = t
         if bilateral:
-            _held(v_b, vn, dv)
+            for b in range(m):
+                vn[b] = v_b[b]
+                dv[b] = 0.0
         else:
-            _lcp_vector(c, base, q)
+            q_min = 0.0
+            for b in range(m):
+                q[b] = -(c[b] + base[b])
             if code != 0:                   # (a row of v is sliced only where the law needs it)
                 law_vector(code, rate, P, W0, q, v[k - 1], o, t1)
-            step = (0, 0.0, 0) if _solved_by_zero(q, vn, wn, active) else solve_step(
-                WL, q, active, vn, wn, max_iter, tol, (idx, S, work_rhs, work_x), code != 2, (partner, group))
-            if not _record_lcp(step, tol, code, o, v_b, active, previous, vn, dv, stats):
+            for b in range(m):
+                q_min = min(q_min, q[b])
+            if q_min >= 0.0:                # v = 0 solves it (no linear solve), as in LCPSolver.solve
+                for b in range(m):
+                    vn[b] = 0.0
+                    wn[b] = q[b]
+                    active[b] = False
+                it, err = 0, 0.0
+            else:
+                it, err, fallback = solve_step(WL, q, active, vn, wn, max_iter, tol, (idx, S, work_rhs, work_x),
+                                               code != 2, (partner, group))
+                stats[4] += fallback
+            if it < 0 or err > tol:
                 return k
-            _correct(X, dv, x)              # correct: du = du_free + X dv
-        _store_displacements(k, c0, c1, x, h1, h2, ud, acc, du, dud)
+            if code != 0:
+                for b in range(m):
+                    vn[b] += o[b]
+            stats[0] += it
+            stats[1] = max(stats[1], it)
+            stats[3] = max(stats[3], err)
+            nonzero = False
+            for b in range(m):
+                if active[b] != previous[b]:
+                    stats[2] += 1
+                previous[b] = active[b]
+                dv[b] = vn[b] - v_b[b]
+                nonzero = nonzero or dv[b] != 0.0
+            if nonzero:                     # correct: du = du_free + X dv
+                for i in range(n):
+                    t = x[i]
+                    for b in range(m):
+                        t += X[i, b] * dv[b]
+                    x[i] = t
+        for i in range(n):
+            du[k, i] = x[i]
+            ud[i] = c1 * x[i] - h1[i]
+            dud[k, i] = ud[i]
+            acc[i] = c0 * x[i] - h2[i]
         _advance(us, x, ud, acc)
         if viscous:
-            _kelvin_rates(c0, c1, dv, k1, k2, dvd, dvdd)
+            for b in range(m):
+                dvd[b] = c1 * dv[b] - k1[b]
+                dvdd[b] = c0 * dv[b] - k2[b]
             _advance(vs, dv, dvd, dvdd)
-        _store_reactions(k, c, W0, code, P, dv, vn, v, psi, dv_prev, t1)
+        for b in range(m):
+            t = c[b]
+            for e in range(m):
+                t -= W0[b, e] * dv[e]
+            t1[b] = t
+            v[k, b] = vn[b]
+            dv_prev[b] = dv[b]
+        for b in range(m):
+            if code == 2:
+                t = 0.0
+                for e in range(m):
+                    t += P[b, e] * t1[e]
+                psi[k, b] = t
+            else:
+                psi[k, b] = t1[b]
     return 0

@@ -23,8 +23,7 @@ from numba import njit
 
 from . import envelope
 from ..lcp.pivoting import BLOCK_TRIES
-from .compiled import (REASSOCIATE, _add_scaled, _advance, _direct_workspace, _kelvin_rates, _matvec_add,
-                       _rule_history, _scaled_row)
+from .compiled import REASSOCIATE, _advance, _matvec_add, _rule_history
 from .direct import ChunkedMarch, direct_outputs
 from .step_log import StepLog
 
@@ -140,8 +139,47 @@ def full_space_lcp(env, cons, a, rc, state, max_iter):
     return -max_iter
 
 
-# The pieces of a step of :func:`full_space_steps`: loops over arrays that call nothing (see the
-# note before :func:`unilateral.march.compiled._direct_workspace`); the loop calls the rest.
+# The pieces of a step of :func:`full_space_steps`. Each is loops over arrays that calls nothing:
+# numba then prunes the reference counts of its arrays (a piece that calls another compiled
+# function keeps them, and pays them in every step). The compiled callees (:func:`_matvec_add`,
+# :func:`_advance`, the envelope's solves, :func:`full_space_lcp`) are called from the loop. A call
+# of a piece costs some 10-20 ns (numba's calling convention passes every array as its fields;
+# LLVM does not inline a piece with a loop): nothing against a large model's step, but the step of
+# a small condensed model takes 0.5 us, which is why :func:`unilateral.march.compiled.direct_steps`
+# is one function.
+@njit(cache=True)
+def _step_workspace(n, m):
+    """Per-step arrays of :func:`full_space_steps`: ``h1, h2, rhs, x, ud, acc`` (n,) and ``k1, k2,
+    c, dv, dvd, dvdd, cp, vn, psin`` (m,), of which ``k1``, ``k2``, ``dv`` and ``cp`` are zero."""
+    return (np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
+            np.zeros(m), np.zeros(m), np.empty(m), np.zeros(m), np.empty(m), np.empty(m),
+            np.zeros(m), np.empty(m), np.empty(m))
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _scaled_row(a, table, k, out):
+    """``out = a table[k]``: a row of a table (rows, n), such as the reaction offsets of a step."""
+    for i in range(out.shape[0]):
+        out[i] = a * table[k, i]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _add_scaled(alpha, acc, rhs):
+    """``rhs += alpha acc`` (n,): HHT-alpha's share of the previous step."""
+    for i in range(rhs.shape[0]):
+        rhs[i] += alpha * acc[i]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _kelvin_rates(c0, c1, dv, k1, k2, dvd, dvdd):
+    """The rates of the step's ``dv`` (m,) for the rule state of ``dv``
+    (:func:`~unilateral.march.compiled._advance`): ``dvd = c1 dv - k1``, ``dvdd = c0 dv - k2``
+    (``k1``, ``k2`` (m,) the rule's history)."""
+    for b in range(dv.shape[0]):
+        dvd[b] = c1 * dv[b] - k1[b]
+        dvdd[b] = c0 * dv[b] - k2[b]
+
+
 @njit(cache=True, fastmath=REASSOCIATE)
 def _permuted_row(a, table, row, perm, out):
     """``out[i] = a table[row, perm[i]]`` (n,): a row of the loads (original DOF order) in the
@@ -251,8 +289,8 @@ def full_space_steps(rule, env, cons, mats, tables, carry, steps):
     du, dud, v, psi, stats, active, factored, us, vs, dv_prev, bad, count = carry
     ptr, first, L = env[0], env[1], env[4]
     c1, a = rp[7], 1.0 - alpha
-    h1, h2, rhs, x, ud, acc, k1, k2, c, dv, dvd, dvdd, cp, vn = _direct_workspace(f.shape[1], offset.shape[1])
-    psin, lcp_state = np.empty(offset.shape[1]), (active, factored, bad, count)
+    h1, h2, rhs, x, ud, acc, k1, k2, c, dv, dvd, dvdd, cp, vn, psin = _step_workspace(f.shape[1], offset.shape[1])
+    lcp_state = (active, factored, bad, count)
     for k in range(steps[0], steps[1]):
         row = k - row_first
         _rule_history(kind, rp, us, h1, h2)
