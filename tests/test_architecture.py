@@ -114,11 +114,7 @@ PACKAGE_CYCLES = {
 LONG_MODULES = {
 }
 LONG_FUNCTIONS = {
-    "march/compiled.py:direct_steps": 151, "analysis/results.py:structure_results": 127,
-    "march/full_space.py:full_space_steps": 102, "soil/structure_weights.py:structure_weights": 100,
-    "loads/site_response.py:free_field": 100,
-    "batch/runner.py:run_study": 95, "analysis/results3d.py:structure_results_3d": 96,
-    "march/event_config.py:__init__": 86,
+    "march/compiled.py:direct_steps": 151,
 }
 
 

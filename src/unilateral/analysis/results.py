@@ -221,7 +221,8 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     """
     units = dict(units or {})
     L, Fu, T = (units.get(k, "") for k in ("length", "force", "time"))
-    acc_unit, moment_unit = (f"{L}/{T}^2" if L and T else ""), f"{Fu} {L}".strip()
+    acc_unit = f"{L}/{T}^2" if L and T else ""
+    moment_unit = f"{Fu} {L}".strip()
     point = F.base_point(structure) if point is None else (float(point[0]), float(point[1]))
     variables: dict = {}
     peaks: dict = {}
@@ -240,77 +241,26 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         contact, contact_sol, sol = _frame_part(structure, foundation, sol)
         q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
         h = F.Histories.from_solution(structure, sol, rule, load0=q0)
-        t = h.t
         motions = step_means(ground_motions, sol)
         acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
-        ends = F.end_forces(structure, h)
-        end = element_end_forces(coords, structure, ends, F.END_COMPONENTS, steps=len(t))
-        put("end_force", ("time", "element", "end_component"), case, end,
-            "end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
-            f"{Fu} (N, V); {moment_unit} (M)".strip())
-        axial = np.where(np.any(end[:, :, 3] != 0, axis=0), end[:, :, 3], end[:, :, 5])
-        put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
-            "(moment of a rotational spring)", Fu)
+        ends = _end_force_results(put, coords, structure, h, case=case, force_unit=Fu, moment_unit=moment_unit)
         reaction, footings = _reactions(variables, coords, structure, h, case=case, foundation=foundation,
                                         contact_sol=contact_sol, units=units, motions=motions)
-        base = F.base_forces(structure, reaction, point)
-        per_frame = F.base_forces_per_frame(structure, reaction, point)
-        if per_frame:                       # several frames (pounding buildings): each its own
-            coords["frame"] = list(per_frame)
-            put("frame_base_shear", ("time", "frame"), case,
-                np.column_stack([b["base_shear"] for b in per_frame.values()]),
-                "base shear of each separate frame: sum of the x forces of the ground on it", Fu)
-        put("base_shear", ("time",), case, base["base_shear"], "base shear: sum of the x forces of the ground", Fu)
-        put("base_vertical", ("time",), case, base["base_vertical"], "sum of the y forces of the ground", Fu)
-        put("overturning_moment", ("time",), case, base["overturning_moment"],
-            f"overturning moment of the ground forces about ({point[0]:g}, {point[1]:g}), counter-clockwise",
-            moment_unit)
-        variables["overturning_moment"][2]["overturning_point"] = list(point)
-        drifts = F.storey_drifts(structure, h, storey_pairs)
-        if drifts:
-            coords["storey"] = list(drifts)
-            put("storey_drift", ("time", "storey"), case, np.column_stack([d for d, _ in drifts.values()]),
-                "interstorey drift ux(upper) - ux(lower)", L)
-            put("drift_ratio", ("time", "storey"), case, np.column_stack([r for _, r in drifts.values()]),
-                "interstorey drift ratio", "1")
-        histories = {}
-        if structure.m:
-            e, _ = structure.element_deformations(h.u, h.v, h.t)
-            histories = inelastic.histories(h, e)
-            if foundation is not None:      # the footings' patches follow: their upward motion + gap
-                e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])
-                if foundation.sliding:      # shears and slip pairs: the footing's horizontal motion there
-                    x = h.u @ foundation.Tx(structure.dofs)
-                    e = np.hstack([e, x, np.repeat(x, 2, axis=1)])
-            put("constraint_deformation", ("time", "constraint"), case, e,
-                ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
-                 "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
-                 "plus the gap; its shear and slips: its horizontal motion)"), L)
-            for name, (dims, values, long_name, unit) in histories.items():
-                put(name, dims, case, values, long_name, unit)
+        base, per_frame = _base_results(put, variables, coords, structure, reaction, case=case, point=point,
+                                        force_unit=Fu, moment_unit=moment_unit)
+        drifts = _drift_results(put, coords, structure, h, storey_pairs, case=case, length_unit=L)
+        histories = _constraint_results(put, structure, h, inelastic, case=case, foundation=foundation,
+                                        length_unit=L)
         energy = None
         if load_samples is not None:
             energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
                                     keys=energy_keys, unit=moment_unit, rule=pairing_rule(sol, rule),
                                     stats=sol.stats)
-        peaks[case] = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=motions,
-                             structure=structure)
-        if per_frame:
-            peaks[case]["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
-                                     for label, b in per_frame.items()}
-        peaks[case] |= {"overturning_point": list(point)} | residual_peaks(structure, sol, t, static_load, load_samples,
-                                                                          storey_pairs)
-        if footings is not None:
-            peaks[case]["footings"] = footing_peaks(t, footings)
-        if getattr(structure, "rigid", None) is not None:           # analysis/rigid.py
-            peaks[case]["rigid_contacts"] = rigid_summary(structure, contact_sol)
-        note = _linear_drift_note(structure, peaks[case])
-        if note:
-            peaks[case]["linear_members_note"] = note
-        if energy is not None:
-            peaks[case]["energy"] = energy_peaks(t, energy, energy_keys)
-        if inelastic:
-            peaks[case] |= inelastic.peaks(t, h, histories, None if energy is None else energy["unknown_work"])
+        peaks[case] = _case_peaks(structure, sol, h, inelastic, forces=(base, per_frame, ends, reaction, drifts),
+                                  energy=energy, footings=footings, contact_sol=contact_sol, histories=histories,
+                                  options=dict(point=point, ground_motions=motions, static_load=static_load,
+                                               load_samples=load_samples, storey_pairs=storey_pairs,
+                                               energy_keys=energy_keys))
     model, static = bilateral_modes(structure, model, peaks, coords, time_unit=T)
     if model is not None:
         apart = _frame_periods(structure, model)
@@ -319,6 +269,113 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
                 p["frame_periods"] = apart
     return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"overturning_point": list(point)}}
+
+
+def _end_force_results(put, coords, structure, h, *, case, force_unit, moment_unit):
+    """The elements' end forces in local axes (time, element, end_component) and their axial forces
+    (time, element) of ``case``, put as variables; returns
+    :func:`~unilateral.structure.forces.end_forces` (the peaks use it)."""
+    ends = F.end_forces(structure, h)
+    end = element_end_forces(coords, structure, ends, F.END_COMPONENTS, steps=len(h.t))
+    put("end_force", ("time", "element", "end_component"), case, end,
+        "end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
+        f"{force_unit} (N, V); {moment_unit} (M)".strip())
+    axial = np.where(np.any(end[:, :, 3] != 0, axis=0), end[:, :, 3], end[:, :, 5])
+    put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
+        "(moment of a rotational spring)", force_unit)
+    return ends
+
+
+def _base_results(put, variables, coords, structure, reaction, *, case, point, force_unit, moment_unit):
+    """The ground's forces on the structure of ``case``: base shear, vertical force and overturning
+    moment about ``point`` (x0, y0) (time,), and each frame's base shear (time, frame) when there
+    are several (pounding buildings), put as variables; returns ``(base, per_frame)`` of
+    :func:`~unilateral.structure.forces.base_forces` and ``base_forces_per_frame``."""
+    base = F.base_forces(structure, reaction, point)
+    per_frame = F.base_forces_per_frame(structure, reaction, point)
+    if per_frame:                           # several frames (pounding buildings): each its own
+        coords["frame"] = list(per_frame)
+        put("frame_base_shear", ("time", "frame"), case,
+            np.column_stack([b["base_shear"] for b in per_frame.values()]),
+            "base shear of each separate frame: sum of the x forces of the ground on it", force_unit)
+    put("base_shear", ("time",), case, base["base_shear"], "base shear: sum of the x forces of the ground",
+        force_unit)
+    put("base_vertical", ("time",), case, base["base_vertical"], "sum of the y forces of the ground", force_unit)
+    put("overturning_moment", ("time",), case, base["overturning_moment"],
+        f"overturning moment of the ground forces about ({point[0]:g}, {point[1]:g}), counter-clockwise",
+        moment_unit)
+    variables["overturning_moment"][2]["overturning_point"] = list(point)
+    return base, per_frame
+
+
+def _drift_results(put, coords, structure, h, storey_pairs, *, case, length_unit):
+    """The interstorey drifts ``ux(upper) - ux(lower)`` and drift ratios (time, storey) of ``case``,
+    put as variables; returns :func:`~unilateral.structure.forces.storey_drifts` (empty without
+    storeys)."""
+    drifts = F.storey_drifts(structure, h, storey_pairs)
+    if drifts:
+        coords["storey"] = list(drifts)
+        put("storey_drift", ("time", "storey"), case, np.column_stack([d for d, _ in drifts.values()]),
+            "interstorey drift ux(upper) - ux(lower)", length_unit)
+        put("drift_ratio", ("time", "storey"), case, np.column_stack([r for _, r in drifts.values()]),
+            "interstorey drift ratio", "1")
+    return drifts
+
+
+def _constraint_results(put, structure, h, inelastic, *, case, foundation, length_unit) -> dict:
+    """The deformations the constraints act on (time, constraint) of ``case`` -- the elements'
+    strains, then the footings' patches (upward motion plus the gap) and, sliding, their horizontal
+    motion for the shears and slip pairs -- and the inelastic histories, put as variables; returns
+    those histories (name -> (dims, values, long_name, unit), empty without constraints)."""
+    if not structure.m:
+        return {}
+    e, _ = structure.element_deformations(h.u, h.v, h.t)
+    histories = inelastic.histories(h, e)
+    if foundation is not None:              # the footings' patches follow: their upward motion + gap
+        e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])
+        if foundation.sliding:              # shears and slip pairs: the footing's horizontal motion there
+            x = h.u @ foundation.Tx(structure.dofs)
+            e = np.hstack([e, x, np.repeat(x, 2, axis=1)])
+    put("constraint_deformation", ("time", "constraint"), case, e,
+        ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
+         "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
+         "plus the gap; its shear and slips: its horizontal motion)"), length_unit)
+    for name, (dims, values, long_name, unit) in histories.items():
+        put(name, dims, case, values, long_name, unit)
+    return histories
+
+
+def _case_peaks(structure, sol, h, inelastic, *, forces, energy, footings, contact_sol, histories,
+                options) -> dict:
+    """The summary of one case: the peaks of :func:`_peaks`, each frame's, the static residual, the
+    footings', the rigid contacts', the note on linear members, the energy balance's and the
+    inelastic ones.
+
+    ``forces = (base, per_frame, ends, reaction, drifts)`` of the case's results; ``energy`` its
+    energy histories (or None); ``options``: ``point``, ``ground_motions``, ``static_load``,
+    ``load_samples``, ``storey_pairs`` and ``energy_keys`` of :func:`structure_results`.
+    """
+    base, per_frame, ends, reaction, drifts = forces
+    t = h.t
+    peaks = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=options["ground_motions"],
+                   structure=structure)
+    if per_frame:
+        peaks["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
+                           for label, b in per_frame.items()}
+    peaks |= {"overturning_point": list(options["point"])} | residual_peaks(
+        structure, sol, t, options["static_load"], options["load_samples"], options["storey_pairs"])
+    if footings is not None:
+        peaks["footings"] = footing_peaks(t, footings)
+    if getattr(structure, "rigid", None) is not None:               # analysis/rigid.py
+        peaks["rigid_contacts"] = rigid_summary(structure, contact_sol)
+    note = _linear_drift_note(structure, peaks)
+    if note:
+        peaks["linear_members_note"] = note
+    if energy is not None:
+        peaks["energy"] = energy_peaks(t, energy, options["energy_keys"])
+    if inelastic:
+        peaks |= inelastic.peaks(t, h, histories, None if energy is None else energy["unknown_work"])
+    return peaks
 
 
 def _reactions(variables, coords, structure, h, *, case, foundation, contact_sol, units, motions=()) -> tuple[dict, dict | None]:

@@ -22,21 +22,19 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
     friction cones with the components ``roty``, ``rotz`` and ``t1``, ``t2``) and, with a load, the
     energy balance (``energy_*``), and their peaks."""
     from ..structure import forces3d as F3
-    from .footing_results import footing_histories, footing_peaks, footing_variables
     from .inelastic import Inelastic
     from .results import (_abs_peak, _energy_keys, _extreme, _put, acceleration_peaks, acceleration_results,
-                          bilateral_modes, element_end_forces, energy_peaks, energy_results, ground_motion_samples,
-                          load_samples_of, pairing_rule, step_means)
+                          bilateral_modes, energy_peaks, energy_results, ground_motion_samples, load_samples_of,
+                          pairing_rule, step_means)
 
     units = units or {}
     force, length, time = units.get("force", ""), units.get("length", ""), units.get("time", "")
-    acc_unit, moment = (f"{length}/{time}^2" if length and time else ""), f"{force} {length}".strip()
+    acc_unit = f"{length}/{time}^2" if length and time else ""
+    moment = f"{force} {length}".strip()
     main = max(cases.values(), key=lambda sol: len(sol.t))
     samples = load_samples_of(load, main.t, main.stats.get("dt"))
     motions = ground_motion_samples(structure, load, main.t, main.stats.get("dt"))
     point = F3.base_point(structure) if point is None else tuple(float(x) for x in point)
-    words = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
-             "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
     variables, peaks, coords = {}, {}, {}
     energy_keys = _energy_keys(structure)
     inelastic = Inelastic(structure, units)
@@ -48,39 +46,13 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
         case_motions = step_means(motions, sol)
         acceleration_results(variables, coords, structure, h, case_motions, case=case, unit=acc_unit)
         _node_accelerations(variables, structure, h, case_motions, case=case, unit=acc_unit)
-        ends = F3.end_forces(structure, h)
-        end = element_end_forces(coords, structure, ends, F3.END_COMPONENTS)
-        _put(variables, "end_force", ("time", "element", "end_component"), case, end,
-             "end forces and moments on the element in its local axes x' (i->j), y', z' (N, Vy, Vz along them; T, "
-             "My, Mz about them, right-hand positive)", f"{force} (N, V); {moment} (T, M)".strip())
-        axial = np.where(np.any(end[:, :, 6] != 0, axis=0), end[:, :, 6], end[:, :, 9])
-        _put(variables, "axial_force", ("time", "element"), case, axial,
-             "element force along its axis, tension positive (moment of a rotational spring)", force)
-        reaction = F3.reactions(structure, h, sol)
-        base = F3.base_forces(structure, reaction, point)
-        if reaction["support"]:
-            coords["support"] = list(reaction["support"])
-            entry = variables.setdefault("support_reaction", (("time", "support"), {}, {
-                "long_name": "force (moment about rx, ry, rz) of the support on the structure at node.dof",
-                **({"units": f"{force} or {moment}"} if force else {})}))
-            entry[1][case] = np.column_stack(list(reaction["support"].values()))
-        _ground_reactions(variables, coords, case, {**reaction["ground_elements"], **reaction.get("footings", {})},
-                          units)
-        for key, values in base.items():
-            unit = force if key.startswith("F") else f"{force} {length}".strip()
-            entry = variables.setdefault(f"base_{key}", (("time",), {}, {
-                "long_name": f"{words[key]}, the resultant of the ground's forces on the structure"
-                             + ("" if key.startswith("F") else " about base_point"), **({"units": unit} if unit else {})}))
-            entry[1][case] = np.asarray(values, dtype=float)
+        ends = _end_forces(variables, coords, structure, h, case=case, units=units)
+        base = _reactions(variables, coords, structure, h, sol, case=case, point=point, units=units)
         peaks[case] = {"base_forces": {key: _extreme(sol.t, values) for key, values in base.items()},
                        "end_forces": {name: {comp: _abs_peak(h.t, f[:, k]) for k, comp in enumerate(F3.END_COMPONENTS)
                                              if np.any(f[:, k])} for name, f in ends.items()}}
         if structure.foundation is not None:
-            footings = footing_histories(structure.foundation, structure, h.u, sol, three_d=True)
-            coords["foundation"] = list(footings)
-            for name, (values, long_name, unit) in footing_variables(footings, units).items():
-                _put(variables, name, ("time", "foundation"), case, values, long_name, unit)
-            peaks[case]["footings"] = footing_peaks(h.t, footings)
+            peaks[case]["footings"] = _footings(variables, coords, structure, h, sol, case=case, units=units)
         if motions:
             peaks[case]["absolute_acceleration"] = acceleration_peaks(structure, h, case_motions, ("ux", "uy", "uz"))
         energy = None
@@ -95,19 +67,95 @@ def structure_results_3d(structure, model, cases, *, load, units, rule, point, s
             for name, (dims, values, long_name, unit) in histories.items():
                 _put(variables, name, dims, case, values, long_name, unit)
             peaks[case] |= inelastic.peaks(h.t, h, histories, None if energy is None else energy["unknown_work"])
-        drifts = F3.storey_drifts(structure, h)
-        if drifts:
-            coords["storey"] = list(drifts)
-            for axis in "xy":
-                entry = variables.setdefault(f"drift_ratio_{axis}", (("time", "storey"), {}, {
-                    "long_name": f"interstorey drift ratio along {axis}, the largest over the plan's corners",
-                    "units": "1"}))
-                entry[1][case] = np.column_stack([d[f"max_ratio_{axis}"] for d in drifts.values()])
-            peaks[case]["drift_ratio"] = {f"{label} {axis}": _abs_peak(sol.t, d[f"max_ratio_{axis}"])
-                                          for label, d in drifts.items() for axis in "xy"}
+        drift_peaks = _drift_ratios(variables, coords, structure, h, sol, case=case)
+        if drift_peaks is not None:
+            peaks[case]["drift_ratio"] = drift_peaks
     _, static = bilateral_modes(structure, model, peaks, coords, time_unit=units.get("time", ""))
     return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
             "attrs": {"base_point": list(point)}}
+
+
+#: The long names of the base forces (``base_Fx`` ... ``base_Mz``).
+BASE_WORDS = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
+              "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
+
+
+def _end_forces(variables, coords, structure, h, *, case, units) -> dict:
+    """The variables ``end_force`` (time, element, end_component) and ``axial_force`` (time, element)
+    of ``case``; returns :func:`unilateral.structure.forces3d.end_forces` (the peaks use it)."""
+    from ..structure import forces3d as F3
+    from .results import _put, element_end_forces
+
+    force, length = units.get("force", ""), units.get("length", "")
+    moment = f"{force} {length}".strip()
+    ends = F3.end_forces(structure, h)
+    end = element_end_forces(coords, structure, ends, F3.END_COMPONENTS)
+    _put(variables, "end_force", ("time", "element", "end_component"), case, end,
+         "end forces and moments on the element in its local axes x' (i->j), y', z' (N, Vy, Vz along them; T, "
+         "My, Mz about them, right-hand positive)", f"{force} (N, V); {moment} (T, M)".strip())
+    axial = np.where(np.any(end[:, :, 6] != 0, axis=0), end[:, :, 6], end[:, :, 9])
+    _put(variables, "axial_force", ("time", "element"), case, axial,
+         "element force along its axis, tension positive (moment of a rotational spring)", force)
+    return ends
+
+
+def _reactions(variables, coords, structure, h, sol, *, case, point, units) -> dict:
+    """The reactions of ``case``: ``support_reaction`` (time, support), ``ground_reaction``
+    (:func:`_ground_reactions`) and the base forces ``base_Fx`` ... ``base_Mz`` (time,) about
+    ``point`` (x, y, z); returns :func:`unilateral.structure.forces3d.base_forces`."""
+    from ..structure import forces3d as F3
+
+    force, length = units.get("force", ""), units.get("length", "")
+    moment = f"{force} {length}".strip()
+    reaction = F3.reactions(structure, h, sol)
+    base = F3.base_forces(structure, reaction, point)
+    if reaction["support"]:
+        coords["support"] = list(reaction["support"])
+        entry = variables.setdefault("support_reaction", (("time", "support"), {}, {
+            "long_name": "force (moment about rx, ry, rz) of the support on the structure at node.dof",
+            **({"units": f"{force} or {moment}"} if force else {})}))
+        entry[1][case] = np.column_stack(list(reaction["support"].values()))
+    _ground_reactions(variables, coords, case, {**reaction["ground_elements"], **reaction.get("footings", {})},
+                      units)
+    for key, values in base.items():
+        unit = force if key.startswith("F") else f"{force} {length}".strip()
+        entry = variables.setdefault(f"base_{key}", (("time",), {}, {
+            "long_name": f"{BASE_WORDS[key]}, the resultant of the ground's forces on the structure"
+                         + ("" if key.startswith("F") else " about base_point"), **({"units": unit} if unit else {})}))
+        entry[1][case] = np.asarray(values, dtype=float)
+    return base
+
+
+def _footings(variables, coords, structure, h, sol, *, case, units) -> dict:
+    """The footings' histories of ``case`` as variables (time, foundation); returns their peaks
+    (:func:`unilateral.analysis.footing_results.footing_peaks`)."""
+    from .footing_results import footing_histories, footing_peaks, footing_variables
+    from .results import _put
+
+    footings = footing_histories(structure.foundation, structure, h.u, sol, three_d=True)
+    coords["foundation"] = list(footings)
+    for name, (values, long_name, unit) in footing_variables(footings, units).items():
+        _put(variables, name, ("time", "foundation"), case, values, long_name, unit)
+    return footing_peaks(h.t, footings)
+
+
+def _drift_ratios(variables, coords, structure, h, sol, *, case) -> dict | None:
+    """The interstorey drift ratios ``drift_ratio_x``, ``drift_ratio_y`` (time, storey) of ``case``,
+    the largest over each plan's corners; returns their peaks (``"<storey> <axis>"`` -> peak), or
+    None without storeys."""
+    from ..structure import forces3d as F3
+    from .results import _abs_peak
+
+    drifts = F3.storey_drifts(structure, h)
+    if not drifts:
+        return None
+    coords["storey"] = list(drifts)
+    for axis in "xy":
+        entry = variables.setdefault(f"drift_ratio_{axis}", (("time", "storey"), {}, {
+            "long_name": f"interstorey drift ratio along {axis}, the largest over the plan's corners",
+            "units": "1"}))
+        entry[1][case] = np.column_stack([d[f"max_ratio_{axis}"] for d in drifts.values()])
+    return {f"{label} {axis}": _abs_peak(sol.t, d[f"max_ratio_{axis}"]) for label, d in drifts.items() for axis in "xy"}
 
 
 def _ground_reactions(variables, coords, case, grounded: dict, units) -> None:

@@ -162,6 +162,26 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
     run_id = uuid.uuid4().hex[:12]
     _write_manifest(study, out)
 
+    todo, total, earlier, earlier_failed = _analyses_to_run(study, results, retry_failed)
+    bar = Progress(total, earlier, earlier_failed, enabled=progress)
+    done = _Recorder(results, bar, fsync)
+    interrupted = _run_analyses(todo, run_id, done, synchronous=synchronous, cluster=(client, workers), bar=bar)
+    table = write_table(study, results, out)
+    counts = {s: int((table["status"].values == s).sum()) for s in ("ok", "failed", "error", "timeout", "pending")}
+    outcome = StudyResult(study=study, out=out, table=table, counts=counts, ran=done.count, skipped=earlier,
+                          wall_time=time.perf_counter() - start, interrupted=interrupted)
+    if interrupted:
+        raise StudyInterrupted(outcome)
+    if figures:
+        outcome.figures, outcome.fragility = _figures(study, table, out)
+    return outcome
+
+
+def _analyses_to_run(study, results: Path, retry_failed: bool) -> tuple[list, int, int, int]:
+    """``(todo, total, earlier, earlier_failed)``: the analyses of ``study`` to run (each key once),
+    the number of distinct analyses, and of those with a result in ``results`` from an earlier run,
+    of which failed. With ``retry_failed`` a failed result is not kept: its file is removed and the
+    analysis is run again."""
     todo, seen, earlier, earlier_failed = [], set(), 0, 0
     for analysis in study.analyses:
         if analysis.key in seen:
@@ -175,8 +195,15 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
         if result is not None:
             result_path(results, analysis.key).unlink(missing_ok=True)
         todo.append(analysis)
-    bar = Progress(len(seen), earlier, earlier_failed, enabled=progress)
-    done = _Recorder(results, bar, fsync)
+    return todo, len(seen), earlier, earlier_failed
+
+
+def _run_analyses(todo, run_id, done, *, synchronous, cluster, bar) -> bool:
+    """Run the analyses ``todo``, each result to ``done`` (a :class:`_Recorder`): in this process
+    (``synchronous``, or nothing to send) or on Dask, ``cluster = (client, workers)`` (a connected
+    client or None, and the local cluster's worker processes). The progress ``bar`` and the client
+    are closed whatever happens; returns True if Ctrl-C interrupted the run."""
+    client, workers = cluster
     interrupted = False
     try:
         pending, inputs = _runnable(todo, run_id, done)
@@ -192,15 +219,7 @@ def run_study(study, out, *, scheduler=None, workers=None, synchronous=False, pr
         bar.close()
         if client is not None:
             _close(client, None)
-    table = write_table(study, results, out)
-    counts = {s: int((table["status"].values == s).sum()) for s in ("ok", "failed", "error", "timeout", "pending")}
-    outcome = StudyResult(study=study, out=out, table=table, counts=counts, ran=done.count, skipped=earlier,
-                          wall_time=time.perf_counter() - start, interrupted=interrupted)
-    if interrupted:
-        raise StudyInterrupted(outcome)
-    if figures:
-        outcome.figures, outcome.fragility = _figures(study, table, out)
-    return outcome
+    return interrupted
 
 
 def _failure(analysis, status: str, message: str, run_id: str) -> dict:

@@ -41,6 +41,29 @@ The recursion carries ``A``, ``B`` normalised, with the growth ``exp(-Im(k_j) h_
 layers factored out as a logarithm, so that thick, damped profiles do not overflow at high
 frequencies (their transfer function underflows to 0 instead).
 
+Zero padding
+------------
+The padding of :func:`free_field` (its default ``pad``). A discrete Fourier transform makes the
+record periodic: the surface response to the end of the record -- the column's free ringing,
+trapped by the impedance contrasts and decaying only by damping and radiation into the half-space
+-- would wrap around onto the record's start. The record is therefore padded with zeros long enough
+for that ringing to decay to :data:`RINGING_TOLERANCE` of its amplitude: the fundamental mode of
+the column above the record point (period about ``T1 = 4 t_s``, ``t_s = sum h_j / v_j`` the
+vertical travel time) loses per round trip ``2 t_s`` the factor ``q = |r| exp(-pi xi_min)``, ``r``
+the reflection coefficient at the base (``|r| = 1`` for a rigid base and for ``at="within"``) and
+``xi_min`` the smallest layer damping; the padding is twice the time of ``ln(tol)/ln(q)`` round
+trips (a margin for the quarter-wavelength estimate of ``T1``), plus ``t_s``. The padding also
+leaves room for the small acausal precursor of frequency-independent (hysteretic) damping, which
+wraps to the end of the padded window and is discarded. The FFT length is capped at
+``max(16 N, MAX_FFT_LENGTH)``; an undamped column over a rigid base (or ``at="within"``) rings
+forever: the cap is used with a ``RuntimeWarning``.
+
+Deconvolution
+-------------
+``at="within"`` divides by the motion at depth, which nearly vanishes at the frequencies where
+``depth`` is a node of a mode of the column above it: with little damping those frequencies are
+amplified strongly (as in SHAKE; filter the record or give damping).
+
 Units and conventions
 ---------------------
 Any consistent set of units: thickness [L], G [F/L^2], rho [F T^2/L^4] (mass/L^3), Vs [L/T], dt [T]
@@ -183,24 +206,9 @@ def free_field(acc, dt, layers, base, *, at="outcrop", depth=None, wave="S", pad
 
     Notes
     -----
-    *Zero padding.* A discrete Fourier transform makes the record periodic: the surface response
-    to the end of the record -- the column's free ringing, trapped by the impedance contrasts and
-    decaying only by damping and radiation into the half-space -- would wrap around onto the
-    record's start. The record is therefore padded with zeros long enough for that ringing to
-    decay to :data:`RINGING_TOLERANCE` of its amplitude: the fundamental mode of the column above
-    the record point (period about ``T1 = 4 t_s``, ``t_s = sum h_j / v_j`` the vertical travel
-    time) loses per round trip ``2 t_s`` the factor ``q = |r| exp(-pi xi_min)``, ``r`` the
-    reflection coefficient at the base (``|r| = 1`` for a rigid base and for ``at="within"``) and
-    ``xi_min`` the smallest layer damping; the padding is twice the time of ``ln(tol)/ln(q)``
-    round trips (a margin for the quarter-wavelength estimate of ``T1``), plus ``t_s``. The
-    padding also leaves room for the small acausal precursor of frequency-independent
-    (hysteretic) damping, which wraps to the end of the padded window and is discarded. The FFT
-    length is capped at ``max(16 N, MAX_FFT_LENGTH)``; an undamped column over a rigid base (or
-    ``at="within"``) rings forever: the cap is used with a ``RuntimeWarning``.
-
-    *Deconvolution.* ``at="within"`` divides by the motion at depth, which nearly vanishes at the
-    frequencies where ``depth`` is a node of a mode of the column above it: with little damping
-    those frequencies are amplified strongly (as in SHAKE; filter the record or give damping).
+    The record is padded with zeros against the wrap-around of the column's free ringing (the
+    default ``pad``), and ``at="within"`` deconvolves: see the module's *Zero padding* and
+    *Deconvolution*.
 
     Examples
     --------
@@ -209,18 +217,37 @@ def free_field(acc, dt, layers, base, *, at="outcrop", depth=None, wave="S", pad
     >>> surface = free_field(acc, 0.01, layers, rock, at="outcrop")    # doctest: +SKIP
     """
     at, depth, wave = _check_location(at, depth, wave)
-    acc = as_vector("acc", acc, None)
-    if acc.size == 0:
-        raise ValueError("acc must hold at least one sample, got an empty array")
+    acc = _record(acc)
     dt = positive_float("dt", dt)
     profile = _profile(layers, base, wave)
     _check_depth(at, depth, profile)
     if at == "surface":
         return acc.copy()
+    return _surface_motion(acc, dt, profile, at, depth, _padding(pad))
+
+
+def _record(acc) -> np.ndarray:
+    """The record ``acc`` as a float vector (N,) of at least one sample (ValueError otherwise)."""
+    acc = as_vector("acc", acc, None)
+    if acc.size == 0:
+        raise ValueError("acc must hold at least one sample, got an empty array")
+    return acc
+
+
+def _padding(pad) -> float | None:
+    """The time [T] of zeros appended before the FFT as a float >= 0, or None (automatic)."""
     if pad is not None:
         pad = float(pad)
         if not 0.0 <= pad < math.inf:
             raise ValueError(f"pad must be a time >= 0 (the zeros appended before the FFT), got {pad!r}")
+    return pad
+
+
+def _surface_motion(acc, dt, profile: _Profile, at: str, depth, pad) -> np.ndarray:
+    """The surface acceleration (N,) of the record ``acc`` (N,) at ``at`` (not ``"surface"``): its
+    spectrum, zero padded (:func:`_fft_length`), times the transfer function of the profile, back
+    to time and cut to the record's N samples. ValueError if the transfer function is infinite at
+    a frequency of the FFT (an undamped resonance)."""
     n = acc.size
     n_fft = _fft_length(n, dt, profile, at, depth, pad)
     omega = 2.0 * np.pi * scipy.fft.rfftfreq(n_fft, dt)
@@ -368,7 +395,7 @@ def _transfer(omega: np.ndarray, profile: _Profile, at: str, depth) -> np.ndarra
 
 
 def _fft_length(n: int, dt: float, profile: _Profile, at: str, depth, pad) -> int:
-    """The padded FFT length for a record of ``n`` samples (see :func:`free_field`, Notes)."""
+    """The padded FFT length for a record of ``n`` samples (see the module's *Zero padding*)."""
     cap = max(16 * n, MAX_FFT_LENGTH)
     if pad is not None:
         if n + math.ceil(pad / dt) > cap:
@@ -381,7 +408,7 @@ def _fft_length(n: int, dt: float, profile: _Profile, at: str, depth, pad) -> in
         warnings.warn(f"the column's free ringing does not decay to {RINGING_TOLERANCE:g} within the largest FFT "
                       f"({cap} samples, {cap * dt:g} time units): the surface motion includes some wrap-around of "
                       "the ringing of the record's end onto its start; give the layers damping > 0",
-                      RuntimeWarning, stacklevel=3)
+                      RuntimeWarning, stacklevel=4)                 # the caller of free_field
         wanted = cap
     return scipy.fft.next_fast_len(wanted, real=True)
 

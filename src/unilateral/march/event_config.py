@@ -62,71 +62,20 @@ class Config:
         self.rate = np.asarray(law.rate, dtype=bool)
         O = np.flatnonzero(self.open)
         Mt, Ct, Kt, R, S = _augmented(mats, gen, self.open, law)
-        N = Mt.shape[0]
-        T2, Tn = _split(Mt, np.eye(N), "the mass matrix")
-        T1, T0 = _split(Ct, Tn, "the damping matrix with the open Kelvin contacts")
-        n2, n1, n0 = T2.shape[1], T1.shape[1], T0.shape[1]
-        if n0 and np.abs(Ct @ T0).max() > 1e-9 * max(np.abs(Ct).max(), 1e-300):
-            raise ValueError("the damping matrix (with the Kelvin terms of the open contacts) is not "
-                             "positive semidefinite; method='event' needs C, H_v PSD")
-        Kb = lambda A_, B_: A_.T @ Kt @ B_
-        Cb = lambda A_, B_: A_.T @ Ct @ B_
-        solve0 = _condensed_solver(Kb(T0, T0), law.P is None, O)
-        # condensation of T0:  a0 = K00^-1 (T0^T R z - K02 a2 - K01 a1)
-        Ta = np.hstack([T2, T1])
-        X0a = solve0(Kb(T0, Ta))                                  # (n0, n2+n1)
-        X0z = solve0(T0.T @ R)                                    # (n0, nz)
-        Kc = Kb(Ta, Ta) - Kb(Ta, T0) @ X0a
-        Rc = Ta.T @ R - Kb(Ta, T0) @ X0z
-        nz = S.shape[0]
-        ny = 2 * n2 + n1
-        NY = ny + nz
-        # index maps of Y = (a2, a1, w2, z, f)
-        i2, i1, iw, iz = (np.arange(n2), n2 + np.arange(n1), n2 + n1 + np.arange(n2), ny + np.arange(nz))
-        ia = np.concatenate([i2, i1])
-        Ca = Cb(Ta, Ta)
-        C11, C12, C21, C22 = Ca[n2:, n2:], Ca[n2:, :n2], Ca[:n2, n2:], Ca[:n2, :n2]
-        # a1' = C11^-1 (Rc1 z - Kc1a a - C12 w2)
-        L1 = np.zeros((n1, NY))
-        L1[:, ia] = -Kc[n2:]
-        L1[:, iw] = -C12
-        L1[:, iz] = Rc[n2:]
-        if n1:
-            L1 = np.linalg.solve(C11, L1)
-        # w2' = M22^-1 (Rc2 z - Kc2a a - C22 w2 - C21 a1')
-        M22 = T2.T @ Mt @ T2
-        L2 = np.zeros((n2, NY))
-        L2[:, ia] = -Kc[:n2]
-        L2[:, iw] = -C22
-        L2[:, iz] = Rc[:n2]
-        L2 -= C21 @ L1
-        if n2:
-            L2 = np.linalg.solve(M22, L2)
-        A = np.zeros((NY, NY))
-        A[i2, iw] = 1.0
-        A[i1] = L1
-        A[iw] = L2
-        A[np.ix_(iz, iz)] = S
-        # outputs
-        P2, P1, PW = (np.eye(NY)[idx] for idx in (i2, i1, iw))
-        L0 = np.zeros((n0, NY))
-        L0[:, ia] = -X0a
-        L0[:, iz] = X0z
-        # a0' = K00^-1 (T0^T R S z - K02 w2 - K01 a1')
-        L0d = np.zeros((n0, NY))
-        L0d[:, iz] = solve0(T0.T @ R @ S)
-        if n0:
-            K0a = Kb(T0, Ta)
-            L0d -= solve0(K0a[:, :n2] @ PW + K0a[:, n2:] @ L1)
-        Xo = T2 @ P2 + T1 @ P1 + T0 @ L0
-        Xd = T2 @ PW + T1 @ L1 + T0 @ L0d
+        T = _coordinates(Mt, Ct)
+        T2, T1, T0 = T
+        solve0 = _condensed_solver(T0.T @ Kt @ T0, law.P is None, O)
+        Ta, X0a, X0z, Kc, Rc = _condensation(Kt, R, T, solve0)
+        at = _Indices(T2.shape[1], T1.shape[1], S.shape[0])
+        A, L1 = _state_matrix(Mt, Ct, (T2, Ta), (Kc, Rc, S), at)
+        Xo, Xd = _coordinate_maps(T, (Kt, R, S), (solve0, X0a, X0z, L1), at)
         self.U, self.UD = Xo[:n], Xd[:n]
-        self.V = np.zeros((m, NY))
-        self.VD = np.zeros((m, NY))
+        self.V = np.zeros((m, at.NY))
+        self.VD = np.zeros((m, at.NY))
         self.V[O], self.VD[O] = Xo[n:], Xd[n:]
-        self.V[:, iz[gen.size:]] += _frozen(self.open, self.rate)
+        self.V[:, at.iz[gen.size:]] += _frozen(self.open, self.rate)
         PSI = F.T @ self.U + Fv.T @ self.UD - H @ self.V - Hv @ self.VD
-        PSI[:, iz[0]] -= g
+        PSI[:, at.iz[0]] -= g
         if law.P is not None:
             PSI = law.P @ PSI
         PSI[O] = 0.0
@@ -134,9 +83,9 @@ class Config:
         self.E = np.where(self.open[:, None], np.where(self.rate[:, None], -self.VD, -self.V), PSI)
         self.A = A
         self.T2, self.T1 = T2, T1
-        self.n, self.ny, self.nz = n, ny, nz
+        self.n, self.ny, self.nz = n, at.ny, at.nz
         self.O = O
-        lam = np.linalg.eigvals(A[:ny, :ny]) if ny else np.zeros(0)
+        lam = np.linalg.eigvals(A[:at.ny, :at.ny]) if at.ny else np.zeros(0)
         self.max_frequency = float(np.max(np.abs(lam.imag), initial=0.0))
         self.max_rate = float(np.max(np.abs(lam), initial=0.0))
         self._cache = {}
@@ -276,6 +225,121 @@ def _active_rows(P, open_mask) -> np.ndarray:
     rows = P[O].copy()
     rows[:, O] = np.eye(O.size)
     return rows
+
+
+class _Indices:
+    """The index maps of ``Y = (a2, a1, w2, z, f)`` (``a2`` the coordinates with mass (n2), ``a1``
+    those with damping only (n1), ``w2 = a2'``, ``z`` and ``f`` the load generator's state and the
+    frozen rate unknowns (nz)): ``i2``, ``i1``, ``iw``, ``iz``, ``ia = (i2, i1)``; ``ny = 2 n2 + n1``,
+    ``NY = ny + nz``."""
+
+    def __init__(self, n2, n1, nz):
+        self.n2, self.n1, self.nz = n2, n1, nz
+        self.ny = 2 * n2 + n1
+        self.NY = self.ny + nz
+        self.i2, self.i1, self.iw, self.iz = (np.arange(n2), n2 + np.arange(n1), n2 + n1 + np.arange(n2),
+                                              self.ny + np.arange(nz))
+        self.ia = np.concatenate([self.i2, self.i1])
+
+
+def _coordinates(Mt, Ct):
+    """Orthonormal bases ``(T2, T1, T0)`` (N, n2), (N, n1), (N, n0) of the coordinates of the
+    augmented system with mass, with damping but no mass, and with neither (statically condensed).
+
+    Raises
+    ------
+    ValueError
+        ``M~`` or ``C~`` (with the Kelvin terms of the open contacts) not positive semidefinite.
+    """
+    N = Mt.shape[0]
+    T2, Tn = _split(Mt, np.eye(N), "the mass matrix")
+    T1, T0 = _split(Ct, Tn, "the damping matrix with the open Kelvin contacts")
+    if T0.shape[1] and np.abs(Ct @ T0).max() > 1e-9 * max(np.abs(Ct).max(), 1e-300):
+        raise ValueError("the damping matrix (with the Kelvin terms of the open contacts) is not "
+                         "positive semidefinite; method='event' needs C, H_v PSD")
+    return T2, T1, T0
+
+
+def _condensation(Kt, R, T, solve0):
+    """The static condensation of the coordinates ``T0``: ``a0 = K00^-1 (T0^T R z - K0a a)`` with
+    ``a = (a2, a1)`` on ``Ta = [T2, T1]`` (N, n2 + n1), ``K~`` (N, N) and the load map ``R``
+    (N, nz); ``solve0`` is ``X -> K00^-1 X`` (:func:`_condensed_solver`).
+
+    Returns ``(Ta, X0a, X0z, Kc, Rc)``: ``X0a = K00^-1 K0a`` (n0, n2 + n1), ``X0z = K00^-1 T0^T R``
+    (n0, nz), the condensed stiffness ``Kc`` (n2 + n1, n2 + n1) and load map ``Rc`` (n2 + n1, nz).
+    """
+    T2, T1, T0 = T
+    Kb = lambda A_, B_: A_.T @ Kt @ B_
+    # condensation of T0:  a0 = K00^-1 (T0^T R z - K02 a2 - K01 a1)
+    Ta = np.hstack([T2, T1])
+    X0a = solve0(Kb(T0, Ta))                                  # (n0, n2+n1)
+    X0z = solve0(T0.T @ R)                                    # (n0, nz)
+    Kc = Kb(Ta, Ta) - Kb(Ta, T0) @ X0a
+    Rc = Ta.T @ R - Kb(Ta, T0) @ X0z
+    return Ta, X0a, X0z, Kc, Rc
+
+
+def _state_matrix(Mt, Ct, bases, condensed, at: _Indices):
+    """The system matrix ``A`` (NY, NY) of ``Y' = A Y`` and the map ``L1`` (n1, NY) of ``a1'``.
+
+    ``bases = (T2, Ta)``, ``condensed = (Kc, Rc, S)`` of :func:`_condensation` and the generator's
+    ``z' = S z``; ``at`` the index maps. The rows: ``a2' = w2``, ``a1' = C11^-1 (Rc1 z - Kc1a a -
+    C12 w2)``, ``w2' = M22^-1 (Rc2 z - Kc2a a - C22 w2 - C21 a1')``, ``z' = S z``, ``f' = 0``.
+    """
+    T2, Ta = bases
+    Kc, Rc, S = condensed
+    n2, n1, NY, ia, iw, iz = at.n2, at.n1, at.NY, at.ia, at.iw, at.iz
+    Ca = Ta.T @ Ct @ Ta
+    C11, C12, C21, C22 = Ca[n2:, n2:], Ca[n2:, :n2], Ca[:n2, n2:], Ca[:n2, :n2]
+    # a1' = C11^-1 (Rc1 z - Kc1a a - C12 w2)
+    L1 = np.zeros((n1, NY))
+    L1[:, ia] = -Kc[n2:]
+    L1[:, iw] = -C12
+    L1[:, iz] = Rc[n2:]
+    if n1:
+        L1 = np.linalg.solve(C11, L1)
+    # w2' = M22^-1 (Rc2 z - Kc2a a - C22 w2 - C21 a1')
+    M22 = T2.T @ Mt @ T2
+    L2 = np.zeros((n2, NY))
+    L2[:, ia] = -Kc[:n2]
+    L2[:, iw] = -C22
+    L2[:, iz] = Rc[:n2]
+    L2 -= C21 @ L1
+    if n2:
+        L2 = np.linalg.solve(M22, L2)
+    A = np.zeros((NY, NY))
+    A[at.i2, iw] = 1.0
+    A[at.i1] = L1
+    A[iw] = L2
+    A[np.ix_(iz, iz)] = S
+    return A, L1
+
+
+def _coordinate_maps(T, system, condensed, at: _Indices):
+    """The maps ``Xo``, ``Xd`` (N, NY) of the augmented coordinates and their rates from ``Y``:
+    ``T2 a2 + T1 a1 + T0 a0`` and the same of the rates, with ``a0' = K00^-1 (T0^T R S z - K02 w2 -
+    K01 a1')``.
+
+    ``T = (T2, T1, T0)``, ``system = (K~, R, S)``, ``condensed = (solve0, X0a, X0z, L1)`` of
+    :func:`_condensation` and :func:`_state_matrix`; ``at`` the index maps.
+    """
+    T2, T1, T0 = T
+    Kt, R, S = system
+    solve0, X0a, X0z, L1 = condensed
+    n0, n2, NY, ia, iz = T0.shape[1], at.n2, at.NY, at.ia, at.iz
+    P2, P1, PW = (np.eye(NY)[idx] for idx in (at.i2, at.i1, at.iw))
+    L0 = np.zeros((n0, NY))
+    L0[:, ia] = -X0a
+    L0[:, iz] = X0z
+    # a0' = K00^-1 (T0^T R S z - K02 w2 - K01 a1')
+    L0d = np.zeros((n0, NY))
+    L0d[:, iz] = solve0(T0.T @ R @ S)
+    if n0:
+        K0a = T0.T @ Kt @ np.hstack([T2, T1])
+        L0d -= solve0(K0a[:, :n2] @ PW + K0a[:, n2:] @ L1)
+    Xo = T2 @ P2 + T1 @ P1 + T0 @ L0
+    Xd = T2 @ PW + T1 @ L1 + T0 @ L0d
+    return Xo, Xd
 
 
 def _augmented(mats, gen, open_mask, law):

@@ -139,6 +139,126 @@ def full_space_lcp(env, cons, a, rc, state, max_iter):
     return -max_iter
 
 
+# The pieces of a step of :func:`full_space_steps`. Each is loops over arrays that calls nothing:
+# numba then prunes the reference counts of its arrays (a piece that calls another compiled
+# function keeps them, and pays them in every step). The compiled callees (:func:`_matvec_add`,
+# :func:`_advance`, the envelope's solves, :func:`full_space_lcp`) are called from the loop. A call
+# of a piece costs some 10-20 ns (numba's calling convention passes every array as its fields;
+# LLVM does not inline a piece with a loop): nothing against a large model's step, but the step of
+# a small condensed model takes 0.5 us, which is why :func:`unilateral.march.compiled.direct_steps`
+# is one function.
+@njit(cache=True)
+def _step_workspace(n, m):
+    """Per-step arrays of :func:`full_space_steps`: ``h1, h2, rhs, x, ud, acc`` (n,) and ``k1, k2,
+    c, dv, dvd, dvdd, cp, vn, psin`` (m,), of which ``k1``, ``k2``, ``dv`` and ``cp`` are zero."""
+    return (np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
+            np.zeros(m), np.zeros(m), np.empty(m), np.zeros(m), np.empty(m), np.empty(m),
+            np.zeros(m), np.empty(m), np.empty(m))
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _scaled_row(a, table, k, out):
+    """``out = a table[k]``: a row of a table (rows, n), such as the reaction offsets of a step."""
+    for i in range(out.shape[0]):
+        out[i] = a * table[k, i]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _add_scaled(alpha, acc, rhs):
+    """``rhs += alpha acc`` (n,): HHT-alpha's share of the previous step."""
+    for i in range(rhs.shape[0]):
+        rhs[i] += alpha * acc[i]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _kelvin_rates(c0, c1, dv, k1, k2, dvd, dvdd):
+    """The rates of the step's ``dv`` (m,) for the rule state of ``dv``
+    (:func:`~unilateral.march.compiled._advance`): ``dvd = c1 dv - k1``, ``dvdd = c0 dv - k2``
+    (``k1``, ``k2`` (m,) the rule's history)."""
+    for b in range(dv.shape[0]):
+        dvd[b] = c1 * dv[b] - k1[b]
+        dvdd[b] = c0 * dv[b] - k2[b]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _permuted_row(a, table, row, perm, out):
+    """``out[i] = a table[row, perm[i]]`` (n,): a row of the loads (original DOF order) in the
+    envelope numbering (``perm`` (n,) the original index of each row)."""
+    for i in range(out.shape[0]):
+        out[i] = a * table[row, perm[i]]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _held_reactions(v_b, c, vn, psin, dv):
+    """A bilateral step: ``v`` held at ``v_b`` (``vn = v_b``, ``dv = 0``) and ``psin = c`` (m,),
+    to which the step adds ``Fp^T du``."""
+    for b in range(v_b.shape[0]):
+        vn[b] = v_b[b]
+        psin[b] = c[b]
+        dv[b] = 0.0
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _shifted(shift, h, v_b, c, rhs, cp):
+    """The LCP's data of the set's solve: ``rhs -= shift`` (``shift = a Fp v_b``, (n,)) and
+    ``cp = c + Hs v_b`` (m,) (``h`` (m,) the diagonal of ``Hs``)."""
+    for i in range(rhs.shape[0]):
+        rhs[i] -= shift[i]
+    for b in range(cp.shape[0]):
+        cp[b] = c[b] + h[b] * v_b[b]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _record_full_space(k, it, c, vn, psin, v, stats):
+    """The statistics of step k's LCP solved in ``it`` trial sets into ``stats`` (4,): the contact
+    changes of ``vn`` (m,) against ``v[k-1]`` and the error ``|min(v, -psi)| / (1 + |c|)``
+    (``psin`` (m,) its ``psi``, ``c`` (m,) the free reactions)."""
+    err, norm_c = 0.0, 0.0
+    for b in range(vn.shape[0]):
+        e = min(vn[b], -psin[b])
+        err += e * e
+        norm_c += c[b] * c[b]
+        stats[2] += (vn[b] > 0.0) != (v[k - 1, b] > 0.0)
+    stats[0] += it
+    stats[1] = max(stats[1], it)
+    stats[3] = max(stats[3], np.sqrt(err) / (1.0 + np.sqrt(norm_c)))
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _increment(vn, v_b, dv):
+    """The step's increment ``dv = vn - v_b`` (m,) of the unknowns over the base deformations."""
+    for b in range(vn.shape[0]):
+        dv[b] = vn[b] - v_b[b]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _rates(c0, c1, x, h1, h2, ud, acc):
+    """The rates of the step's ``x = du`` (n,) for the rule state
+    (:func:`~unilateral.march.compiled._advance`): ``ud = du' = c1 du - h1``, ``acc = du'' = c0 du -
+    h2`` (``h1``, ``h2`` (n,) the rule's history)."""
+    for i in range(x.shape[0]):
+        ud[i] = c1 * x[i] - h1[i]
+        acc[i] = c0 * x[i] - h2[i]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _store_permuted(k, perm, x, ud, du, dud):
+    """Row k of ``du`` and ``dud`` (N+1, n, original DOF order) from the step's ``x = du`` and
+    ``ud = du'`` (n, envelope order; ``perm`` (n,) the original index of each row)."""
+    for i in range(x.shape[0]):
+        du[k, perm[i]] = x[i]
+        dud[k, perm[i]] = ud[i]
+
+
+@njit(cache=True, fastmath=REASSOCIATE)
+def _store_unknowns(k, vn, psin, dv, v, psi, dv_prev):
+    """Row k of ``v`` and ``psi`` (N+1, m) and ``dv_prev = dv`` (m,)."""
+    for b in range(vn.shape[0]):
+        v[k, b] = vn[b]
+        psi[k, b] = psin[b]
+        dv_prev[b] = dv[b]
+
+
 @njit(cache=True, fastmath=REASSOCIATE)
 def full_space_steps(rule, env, cons, mats, tables, carry, steps):
     """Steps ``steps[0] <= k < steps[1]`` of the full-space direct march; the failed step or 0.
@@ -167,80 +287,48 @@ def full_space_steps(rule, env, cons, mats, tables, carry, steps):
     M, C, K, F, F_v, H_v, perm = mats
     f, offset, row_first, v_b, shift = tables
     du, dud, v, psi, stats, active, factored, us, vs, dv_prev, bad, count = carry
-    ptr, first, base, A, L = env
-    h = cons[1]
-    n, m = f.shape[1], offset.shape[1]
-    c1 = rp[7]
-    a = 1.0 - alpha
-    h1, h2, k1, k2 = np.empty(n), np.empty(n), np.zeros(m), np.zeros(m)
-    rhs, x, ud, acc = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
-    c, cp, dv, dvd, dvdd = np.empty(m), np.empty(m), np.zeros(m), np.empty(m), np.empty(m)
-    vn, psin = np.empty(m), np.empty(m)
+    ptr, first, L = env[0], env[1], env[4]
+    c1, a = rp[7], 1.0 - alpha
+    h1, h2, rhs, x, ud, acc, k1, k2, c, dv, dvd, dvdd, cp, vn, psin = _step_workspace(f.shape[1], offset.shape[1])
     lcp_state = (active, factored, bad, count)
     for k in range(steps[0], steps[1]):
         row = k - row_first
         _rule_history(kind, rp, us, h1, h2)
         if viscous:
             _rule_history(kind, rp, vs, k1, k2)
-        for i in range(n):
-            rhs[i] = a * f[row, perm[i]]
+        _permuted_row(a, f, row, perm, rhs)     # free_terms: rhs = a f + M h2 + a C h1 ...
         _matvec_add(M, h2, 1.0, rhs)
         _matvec_add(C, h1, a, rhs)
         if alpha != 0.0:                    # HHT: alpha (f_prev - C u' - K u + F dv + F_v dv')
-            for i in range(n):
-                acc[i] = f[row - 1, perm[i]]
+            _permuted_row(1.0, f, row - 1, perm, acc)
             _columns_times(F, dv_prev, 1.0, acc)
             _columns_times(F_v, vs[2], 1.0, acc)
             _matvec_add(C, us[2], -1.0, acc)
             _matvec_add(K, us[0], -1.0, acc)
-            for i in range(n):
-                rhs[i] += alpha * acc[i]
-        for b in range(m):
-            c[b] = offset[row, b]
+            _add_scaled(alpha, acc, rhs)
+        _scaled_row(1.0, offset, row, c)
         if viscous:
             _columns_times(F_v, k1, -a, rhs)
             _matvec_add(F_v, h1, -1.0, c)
             _matvec_add(H_v, k1, 1.0, c)
         if bilateral:                       # v held at v_b: the factor of D_eff itself
             envelope.solve(ptr, first, L, rhs, x)
-            for b in range(m):
-                vn[b] = v_b[b]
-                psin[b] = c[b]
-                dv[b] = 0.0
+            _held_reactions(v_b, c, vn, psin, dv)
             _matvec_add(cons[0], x, 1.0, psin)
         else:
-            for i in range(n):
-                rhs[i] -= shift[i]
-            for b in range(m):
-                cp[b] = c[b] + h[b] * v_b[b]
+            _shifted(shift, cons[1], v_b, c, rhs, cp)
             it = full_space_lcp(env, cons, a, (rhs, cp, x, vn, psin), lcp_state, max_iter)
             if it < 0:
                 return k
-            err, norm_c = 0.0, 0.0
-            for b in range(m):
-                e = min(vn[b], -psin[b])
-                err += e * e
-                norm_c += c[b] * c[b]
-                stats[2] += (vn[b] > 0.0) != (v[k - 1, b] > 0.0)
-                dv[b] = vn[b] - v_b[b]
-            stats[0] += it
-            stats[1] = max(stats[1], it)
-            stats[3] = max(stats[3], np.sqrt(err) / (1.0 + np.sqrt(norm_c)))
-        for i in range(n):
-            du[k, perm[i]] = x[i]
-            ud[i] = c1 * x[i] - h1[i]
-            dud[k, perm[i]] = ud[i]
-            acc[i] = c0 * x[i] - h2[i]
+            _record_full_space(k, it, c, vn, psin, v, stats)
+            _increment(vn, v_b, dv)
+        _rates(c0, c1, x, h1, h2, ud, acc)
+        _store_permuted(k, perm, x, ud, du, dud)
         _advance(us, x, ud, acc)
         if viscous:
-            for b in range(m):
-                dvd[b] = c1 * dv[b] - k1[b]
-                dvdd[b] = c0 * dv[b] - k2[b]
+            _kelvin_rates(c0, c1, dv, k1, k2, dvd, dvdd)
             _advance(vs, dv, dvd, dvdd)
-        for b in range(m):
-            v[k, b] = vn[b]
-            psi[k, b] = psin[b]
-            dv_prev[b] = dv[b]
+        _store_unknowns(k, vn, psin, dv, v, psi, dv_prev)
     return 0
 
 

@@ -123,6 +123,16 @@ def structure_weights(M, K, C, T, rule, dt, N, *, basis=None, engine="auto") -> 
         Inconsistent shapes, a rule without a CQ form, ``dt <= 0``, ``N < 0``, or
         ``c0 M + c1 C + K`` singular (a mode without stiffness, mass or damping).
     """
+    rule, dt, N, basis = _checked_arguments(M, K, C, T, rule, dt, N, basis=basis, engine=engine)
+    if basis.shape[1] == 0:
+        return np.zeros((N + 1, T.shape[1], 0))
+    return _stepped_weights(M, K, C, T, rule, dt, N, basis=basis, engine=engine)
+
+
+def _checked_arguments(M, K, C, T, rule, dt, N, *, basis, engine):
+    """The arguments of :func:`structure_weights` checked: ``(rule, dt, N, basis)`` as a
+    :class:`~unilateral.rules.Rule` with a CQ form, a float (s), an int and an (m, r) float array
+    (the identity if None); ValueError for a bad one (see :func:`structure_weights`)."""
     from ..rules import get_rule
 
     rule = get_rule(rule, cq=True)
@@ -146,13 +156,17 @@ def structure_weights(M, K, C, T, rule, dt, N, *, basis=None, engine="auto") -> 
     basis = np.eye(m) if basis is None else np.asarray(basis, dtype=float)
     if basis.ndim != 2 or basis.shape[0] != m:
         raise ValueError(f"basis has shape {basis.shape}, expected ({m}, r)")
-    r = basis.shape[1]
+    return rule, dt, N, basis
+
+
+def _stepped_weights(M, K, C, T, rule, dt, N, *, basis, engine) -> np.ndarray:
+    """The weights ``W`` (N + 1, m, r) of :func:`structure_weights` (checked arguments, ``r > 0``
+    impulses): the engine chosen (:func:`_choose_engine`), ``D_eff = c0 M + c1 C + K`` factorised
+    once, the impulses ``B = T basis`` (n, r) stepped by the compiled loop of the engine."""
+    n = K.shape[0]
     c1, c0 = rule.coefficients(dt)
     kind, rp = _rule_parameters(rule, dt)
     damped = C is not None and (C.nnz if sp.issparse(C) else np.count_nonzero(C)) > 0
-    if r == 0:
-        return np.zeros((N + 1, m, 0))
-
     plan, sparse_parts = _choose_engine(engine, (M, K, C if damped else None, T), (c1, c0), N)
     march_small, march_dense, march_sparse = _kernels()
     B = np.ascontiguousarray(dense(T @ basis) if sp.issparse(T) else np.asarray(T, float) @ basis,
@@ -177,7 +191,6 @@ def structure_weights(M, K, C, T, rule, dt, N, *, basis=None, engine="auto") -> 
     X1 = np.ascontiguousarray(lu.solve(B))
     Tt = np.ascontiguousarray(dense(T).T, dtype=float)
     return march_dense(kind, rp, (P, Q), damped, (X1, Tt), N + 1)
-
 
 def _choose_engine(engine, mats, coefficients, N):
     """``(engine, sparse_parts)``: the loop ``engine="auto"`` takes (the given one otherwise) and
