@@ -244,8 +244,11 @@ t_end = 5.0
                "--no-figures"]
     env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
     with open(tmp_path / "stderr.txt", "w") as err:            # a file: a full pipe would stall the study
+        # SIGINT as a terminal's process has it: a test runner started in the background of a
+        # non-interactive shell passes it on ignored, and the study could not be interrupted at all
         process = subprocess.Popen(command, env=env, start_new_session=True, stdout=subprocess.DEVNULL,
-                                   stderr=err, text=True)
+                                   stderr=err, text=True,
+                                   preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         _wait_until(lambda: len(_results(out)) >= 2 or process.poll() is not None,
                     "the first run to write 2 results")
