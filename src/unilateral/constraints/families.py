@@ -50,6 +50,10 @@ class ConstraintFamily:
     law: ClassVar[str] = "holonomic"
     #: What the family models, for reports and figures.
     kind: ClassVar[str] = "contact"
+    #: The unknowns are forces and the rows openings (the dual form: :class:`SoilContact`).
+    dual_form: ClassVar[bool] = False
+    #: The rows are rigid contacts that obey an impact law (:class:`RigidContact`: ``restitution``, ``mu``).
+    impact_law: ClassVar[bool] = False
 
     def __init__(self, indices, *, name=None):
         self.indices = _indices("indices", indices)
@@ -107,6 +111,7 @@ class SoilContact(Contact):
 
     law = "holonomic"
     kind = "contact"
+    dual_form = True
 
     def row_coupling(self):
         return tuple((int(i), int(i), -2.0) for i in self.indices)
@@ -130,6 +135,8 @@ class RigidContact(SoilContact):
     directions on the DOFs, for the friction of ``method="moreau-jean"`` (the only method that
     takes it).
     """
+
+    impact_law = True
 
     def __init__(self, indices, *, restitution=0.0, mu=0.0, tangent=None, name=None):
         super().__init__(indices, name=name)

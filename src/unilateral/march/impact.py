@@ -410,11 +410,9 @@ def system_of(model, load, dt) -> ImpactSystem:
     """The :class:`ImpactSystem` of a matrix ``model`` with rigid contacts only and a ``load``
     (None, a callable ``q(t)`` such as a LoadHistory, or an array (N+1, n) at ``t_k = k dt``,
     interpolated linearly); the imposed-strain load ``model.q_imposed(t)`` is added."""
-    from ..constraints import RigidContact
-
     e, mu, T = np.zeros(model.m), np.zeros(model.m), np.zeros((model.n, model.m))
     for family in model.families:
-        if isinstance(family, RigidContact):
+        if family.impact_law:
             e[family.indices], mu[family.indices] = family.restitution, family.mu
             if family.tangent is not None:
                 T[:, family.indices] = family.tangent

@@ -145,11 +145,9 @@ class MoreauJeanRun:
 
 def _not_rigid(model) -> list:
     """Names of the unknowns of ``model`` that are not rigid contacts."""
-    from ..constraints import RigidContact
-
     rigid = np.zeros(model.m, dtype=bool)
     for family in getattr(model, "families", ()):
-        if isinstance(family, RigidContact):
+        if family.impact_law:
             rigid[family.indices] = True
     return [model.constraint_names[i] for i in np.flatnonzero(~rigid)]
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..constraints import RigidContact, SoilContact
 from ..model import check_definite, remembered
 
 
@@ -23,12 +22,12 @@ def rigid_contacts(model) -> list:
     """Names of the rigid contacts of a matrix ``model``: unknowns of a dual-form contact family
     (:class:`~unilateral.constraints.RigidContact`, :class:`~unilateral.constraints.SoilContact`)
     whose ``H(s)`` has a zero diagonal (no compliance). Empty for other problems."""
-    if getattr(model, "kind", None) != "matrices" or not any(isinstance(f, SoilContact) for f in model.families):
+    if getattr(model, "kind", None) != "matrices" or not any(f.dual_form for f in model.families):
         return []
     H, H_v = np.asarray(model.H), None if model.H_v is None else np.asarray(model.H_v)
     out = []
     for family in model.families:
-        if isinstance(family, SoilContact):
+        if family.dual_form:
             out += [int(i) for i in family.indices if H[i, i] == 0 and (H_v is None or H_v[i, i] == 0)]
     return [model.constraint_names[i] for i in sorted(out)]
 
@@ -40,7 +39,7 @@ def refusal(model, method) -> str | None:
     if not names:
         return None
     listed = ", ".join(map(repr, names[:5])) + (", ..." if len(names) > 5 else "")
-    rubbing = [model.constraint_names[int(i)] for f in model.families if isinstance(f, RigidContact)
+    rubbing = [model.constraint_names[int(i)] for f in model.families if f.impact_law
                for i, mu in zip(f.indices, f.mu) if mu > 0]
     if rubbing:
         return (f"method={method!r}: the rigid contact(s) {', '.join(map(repr, rubbing[:5]))} have friction (mu > 0), "
