@@ -74,7 +74,7 @@ NonNegative = Annotated[float, Field(ge=0)]
 class Table(BaseModel):
     """Base of the TOML tables: strict types, no unknown keys, finite numbers."""
 
-    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True)
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False, frozen=True, defer_build=True)
 
 
 def _toml(value) -> str:
