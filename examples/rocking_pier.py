@@ -252,7 +252,7 @@ def main(argv=None):
     parser.add_argument("--out", default="rocking_pier", help="folder of the figures (created)")
     parser.add_argument("--no-animation", action="store_true", help="skip the deformed shape and the GIF")
     args = parser.parse_args(argv)
-    out = Path(args.out)
+    out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
     record = read_at2(RECORD)
     print(f"pier: W = {W:.1f} kN (deck {M_DECK * G:.1f}, footing {M_FOOT * G:.1f}), b = {B:g} m, "
