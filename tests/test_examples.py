@@ -23,7 +23,7 @@ import unilateral
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 SCRIPTS = ("bouncing_mass.py", "rocking_tower.py", "pounding_frames.py", "convergence_bdf2.py", "soil_kernels.py",
-           "sliding_block.py")
+           "sliding_block.py", "rocking_pier.py")
 MODEL_FILES = ("liolios1990.toml", "pounding.toml", "winkler_beam.toml", "yielding_frame.toml", "building3d.toml")
 NUMBER = r"([-+]?\d+(?:\.\d*)?(?:[eE][-+]?\d+)?)"
 
@@ -109,6 +109,29 @@ def test_rocking_tower_equilibrium_and_energy(outputs):
     shear, _ = _numbers(out, r"peak base shear: {N} kN at t = {N} s")
     assert residual < 1e-8 * abs(shear)
     assert _numbers(out, r"energy balance: largest relative error {N}")[0] < 1e-2
+
+
+def test_rocking_pier_base_forces_bound_and_energy(outputs):
+    out = outputs["rocking_pier.py"]
+    W, Wb = _numbers(out, r"pier: W = {N} kN .* W b = {N} kN m")
+    assert Wb == pytest.approx(2.5 * W, rel=1e-4)
+    least, impacts, steps = _numbers(out, r"contact forces: least {N} kN \(>= 0\); {N} located impacts in {N} steps")
+    assert least >= -1e-9 * W and impacts >= 5 and steps >= 1
+    bound, low, high = _numbers(out, r"max \|M\| / \(b \(R_L \+ R_R\)\) = {N} \(<= 1\); .* from {N} to {N}")
+    assert bound <= 1.0 + 1e-12 and 0.0 < low < 1.0 < high     # the deck's vertical inertia on the bound
+    assert _numbers(out, r"vertical equilibrium: max \|R_L \+ R_R - \(W \+ sum m a_y\)\| = {N} kN")[0] < 1e-10 * W
+    smooth, at_impacts, peak = _numbers(out, r"overturning moment\| = {N} kN m without impact, {N} kN m at the "
+                                             r"impact steps \(peak {N} kN m\)")
+    assert smooth < 1e-10 * peak and at_impacts < 1e-4 * peak
+    relative, dissipated, located, difference = _numbers(
+        out, r"energy balance: relative error {N}; contacts dissipated {N} kN m, located impacts {N} kN m \(difference {N}\)")
+    assert relative < 1e-12 and dissipated > 0 and difference < 1e-10 * dissipated
+    rocking, = _numbers(out, r"rocking \(between impacts\): .* base moment [\d.]+ kN m = {N} W b")
+    fixed, = _numbers(out, r"fixed base: .* base moment [\d.]+ kN m = {N} W b")
+    assert rocking <= high * bound + 1e-9 and rocking < fixed          # within b (R_L + R_R); below the fixed base
+    for name in ("rocking_pier.png", "rocking_pier_shape.png", "rocking_pier.gif"):
+        path, = re.findall(rf"wrote (.*{re.escape(name)})$", out, re.M)
+        assert Path(path).stat().st_size > 1000, path
 
 
 def test_pounding_frames_contact_follows_the_gap(outputs):
