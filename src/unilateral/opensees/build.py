@@ -23,6 +23,7 @@ from ..model import Model
 from ..structure import Frame2D, Frame3D
 from .elements import BeamColumn, Truss, beam_stiffness
 from .elements3d import BeamColumn3D, beam_stiffness3d
+from .extensions import add_to_frame
 from .materials import DIRECTIONS
 from .pdelta import pdelta_table, with_axial
 from .refusals import OpenSeesRefused, refuse
@@ -130,6 +131,10 @@ def build(domain) -> Built:
                                constraint_names=list(st.constraint_names), families=st.families())
     built = Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs),
                   pdelta_table(domain, row), model, {})
+    if st.foundation is not None:
+        from .soil_analysis import on_soil
+
+        on_soil(built)
     if built.pdelta:
         with_axial(built, {})
     return built
@@ -199,6 +204,7 @@ def _add_elements(fr, domain) -> dict:
         for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
             name = f"e{tag}.{k}"
             names[(tag, k)] = domain.materials[mat].add(fr, name, e.i, e.j, dofs[direction])
+    add_to_frame(fr, domain)
     return names
 
 
