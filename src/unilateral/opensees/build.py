@@ -23,7 +23,7 @@ from ..model import Model
 from ..structure import Frame2D, Frame3D
 from .elements import BeamColumn, Truss, beam_stiffness
 from .elements3d import BeamColumn3D, beam_stiffness3d
-from .extensions import add_to_frame
+from .extension_elements import add_to_frame
 from .materials import DIRECTIONS
 from .pdelta import pdelta_table, with_axial
 from .refusals import OpenSeesRefused, refuse
@@ -132,7 +132,7 @@ def build(domain) -> Built:
     built = Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs),
                   pdelta_table(domain, row), model, {})
     if st.foundation is not None:
-        from .soil_analysis import on_soil
+        from .soil_model import on_soil
 
         on_soil(built)
     if built.pdelta:

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .extensions import Footing, KelvinContact, SpringFooting
+from .extension_elements import Footing, KelvinContact, SpringFooting
 from .refusals import refuse
 
 __all__ = ["end_forces", "response", "pick", "state_psi"]

@@ -1,7 +1,7 @@
 """The analysis of a script with extensions: footings on a soil medium and the bilateral reference.
 
 A frame with an ``ops.footing`` on a soil medium is a :class:`~unilateral.soil.FoundationModel`
-(:func:`on_soil`: the script's model on its reduced DOFs, the footings' ``T`` through the ties). The
+(:func:`.soil_model.on_soil`: the script's model on its reduced DOFs, the footings' ``T`` through the ties). The
 soil remembers the motion (its flexibility is a convolution), so a transient analysis is one
 :class:`~unilateral.Simulation` from where it starts (``method="auto"``: ``"cq"`` on a half-space
 or a layered soil, ``"modal"`` on cones and Winkler-Kelvin patches; Newmark ``0.5, 0.25`` only,
@@ -20,7 +20,6 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..lcp import get_lcp_solver
 from ..methods.foundation_solve import foundation_base_state, primal_columns
@@ -29,48 +28,10 @@ from ..solve import Simulation
 from .refusals import OpenSeesRefused, refuse
 from .stepping import Analysis
 
-__all__ = ["ExtendedAnalysis", "on_soil"]
+__all__ = ["ExtendedAnalysis"]
 
 _START = ("a transient analysis from rest (no load at its start) or right after a static analysis under the "
           "load it starts with")
-
-
-def on_soil(built) -> None:
-    """Make ``built.model`` the :class:`FoundationModel` of its footings on a soil medium (in place)."""
-    st = built.structure
-    fnd = st.foundation
-    if built.pdelta:
-        refuse("geomTransf('PDelta') with a footing on a soil medium", "the P-Delta axial forces on a soil "
-               "medium are not mapped here", "geomTransf('Linear', tag), or Frame2D.p_delta in Python")
-    frame = built.model
-    T = built.ties.T @ fnd.T(st.dofs, st.coords)
-    slide = dict(Tx=built.ties.T @ fnd.Tx(st.dofs), mu=fnd.mu) if fnd.sliding else {}
-    try:
-        model = _foundation_model(frame, T, fnd, slide)
-    except ValueError as exc:
-        raise OpenSeesRefused("analyze", f"the footings on the soil cannot be built: {exc}",
-                              "a footing whose node moves vertically and rotates freely") from None
-    built.frame_model, built.model, built.linear = frame, model, model
-    rows, S_u, S_v, s0, ne = built.stress           # the stresses read v of the frame's constraints only
-    S_v = sp.hstack([S_v, sp.csr_matrix((S_v.shape[0], model.m - frame.m))]).tocsr()
-    built.stress = (rows, S_u, S_v, s0, ne)
-
-
-def _foundation_model(frame, T, fnd, slide) -> FoundationModel:
-    """The frame's model on the soil: :meth:`FoundationModel.on` with constraints of its own; without, the
-    plain model of its ``M, K, C`` (dense up to 2000 DOFs), as ``Frame2D`` makes it."""
-    names = list(fnd.contact_names)
-    if frame.m or np.any(frame.q_imposed(0.0)):
-        return FoundationModel.on(frame, T, fnd.soil, gap=fnd.gap, contact_names=names, **slide)
-    small = frame.n <= 2000
-    M, K, C = (None if X is None else (X.toarray() if small and sp.issparse(X) else X)
-               for X in (frame.M, frame.K, frame.C))
-    if small:
-        T, slide = np.asarray(T.todense() if sp.issparse(T) else T), {
-            key: (np.asarray(value.todense() if sp.issparse(value) else value) if key == "Tx" else value)
-            for key, value in slide.items()}
-    return FoundationModel(M, K, T, fnd.soil, C=C, gap=fnd.gap, dof_names=list(frame.dof_names),
-                           contact_names=names, **slide)
 
 
 class ExtendedAnalysis(Analysis):
