@@ -173,6 +173,47 @@ def test_kelvin_contact_in_3d_is_the_frame3d_gap():
     assert got[0, 0] < -1e-3 and got[:, 2].max() > 1e-2          # closed under gravity (past its gap), then open
 
 
+def test_rigid_contact_is_frame2d_contact_by_moreau_jean():
+    """A mass on a spring resting on a rigid stop 0.05 below (Newton's e = 0.5), thrown up by a pulse:
+    the script is Frame2D.contact solved by method='moreau-jean' (theta = 1/2) step for step."""
+    ops.wipe()
+    ops.model("basic", "-ndm", 2, "-ndf", 3)
+    ops.node(1, 0.0, 0.0)
+    ops.node(2, 0.0, 0.0)
+    ops.fix(1, 1, 1, 1)
+    ops.fix(2, 1, 0, 1)
+    ops.mass(2, 0.0, 10.0, 0.0)
+    ops.uniaxialMaterial("Elastic", 1, 1e3)
+    ops.element("zeroLength", 1, 1, 2, "-mat", 1, "-dir", 2)
+    ops.rigidContact(5, 2, "-dir", 2, "-gap", 0.05, "-e", 0.5)
+    ops.timeSeries("Constant", 1)
+    ops.pattern("Plain", 1, 1)
+    ops.load(2, 0.0, -98.1, 0.0)
+    _static_then_pulse([(2, (0.0, 700.0, 0.0))])
+    got = _transient(200, lambda: [ops.nodeDisp(2, 2), *ops.eleResponse(5, "contactForce"),
+                                   *ops.eleResponse(5, "opening"), *ops.eleForce(5)])
+    fr = Frame2D()
+    fr.node(1, 0.0, 0.0)
+    fr.node(2, 0.0, 0.0)
+    fr.support(1, ux=True, uy=True)
+    fr.support(2, ux=True, uy=False)
+    fr.mass(2, 10.0)
+    fr.spring("k", 1, 1e3, j=2, direction="uy")
+    fr.contact("x5", 2, direction="uy", gap=0.05, restitution=0.5)
+    st = fr.build()
+    model = st.to_model()
+    q = _load_history(st, 200, st.nodal_load(2, uy=-98.1), st.nodal_load(2, uy=700.0))
+    sol = solve(model, q, dt=DT, t_end=200 * DT, method="moreau-jean", rule="trapezoidal", initial="static")
+    uy = sol.u[:, model.dof_names.index("2.uy")]
+    _close(got[:, 0], uy)
+    _close(got[:, 1], sol.v[:, model.constraint_names.index("x5")])
+    _close(got[:, 2], uy + 0.05)                                   # the opening
+    _close(got[:, 4], -got[:, 1])                                  # eleForce: minus the ground's force
+    assert got[0, 1] == pytest.approx(98.1 - 50.0)                 # resting on the stop under gravity
+    opened = np.flatnonzero(got[:, 2] > 1e-2)
+    assert opened.size and np.any(got[opened[0]:, 1] > 0), got[opened[0]:, 1:3]   # it lifts off and lands again
+
+
 def test_a_script_with_extensions_is_not_converted(tmp_path):
     from unilateral.opensees.convert import convert_script
     from unilateral.opensees.convert_frame import NotConvertible
@@ -383,6 +424,9 @@ def _model():
     (lambda: ops.springFooting(7, 1, 4.0, 1e4, "-springs", 0), ["n=0", "> 0"]),
     (lambda: ops.springFooting(7, 1, 4.0, "soft"), ["k='soft' is not a number"]),
     (lambda: ops.bilateral(2), ["bilateral(2)", "0 or 1"]),
+    (lambda: ops.rigidContact(5, 1, "-dir", 2, "-e", 1.5), ["'-e'", "e=1.5", "[0, 1]"]),
+    (lambda: ops.rigidContact(5, 1, "-dir", 3), ["'-dir'", "d=3.0"]),
+    (lambda: ops.rigidContact(5, 1, "-dir", 2, "-gap", -0.1), ["g=-0.1", ">= 0"]),
     (lambda: ops.footing(7, 1, 10.0, 10.0, "winkler", 1e5, 0.0, "-damping", 0.05), ["no material damping"]),
     (lambda: ops.footing(7, 1, 10.0, 10.0, "cones", 97.0, 0.3, 2.0, "-mu", 0.3, "-horizontal", "cone"),
      ["one of '-mu', mu or '-horizontal'"]),

@@ -135,6 +135,10 @@ def build(domain) -> Built:
         from .soil_model import on_soil
 
         on_soil(built)
+    if getattr(st, "rigid", None) is not None:
+        from .soil_model import with_rigid
+
+        with_rigid(built)
     if built.pdelta:
         with_axial(built, {})
     return built

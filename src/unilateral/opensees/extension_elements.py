@@ -12,13 +12,14 @@ import numpy as np
 from .materials import DIRECTIONS
 from .refusals import refuse
 
-__all__ = ["Footing", "SpringFooting", "KelvinContact", "add_to_frame", "PARSERS"]
+__all__ = ["Footing", "SpringFooting", "KelvinContact", "RigidContact", "add_to_frame", "PARSERS"]
 
 _SOILS = {"halfspace": ("Vs", "nu", "rho"), "cones": ("Vs", "nu", "rho"), "layered": ("Vs", "nu", "rho"),
           "winkler": ("k", "c")}
 _FOOTING = ("footing(tag, node, width, length, 'halfspace' | 'cones', Vs, nu, rho, ['-patches', n, '-gap', g, "
             "'-damping', D, '-horizontal', 'support' | 'cone' | 'none', '-mu', mu, '-layer', h, Vs, nu, rho])")
 _SPRING = "springFooting(tag, node, width, k, ['-length', L, '-c', c, '-springs', n, '-qult', q, '-gap', g])"
+_RIGID = "rigidContact(tag, node, '-dir', d, ['-gap', g, '-mu', mu, '-e', e])"
 _KELVIN = "kelvinContact(tag, iNode, jNode, '-dir', d, '-k', k, ['-c', c, '-gap', g, '-mu', mu, '-kt', kt])"
 
 
@@ -81,6 +82,25 @@ class KelvinContact:
                mu=self.mu, kt=self.kt)
 
 
+@dataclass
+class RigidContact:
+    """``rigidContact``: a rigid contact of ``node`` with the fixed ground along the translation
+    ``direction`` (1..ndm), opening ``gap``, Coulomb's ``mu`` and Newton's ``restitution``
+    (``Frame2D.contact``)."""
+
+    node: int
+    direction: int
+    gap: float = 0.0
+    mu: float = None
+    restitution: float = 0.0
+    dofs: dict = field(default_factory=dict)
+
+    def add(self, fr, name):
+        """Add the contact to the frame ``fr``."""
+        fr.contact(name, self.node, direction=self.dofs[self.direction], gap=self.gap, mu=self.mu,
+                   restitution=self.restitution)
+
+
 def add_to_frame(fr, domain) -> None:
     """Add the extension elements of ``domain`` to the frame ``fr`` (named ``x<tag>``)."""
     for tag, element in getattr(domain, "extensions", {}).items():
@@ -88,6 +108,9 @@ def add_to_frame(fr, domain) -> None:
 
 
 # ---------------------------------------------------------------------- parsing
+_BOUNDS = {">0": "> 0", ">=0": ">= 0"}
+
+
 def _number(what, name, value, bound=None):
     """``value`` as a float, checked against ``bound`` (``">0"``, ``">=0"``)."""
     if isinstance(value, (bool, str)) or value is None:
@@ -97,7 +120,7 @@ def _number(what, name, value, bound=None):
     except (TypeError, ValueError):
         refuse(what, f"{name}={value!r} is not a number", f"a number for {name}")
     if not np.isfinite(x) or (bound == ">0" and not x > 0) or (bound == ">=0" and not x >= 0):
-        refuse(what, f"{name}={value!r} is not valid", f"a finite number {bound[0]} {bound[1:]} for {name}"
+        refuse(what, f"{name}={value!r} is not valid", f"a finite number {_BOUNDS[bound]} for {name}"
                if bound else f"a finite number for {name}")
     return x
 
@@ -243,7 +266,27 @@ def parse_kelvin(domain, what, args) -> KelvinContact:
                          _one(what, opts, "-gap", "g", ">=0", 0.0), mu, kt, dofs)
 
 
+def parse_rigid(domain, what, args) -> RigidContact:
+    """The :class:`RigidContact` of ``rigidContact(tag, *args)``."""
+    if domain.ndm != 2:
+        refuse(what, "a rigid contact is a 2-D extension here", "model('basic', '-ndm', 2, '-ndf', 3), or "
+               "Frame3D.contact in Python")
+    if not args:
+        refuse(what, "the node is missing", _RIGID)
+    node = _node(what, domain, "node", args[0])
+    opts = _options(what, args[1:], ("-dir", "-gap", "-mu", "-e"), _RIGID)
+    direction = _one(what, opts, "-dir", "d")
+    if direction is None or direction not in (1, 2):
+        refuse(f"{what} '-dir'", f"d={direction!r} is not a translation 1..2", "'-dir', 2")
+    e = _one(what, opts, "-e", "e", ">=0", 0.0)
+    if e > 1:
+        refuse(f"{what} '-e'", f"e={e!r} is not in [0, 1] (Newton's coefficient of restitution)", "'-e', 0.5")
+    return RigidContact(node, int(direction), _one(what, opts, "-gap", "g", ">=0", 0.0), _one(what, opts, "-mu", "mu", ">=0"),
+                        e, DIRECTIONS[domain.ndf])
+
+
 #: The parser of each element command.
-PARSERS = {"footing": parse_footing, "springFooting": parse_spring_footing, "kelvinContact": parse_kelvin}
+PARSERS = {"footing": parse_footing, "springFooting": parse_spring_footing, "kelvinContact": parse_kelvin,
+           "rigidContact": parse_rigid}
 
 

@@ -13,14 +13,16 @@ stepping, or of the static state), so a Kelvin contact's force includes its dash
   negative, as a ``zeroLength`` from the ground); ``eleResponse`` ``'force'`` the same,
   ``'contactForce'`` each patch's or spring's compressive force (>= 0), ``'uplift'`` each one's
   opening (>= 0), ``'slip'`` (a footing that slides) each patch's net slip, ``'settlement'`` (a
-  spring footing with ``-qult``) each spring's plastic settlement.
+  spring footing with ``-qult``) each spring's plastic settlement;
+* ``rigidContact``: ``eleForce`` ``[Fx, Fy, Mz]`` at its node, minus the ground's force on it (the
+  contact force ``c >= 0`` along ``-dir``); ``'contactForce'`` ``[c]``, ``'opening'`` ``[u . d + gap]``.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .extension_elements import Footing, KelvinContact, SpringFooting
+from .extension_elements import Footing, KelvinContact, RigidContact, SpringFooting
 from .refusals import refuse
 
 __all__ = ["end_forces", "response", "pick", "state_psi"]
@@ -114,10 +116,23 @@ def _footing(analysis, tag, e):
     return F, c, v[rows], (None if other is None else v[other])
 
 
+def _rigid(analysis, tag, e):
+    """``(contact force >= 0, opening >= 0)`` of the rigid contact ``tag``."""
+    b = analysis.built
+    if b is None or analysis.built_version != analysis.domain.version:
+        b = analysis.current()
+    U = b.nodal(analysis.u)
+    return float(analysis.v[_index(b.model, f"x{tag}")]), float(U[b.row[e.node] + e.direction - 1] + e.gap)
+
+
 def end_forces(analysis, tag) -> np.ndarray:
     """``eleForce`` of the extension element ``tag`` (see the module)."""
     e = analysis.domain.extensions[tag]
     nf = analysis.built.ndf if analysis.built is not None else analysis.domain.ndf
+    if isinstance(e, RigidContact):
+        force = np.zeros(nf)
+        force[e.direction - 1] = -_rigid(analysis, tag, e)[0]
+        return force
     if isinstance(e, KelvinContact):
         f, t, _, _ = _kelvin(analysis, tag, e)
         direction = np.zeros(nf)
@@ -139,7 +154,11 @@ def response(analysis, tag, *args) -> list:
     what = f"eleResponse({', '.join(map(repr, (tag, *args)))})"
     if name in ("force", "forces", "globalForce", "globalForces"):
         return [float(x) for x in end_forces(analysis, tag)]
-    if isinstance(e, KelvinContact):
+    if isinstance(e, RigidContact):
+        c, opening = _rigid(analysis, tag, e)
+        table = {"contactForce": [c], "opening": [opening]}
+        valid = "'force', 'contactForce', 'opening'"
+    elif isinstance(e, KelvinContact):
         f, t, de, opening = _kelvin(analysis, tag, e)
         table = {"basicForce": [f] if t is None else [f, t], "deformation": [de], "basicDeformation": [de],
                  "opening": [opening]}

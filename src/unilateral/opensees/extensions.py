@@ -10,6 +10,8 @@ numbers, ``'-flag'`` options).
                                                     that may yield (``Frame2D.spring_footing``)
 ``kelvinContact(tag, iNode, jNode, '-dir', d, ...)`` a spring and a dashpot acting only in contact
                                                     (``Frame2D.gap`` / ``Frame3D.gap`` with ``c``)
+``rigidContact(tag, node, '-dir', d, ...)``          a rigid contact with the ground, Newton's
+                                                    impact law (``Frame2D.contact``, Moreau-Jean)
 ``bilateral(flag)``                                 the bilateral reference: every unilateral
                                                     constraint held (``solve(..., bilateral=True)``)
 ==================================================  =============================================
@@ -33,7 +35,7 @@ from .refusals import refuse
 __all__ = ["ExtensionCommands", "extended", "EXTENSION_COMMANDS"]
 
 #: The extension commands (``docs/opensees.md``, section "Extensions").
-EXTENSION_COMMANDS = ("footing", "springFooting", "kelvinContact", "bilateral")
+EXTENSION_COMMANDS = ("footing", "springFooting", "kelvinContact", "rigidContact", "bilateral")
 
 
 # ---------------------------------------------------------------------- the session's commands
@@ -63,6 +65,10 @@ class ExtensionCommands:
     def kelvinContact(self, tag, *args):
         """``kelvinContact(tag, iNode, jNode, '-dir', d, '-k', k, ...)``: a Kelvin contact."""
         self._extension("kelvinContact", tag, args)
+
+    def rigidContact(self, tag, *args):
+        """``rigidContact(tag, node, '-dir', d, ...)``: a rigid contact with the ground (Moreau-Jean)."""
+        self._extension("rigidContact", tag, args)
 
     def bilateral(self, flag=True):
         """``bilateral(flag)``: the transient analyses hold every unilateral constraint at the state they
@@ -96,6 +102,7 @@ class ExtensionCommands:
         for tag, element in self.domain.extensions.items():
             f = end_forces(self.analysis, tag)
             nodes = (element.i, element.j) if isinstance(element, KelvinContact) else (element.node,)
+            f = f[:len(nodes) * nf]
             for k, node in enumerate(nodes):
                 self.reactions_[node] = self.reactions_[node] + f[k * nf:(k + 1) * nf]
         return code

@@ -11,6 +11,9 @@ analysis: the soil's static flexibility ``Phi(0)``). When its horizon is used up
 solved again from the same start over a longer horizon (the first steps agree to round-off). A
 static analysis solves the static problem with ``Phi(0)`` (``FoundationModel.static_model``).
 
+A frame with an ``ops.rigidContact`` is stepped by Moreau-Jean's theta-method (``method="moreau-jean"``,
+theta = 1/2 for Newmark 0.5, 0.25) with Newton's impact law, from the current state.
+
 ``bilateral(1)``: every simulation holds the constraints at the state it starts from
 (``bilateral=True`` of :func:`unilateral.solve`, the model files' ``bilateral_reference``).
 """
@@ -21,6 +24,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..constraints import RigidContact as RigidFamily
 from ..lcp import get_lcp_solver
 from ..methods.foundation_solve import foundation_base_state, primal_columns
 from ..soil.foundation_model import FoundationModel
@@ -90,6 +94,8 @@ class ExtendedAnalysis(Analysis):
         return super().analyze(steps, dt)
 
     def _start(self, key, dt, horizon, gamma, beta):
+        if self._rigid():
+            return self._start_rigid(key, dt, horizon, (gamma, beta))
         if not self._soil():
             return super()._start(key, dt, horizon, gamma, beta)
         if (gamma, beta) != (0.5, 0.25):
@@ -116,6 +122,27 @@ class ExtendedAnalysis(Analysis):
         if done:
             sim.advance(done)
         return {"key": key, "sim": sim, "times": times, "segment": segment}
+
+    def _rigid(self) -> bool:
+        return any(isinstance(f, RigidFamily) for f in getattr(getattr(self.built, "model", None), "families", ()))
+
+    def _start_rigid(self, key, dt, horizon, newmark):
+        """A Moreau-Jean simulation (the theta-method, theta = 1/2) of ``horizon`` steps from the state."""
+        if newmark != (0.5, 0.25):
+            refuse(f"integrator('Newmark', {newmark[0]!r}, {newmark[1]!r}) with a rigid contact", "rigid contacts "
+                   "are stepped by Moreau-Jean's theta-method with Newton's impact law; Newmark 0.5, 0.25 is its "
+                   "theta = 1/2", "integrator('Newmark', 0.5, 0.25)")
+        model, d = self.built.model, self.domain
+        times = np.cumsum(np.r_[d.time, np.full(horizon, dt)])
+        q = self.load(times)
+        self._check_acceleration(q[0] + model.q_imposed(d.time))
+        try:
+            sim = Simulation(model, q, dt=dt, t_end=horizon * dt, method="moreau-jean", rule="trapezoidal",
+                             initial={"u0": self.u, "udot0": self.ud}, bilateral=self.bilateral)
+        except ValueError as exc:
+            raise OpenSeesRefused("analyze (Transient)", f"the state cannot start a simulation: {exc}",
+                                  "a consistent state (start from rest or from a static analysis)") from None
+        return {"key": key, "sim": sim, "times": times}
 
     def _initial(self):
         """``"rest"`` or ``"static"``: the start of a simulation of a footing on the soil."""

@@ -1,5 +1,8 @@
-"""The model of a script with footings on a soil medium (``ops.footing``): the script's model on its
-reduced DOFs resting on the soil, a :class:`~unilateral.soil.FoundationModel` (see :mod:`.soil_analysis`)."""
+"""The models of the extensions that are not the frame's natural form alone: footings on a soil medium
+(``ops.footing``: the script's model on its reduced DOFs resting on the soil, a
+:class:`~unilateral.soil.FoundationModel`, :func:`on_soil`) and rigid contacts (``ops.rigidContact``:
+their columns ``N`` with ``H = 0`` appended, as ``Frame2D``'s rigid contacts, :func:`with_rigid`);
+see :mod:`.soil_analysis` for their analysis."""
 
 from __future__ import annotations
 
@@ -9,7 +12,7 @@ import scipy.sparse as sp
 from ..soil.foundation_model import FoundationModel
 from .refusals import OpenSeesRefused, refuse
 
-__all__ = ["on_soil"]
+__all__ = ["on_soil", "with_rigid"]
 
 
 def on_soil(built) -> None:
@@ -48,3 +51,38 @@ def _foundation_model(frame, T, fnd, slide) -> FoundationModel:
             for key, value in slide.items()}
     return FoundationModel(M, K, T, fnd.soil, C=C, gap=fnd.gap, dof_names=list(frame.dof_names),
                            contact_names=names, **slide)
+
+
+def with_rigid(built) -> None:
+    """Append the rigid contacts of ``built.structure`` to ``built.model`` (in place): the columns
+    ``T^T N`` of their normals on the reduced DOFs, ``H = 0``, ``g = -gap`` and the family
+    :class:`~unilateral.constraints.RigidContact` (as :func:`unilateral.structure.rigid` does)."""
+    from ..constraints import RigidContact as RigidFamily
+    from ..model import Model
+
+    part, old = built.structure.rigid, built.model
+    if built.structure.foundation is not None or built.pdelta:
+        refuse("rigidContact with a footing on a soil medium or geomTransf('PDelta')", "the rigid contacts are "
+               "mapped on the frame's own model only", "rigidContact on a frame without them")
+    n, m, mr = old.n, old.m, len(part.contacts)
+    N = sp.csr_matrix(built.ties.T @ part.N)
+    F = np.hstack([np.asarray(old.F.todense() if sp.issparse(old.F) else old.F), N.toarray()])
+    H = np.zeros((m + mr, m + mr))
+    H[:m, :m] = old.H
+    g = np.concatenate([np.asarray(old.g(0.0), dtype=float), -part.gap])
+    F_v = H_v = None
+    if old.F_v is not None:
+        F_v = np.hstack([np.asarray(old.F_v.todense() if sp.issparse(old.F_v) else old.F_v), np.zeros((n, mr))])
+        H_v = np.zeros((m + mr, m + mr))
+        H_v[:m, :m] = old.H_v
+    mu = [c.mu for c in part.contacts]
+    tangent = (built.ties.T @ part.tangent).toarray() if any(mu) else None
+    families = list(old.families) + [RigidFamily(np.arange(m, m + mr), name="rigid contact", mu=mu, tangent=tangent,
+                                                 restitution=[c.restitution for c in part.contacts])]
+    model = Model(M=old.M, K=sp.identity(n, format="csr"), F=F, H=H, C=old.C, g=g, F_v=F_v, H_v=H_v,
+                  q_imposed=old.q_imposed(0.0), dof_names=list(old.dof_names),
+                  constraint_names=list(old.constraint_names) + list(part.names), families=families)
+    model.K = old.K                                # (singular for a free body: see unilateral.structure.rigid)
+    built.model = built.linear = model
+    rows, S_u, S_v, s0, ne = built.stress
+    built.stress = (rows, S_u, sp.hstack([S_v, sp.csr_matrix((S_v.shape[0], mr))]).tocsr(), s0, ne)
