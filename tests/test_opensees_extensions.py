@@ -214,6 +214,50 @@ def test_rigid_contact_is_frame2d_contact_by_moreau_jean():
     assert opened.size and np.any(got[opened[0]:, 1] > 0), got[opened[0]:, 1:3]   # it lifts off and lands again
 
 
+def test_a_body_on_rigid_contacts_only_falls_from_rest_and_has_no_static_state():
+    """A mass 0.1 above a rigid contact, nothing else holding it: a static analysis is refused by name;
+    from rest it falls freely (the trapezoidal rule's discrete free fall) until it lands, and then rests
+    on the contact, which carries its weight."""
+    def model():
+        ops.wipe()
+        ops.model("basic", "-ndm", 2, "-ndf", 3)
+        ops.node(1, 0.0, 0.0)
+        ops.fix(1, 1, 0, 1)
+        ops.mass(1, 0.0, 10.0, 0.0)
+        ops.rigidContact(5, 1, "-dir", 2, "-gap", 0.1)
+        ops.timeSeries("Constant", 2)
+        ops.pattern("Plain", 1, 2)
+        ops.load(1, 0.0, -98.1, 0.0)
+    model()
+    ops.analysis("Static")
+    with pytest.raises(OpenSeesRefused, match=r"analyze \(Static\) with a rigid contact.*no static state"):
+        ops.analyze(1)
+    ops.wipe()
+    ops.model("basic", "-ndm", 2, "-ndf", 3)
+    ops.node(1, 0.0, 0.0)
+    ops.fix(1, 1, 0, 1)
+    ops.mass(1, 0.0, 10.0, 0.0)
+    ops.rigidContact(5, 1, "-dir", 2, "-gap", 0.1)
+    ops.timeSeries("Path", 1, "-time", 0.0, 1e-9, 100.0, "-values", 0.0, 1.0, 1.0)
+    ops.pattern("Plain", 1, 1)
+    ops.load(1, 0.0, -98.1, 0.0)
+    ops.analysis("Transient")
+    ops.integrator("Newmark", 0.5, 0.25)
+    u = []
+    for _ in range(40):
+        assert ops.analyze(1, 0.01) == 0
+        u.append(ops.nodeDisp(1, 2))
+    # the trapezoidal rule's free fall with the weight switched on just after t = 0 (the accelerations
+    # 0, then -g): v_k = -g dt (k - 1/2), u_k = -g dt^2 (k (k - 1) / 2 + 1/4)
+    k = np.arange(1, 41)
+    fall = -9.81 * 0.01 ** 2 * (k * (k - 1) / 2 + 0.25)
+    free = fall > -0.1
+    free[np.flatnonzero(free)[-1]] = False                  # (kept clear of the step of the impact)
+    _close(np.array(u)[free], fall[free], rtol=1e-9)
+    assert u[-1] == pytest.approx(-0.1, abs=1e-12)
+    assert ops.eleResponse(5, "contactForce")[0] == pytest.approx(98.1, rel=1e-6)
+
+
 def test_a_script_with_extensions_is_not_converted(tmp_path):
     from unilateral.opensees.convert import convert_script
     from unilateral.opensees.convert_frame import NotConvertible

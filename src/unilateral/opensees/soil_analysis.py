@@ -75,7 +75,14 @@ class ExtendedAnalysis(Analysis):
 
     # ------------------------------------------------------------------ static
     def _static_state(self, q):
-        if not self._soil():
+        if self._rigid():
+            try:
+                state = super()._static_state(q)
+            except ValueError as exc:
+                raise OpenSeesRefused("analyze (Static) with a rigid contact", f"no static state: {exc}",
+                                      "a transient analysis from rest (the body settles on its contacts), or "
+                                      "a spring that holds it") from None
+        elif not self._soil():
             state = super()._static_state(q)
         else:                        # the library's static start of a footing (the soil's Phi(0)), in its columns
             model = self.built.model

@@ -1,7 +1,7 @@
 """The models of the extensions that are not the frame's natural form alone: footings on a soil medium
 (``ops.footing``: the script's model on its reduced DOFs resting on the soil, a
 :class:`~unilateral.soil.FoundationModel`, :func:`on_soil`) and rigid contacts (``ops.rigidContact``:
-their columns ``N`` with ``H = 0`` appended, as ``Frame2D``'s rigid contacts, :func:`with_rigid`);
+their columns ``N`` with ``H = 0`` appended, as ``Frame2D``'s rigid contacts, :func:`rigid_model`);
 see :mod:`.soil_analysis` for their analysis."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import scipy.sparse as sp
 from ..soil.foundation_model import FoundationModel
 from .refusals import OpenSeesRefused, refuse
 
-__all__ = ["on_soil", "with_rigid"]
+__all__ = ["on_soil", "rigid_model"]
 
 
 def on_soil(built) -> None:
@@ -53,36 +53,45 @@ def _foundation_model(frame, T, fnd, slide) -> FoundationModel:
                            contact_names=names, **slide)
 
 
-def with_rigid(built) -> None:
-    """Append the rigid contacts of ``built.structure`` to ``built.model`` (in place): the columns
-    ``T^T N`` of their normals on the reduced DOFs, ``H = 0``, ``g = -gap`` and the family
-    :class:`~unilateral.constraints.RigidContact` (as :func:`unilateral.structure.rigid` does)."""
+def rigid_model(st, T, M, C, names):
+    """The model of the frame ``st`` with rigid contacts on the reduced DOFs ``u_structure = T u``:
+    its elements' natural form with the columns ``T^T N`` of the contacts' normals appended, ``H = 0``,
+    ``g = -gap`` and the family :class:`~unilateral.constraints.RigidContact`, as
+    :mod:`unilateral.structure.rigid` makes it (``K`` may be singular: a body resting on the contacts).
+
+    Parameters
+    ----------
+    st : the built frame with ``rigid``;  T : (n_structure, n) csr, the ties
+    M, C : (n, n) the script's mass and damping (C None: none);  names : the n DOF names
+    """
     from ..constraints import RigidContact as RigidFamily
     from ..model import Model
 
-    part, old = built.structure.rigid, built.model
-    if built.structure.foundation is not None or built.pdelta:
-        refuse("rigidContact with a footing on a soil medium or geomTransf('PDelta')", "the rigid contacts are "
-               "mapped on the frame's own model only", "rigidContact on a frame without them")
-    n, m, mr = old.n, old.m, len(part.contacts)
-    N = sp.csr_matrix(built.ties.T @ part.N)
-    F = np.hstack([np.asarray(old.F.todense() if sp.issparse(old.F) else old.F), N.toarray()])
+    part, nat = st.rigid, st.natural
+    if st.foundation is not None:
+        refuse("rigidContact with a footing on a soil medium", "the rigid contacts are mapped on the frame's own "
+               "model only", "rigidContact on a frame without ops.footing")
+    G, E, B = sp.csr_matrix(T.T @ nat.G), sp.csr_matrix(nat.E), sp.csr_matrix(nat.B)
+    n, m, mr = G.shape[0], B.shape[1], len(part.contacts)
+    GE = G @ E
+    theta = nat.theta(0.0)
+    F = sp.hstack([GE @ B, sp.csr_matrix(T.T @ part.N)], format="csr").toarray()
     H = np.zeros((m + mr, m + mr))
-    H[:m, :m] = old.H
-    g = np.concatenate([np.asarray(old.g(0.0), dtype=float), -part.gap])
+    H[:m, :m] = nat.A + (B.T @ E @ B).toarray()
+    g = np.concatenate([np.asarray(B.T @ (E @ theta)).ravel() + nat.r, -part.gap])
     F_v = H_v = None
-    if old.F_v is not None:
-        F_v = np.hstack([np.asarray(old.F_v.todense() if sp.issparse(old.F_v) else old.F_v), np.zeros((n, mr))])
+    if nat.E_v is not None:
+        GEv = G @ sp.csr_matrix(nat.E_v)
+        C = GEv @ G.T if C is None else C + GEv @ G.T
+        F_v = np.hstack([(GEv @ B).toarray(), np.zeros((n, mr))])
         H_v = np.zeros((m + mr, m + mr))
-        H_v[:m, :m] = old.H_v
+        H_v[:m, :m] = (B.T @ sp.csr_matrix(nat.E_v) @ B).toarray()
     mu = [c.mu for c in part.contacts]
-    tangent = (built.ties.T @ part.tangent).toarray() if any(mu) else None
-    families = list(old.families) + [RigidFamily(np.arange(m, m + mr), name="rigid contact", mu=mu, tangent=tangent,
-                                                 restitution=[c.restitution for c in part.contacts])]
-    model = Model(M=old.M, K=sp.identity(n, format="csr"), F=F, H=H, C=old.C, g=g, F_v=F_v, H_v=H_v,
-                  q_imposed=old.q_imposed(0.0), dof_names=list(old.dof_names),
-                  constraint_names=list(old.constraint_names) + list(part.names), families=families)
-    model.K = old.K                                # (singular for a free body: see unilateral.structure.rigid)
-    built.model = built.linear = model
-    rows, S_u, S_v, s0, ne = built.stress
-    built.stress = (rows, S_u, sp.hstack([S_v, sp.csr_matrix((S_v.shape[0], mr))]).tocsr(), s0, ne)
+    families = list(st.families()) + [RigidFamily(
+        np.arange(m, m + mr), name="rigid contact", restitution=[c.restitution for c in part.contacts], mu=mu,
+        tangent=(T.T @ part.tangent).toarray() if any(mu) else None)]
+    model = Model(M=M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,
+                  q_imposed=np.asarray(GE @ theta).ravel(), dof_names=list(names),
+                  constraint_names=list(st.constraint_names) + list(part.names), families=families)
+    model.K = (GE @ G.T).tocsr()
+    return model
