@@ -63,7 +63,6 @@ def _kelvin(analysis, tag, e):
     psi, v = state_psi(analysis), analysis.v
     k = _index(model, f"x{tag}")
     U = b.nodal(analysis.u)
-    nf = b.ndf
     d = e.direction - 1
     de = float(U[b.row[e.j] + d] - U[b.row[e.i] + d])
     tangential = None
@@ -78,12 +77,12 @@ def _kelvin(analysis, tag, e):
         eps = np.asarray(nat.G.T @ (b.ties @ analysis.u)).ravel() - np.asarray(nat.B @ v[:mp]).ravel() \
             - np.asarray(nat.theta(0.0)).ravel()
         tangential = float(np.asarray(nat.E @ eps).ravel()[at + 1])
-    del nf
     return float(psi[k]), tangential, de, float(v[k])
 
 
 def _footing_rows(analysis, tag, e):
-    """``(names of its contacts, x of each from the node, contact rows, other rows)`` of a footing."""
+    """``(x of each contact from the node, the contacts' rows, the rows of the shears (a footing that
+    slides) or of the settlements (a spring footing with ``-qult``), or None)`` of a footing."""
     b = analysis.built
     model = b.model
     name = f"x{tag}"
