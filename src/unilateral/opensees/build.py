@@ -23,6 +23,7 @@ from ..model import Model
 from ..structure import Frame2D, Frame3D
 from .elements import BeamColumn, Truss, beam_stiffness
 from .elements3d import BeamColumn3D, beam_stiffness3d
+from .extension_elements import add_to_frame
 from .materials import DIRECTIONS
 from .pdelta import pdelta_table, with_axial
 from .refusals import OpenSeesRefused, refuse
@@ -71,7 +72,7 @@ class Built:
         rows, S_u, S_v, s0, ne = self.stress
         sigma = np.zeros(ne)
         if rows.size:
-            sigma[rows] = S_u @ u - S_v @ v - s0
+            sigma[rows] = S_u @ u - S_v @ v[:S_v.shape[1]] - s0      # (the frame's own v: not a soil's, a rigid contact's)
         return sigma
 
     def nodal(self, u) -> np.ndarray:
@@ -125,11 +126,21 @@ def build(domain) -> Built:
         C = C + T.T @ st.C @ T
     nat = st.natural
     A = nat.A if np.any(nat.A) else None
-    model = Model.from_natural((T.T @ nat.G).tocsr(), nat.E, nat.B, M=M, A=A, r=nat.r, theta=nat.theta(0.0),
-                               C=sp.csr_matrix(C) if C.nnz else None, E_v=nat.E_v, dof_names=reduced_names,
-                               constraint_names=list(st.constraint_names), families=st.families())
+    C = sp.csr_matrix(C) if C.nnz else None
+    if getattr(st, "rigid", None) is None:
+        model = Model.from_natural((T.T @ nat.G).tocsr(), nat.E, nat.B, M=M, A=A, r=nat.r, theta=nat.theta(0.0),
+                                   C=C, E_v=nat.E_v, dof_names=reduced_names,
+                                   constraint_names=list(st.constraint_names), families=st.families())
+    else:                                         # rigid contacts (.extensions): their columns appended
+        from .soil_model import rigid_model
+
+        model = rigid_model(st, T, M, C, reduced_names)
     built = Built(st, model, P, row, mass, beams, springs, T, nf, _stress_rows(st, T, springs),
                   pdelta_table(domain, row), model, {})
+    if st.foundation is not None:
+        from .soil_model import on_soil
+
+        on_soil(built)
     if built.pdelta:
         with_axial(built, {})
     return built
@@ -199,6 +210,7 @@ def _add_elements(fr, domain) -> dict:
         for k, (mat, direction) in enumerate(zip(e.materials, e.directions)):
             name = f"e{tag}.{k}"
             names[(tag, k)] = domain.materials[mat].add(fr, name, e.i, e.j, dofs[direction])
+    add_to_frame(fr, domain)
     return names
 
 

@@ -3,11 +3,12 @@
 
 from __future__ import annotations
 
-from .stepping import Analysis
 from .domain import Domain
+from .extensions import extended
 from .queries import element_force, element_response, nodal, nodal_reactions
 from .recorders import parse_recorder
 from .refusals import NOT_NEEDED, refuse
+from .soil_analysis import ExtendedAnalysis as Analysis
 
 __all__ = ["Session"]
 
@@ -19,6 +20,7 @@ _SESSION_COMMANDS = ("wipe", "integrator", "analyze", "wipeAnalysis", "nodeDisp"
                      "nodeReaction", "recorder", "record", "remove")
 
 
+@extended
 class Session:
     """The state of one OpenSees interpreter: the model and its analysis."""
 

@@ -102,6 +102,10 @@ class CaptureSession(Session):
 
     def _begin(self, integrator, dt) -> Stage:
         a, d = self.analysis, self.domain
+        if d.extensions or a.bilateral:                # (extensions.py: no model-file entries are written for them)
+            not_convertible(f"{'the extension elements ' + str(list(d.extensions)) if d.extensions else 'bilateral(1)'}",
+                            "the extensions of unilateral.opensees are not converted to a model file", "the model "
+                            "file's own [[foundations]], [[unilateral]] entries and bilateral_reference, by hand")
         b = a.current()
         keys = (d.version, d.load_version)
         if integrator[0] == "Newmark":

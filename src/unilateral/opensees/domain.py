@@ -36,6 +36,7 @@ class Domain:
         self.transforms, self.materials, self.elements = {}, {}, {}
         self.series, self.patterns, self.current = {}, {}, None
         self.damping = None
+        self.extensions = {}                         # tag -> an extension element (.extensions)
         self.time = 0.0
         self.version = self.load_version = 0
 

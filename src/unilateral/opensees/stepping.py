@@ -307,7 +307,8 @@ class Analysis:
         rule = "trapezoidal" if (gamma, beta) == (0.5, 0.25) else Newmark(gamma=gamma, beta=beta)
         try:
             sim = Simulation(model, q, dt=dt, t_end=horizon * dt, method="direct", rule=rule,
-                             initial={"u0": self.u, "udot0": self.ud, "v0": np.maximum(self.v, 0.0)})
+                             initial={"u0": self.u, "udot0": self.ud, "v0": np.maximum(self.v, 0.0)},
+                             bilateral=getattr(self, "bilateral", False))         # (ops.bilateral, .extensions)
         except ValueError as exc:
             raise OpenSeesRefused("analyze (Transient)", f"the state cannot start a simulation: {exc}",
                                   "a consistent state (start from rest or from a static analysis)") from None
