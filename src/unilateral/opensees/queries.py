@@ -121,10 +121,29 @@ def _state(analysis) -> dict:
                 and key[4] is analysis.v):
             return cache[1]
     key = (b, analysis.u, analysis.ud, analysis.udd, analysis.v)
-    sigma = b.stresses(analysis.u, analysis.v)
-    state = {"u": b.nodal(analysis.u), "ud": b.nodal(analysis.ud), "udd": b.nodal(analysis.udd), "sigma": sigma}
+    state = _StateValues(key)
     analysis._query_cache = (key, state)                  # (holding the arrays: their identity is the key)
     return state
+
+
+class _StateValues(dict):
+    """``{"u", "ud", "udd", "sigma"}`` of the state ``key`` (``(built, u, ud, udd, v)``), each
+    computed on its first use (a ``nodeDisp`` needs no stresses)."""
+
+    def __init__(self, key):
+        super().__init__()
+        self.key = key
+
+    def __missing__(self, name):
+        b, u, ud, udd, v = self.key
+        if name == "sigma":
+            value = b.stresses(u, v)
+        elif name in ("u", "ud", "udd"):
+            value = b.nodal({"u": u, "ud": ud, "udd": udd}[name])
+        else:
+            raise KeyError(name)
+        self[name] = value
+        return value
 
 
 def spring_state(analysis) -> dict:
