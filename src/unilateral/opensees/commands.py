@@ -59,11 +59,16 @@ class Session:
 
     def _record(self, t):
         for rec in self.recorders.values():
-            rec.record(self, t)
+            rec.commit(self, t)
+
+    def _flush(self):
+        for rec in self.recorders.values():
+            rec.flush()
 
     def record(self):
         """``record()``: every recorder records the current state."""
         self._record(self.domain.time)
+        self._flush()
 
     def remove(self, what, *args):
         """``remove('recorders')``, ``remove('recorder', tag)``, ``remove('loadPattern', tag)``."""
@@ -109,7 +114,10 @@ class Session:
         if args:
             refuse(f"analyze{(numIncr, dt) + args}", "variable time steps are not in the subset",
                    "analyze(numIncr, dt)")
-        return self.analysis.analyze(numIncr, dt)
+        try:
+            return self.analysis.analyze(numIncr, dt)
+        finally:
+            self._flush()                                # the recorders write the steps of this analyze
 
     # ------------------------------------------------------------------ queries
     def nodeDisp(self, tag, dof=-1):

@@ -25,8 +25,10 @@ from .elements3d import BeamColumn3D, beam_stiffness3d
 from .eleloads import element_load_forces
 from .pdelta import element_geometric
 from .refusals import refuse
+from .springs import spring_table
 
-__all__ = ["nodal", "element_force", "material_forces", "element_response", "nodal_reactions"]
+__all__ = ["nodal", "element_force", "material_forces", "spring_state", "spring_kind", "element_response",
+           "nodal_reactions"]
 
 
 _NODAL = {"u": "nodeDisp", "ud": "nodeVel", "udd": "nodeAccel"}
@@ -91,7 +93,8 @@ def _element(analysis, tag, what):
 
 
 def material_forces(analysis, tag):
-    """``[(e, f), ...]``: deformation and force of each material of the zeroLength or truss ``tag``."""
+    """``[(e, f), ...]``: deformation and force of each material of the zeroLength or truss ``tag``,
+    one material at a time (the reference of the vectorised :func:`spring_state`)."""
     b = analysis.built
     e = analysis.domain.elements[tag]
     state = _state(analysis)
@@ -108,7 +111,8 @@ def material_forces(analysis, tag):
 
 def _state(analysis) -> dict:
     """The nodal ``u``, ``ud``, ``udd`` and the element stresses of the current state, computed once
-    per state (the queries of one step share them)."""
+    per state (the queries of one step share them; the springs' responses are
+    added by :func:`spring_state`)."""
     b = analysis.built
     cache = getattr(analysis, "_query_cache", None)
     if cache is not None:
@@ -117,10 +121,65 @@ def _state(analysis) -> dict:
                 and key[4] is analysis.v):
             return cache[1]
     key = (b, analysis.u, analysis.ud, analysis.udd, analysis.v)
-    sigma = b.stresses(analysis.u, analysis.v)
-    state = {"u": b.nodal(analysis.u), "ud": b.nodal(analysis.ud), "udd": b.nodal(analysis.udd), "sigma": sigma}
+    state = _StateValues(key)
     analysis._query_cache = (key, state)                  # (holding the arrays: their identity is the key)
     return state
+
+
+class _StateValues(dict):
+    """``{"u", "ud", "udd", "sigma"}`` of the state ``key`` (``(built, u, ud, udd, v)``), each
+    computed on its first use (a ``nodeDisp`` needs no stresses)."""
+
+    def __init__(self, key):
+        super().__init__()
+        self.key = key
+
+    def __missing__(self, name):
+        b, u, ud, udd, v = self.key
+        if name == "sigma":
+            value = b.stresses(u, v)
+        elif name in ("u", "ud", "udd"):
+            value = b.nodal({"u": u, "ud": ud, "udd": udd}[name])
+        else:
+            raise KeyError(name)
+        self[name] = value
+        return value
+
+
+def spring_state(analysis) -> dict:
+    """The responses of every spring (zeroLength or truss material) in the current state, computed
+    once per state for all of them (:class:`~.springs.SpringTable`).
+
+    Returns
+    -------
+    dict
+        ``{"e": (1, columns), "f": (1, columns), "force": (1, elements, 2 ndf)}``: the materials'
+        deformations and forces and the springs' global end forces (without a truss's inertia
+        load), with ``.table`` the :class:`~.springs.SpringTable` (its ``columns`` and ``elements``
+        by tag).
+    """
+    state = _state(analysis)
+    springs = state.get("springs")
+    if springs is None:
+        b = analysis.built
+        table = spring_table(b, analysis.domain)
+        springs = state["springs"] = table.state(state["u"][None], state["ud"][None],
+                                                 state["sigma"][None, b.stress[0]])
+    return springs
+
+
+def spring_kind(e, name):
+    """What ``eleResponse(tag, name)`` of the zeroLength or truss ``e`` reads from :func:`spring_state`:
+    ``"force"`` (global end forces), ``"e"`` (deformations), ``"f"`` (material forces), or None (not in
+    the subset)."""
+    truss = isinstance(e, Truss)
+    if name in ("force", "forces") or (truss and name == "globalForce"):
+        return "force"
+    if name in ("deformation", "deformations", "basicDeformation", "basicDeformations"):
+        return "e"
+    if name in ("basicForce", "basicForces") or (truss and name == "axialForce"):
+        return "f"
+    return None
 
 
 def element_force(analysis, tag, dof=-1):
@@ -136,10 +195,39 @@ def element_force(analysis, tag, dof=-1):
     -------
     float or list of 6 floats (``i`` then ``j``, global axes)
     """
+    springs = _current_springs(analysis)
+    if springs is not None:
+        at = springs.table.lookup.get(("eleForce", tag))
+        if at is not None:
+            values = springs["force"][0, at]
+            if dof is None or dof == -1:
+                return values.tolist()
+            if dof in _DOFS and dof <= values.size:
+                return float(values[int(dof) - 1])
     what = _Label("eleForce", tag)
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
+    if tag in b.springs and not (isinstance(e, Truss) and e.rho):
+        springs = spring_state(analysis)
+        springs.table.lookup[("eleForce", tag)] = springs.table.elements[tag]
     return _pick(_global_force(analysis, b, tag, e), dof, what)
+
+
+#: The DOFs of an element's end forces (2 nodes x 3 or 6 DOFs) a query's fast path takes.
+_DOFS = frozenset(range(1, 13))
+
+
+def _current_springs(analysis):
+    """The springs' responses (:func:`spring_state`) of the current state if they are computed
+    already, else None (the queries' fast path: a lookup in the table of the responses asked)."""
+    cache = getattr(analysis, "_query_cache", None)
+    if cache is None or analysis.built_version != analysis.domain.version:
+        return None
+    key, state = cache
+    if (key[0] is analysis.built and key[1] is analysis.u and key[2] is analysis.ud and key[3] is analysis.udd
+            and key[4] is analysis.v):
+        return state.get("springs")
+    return None
 
 
 def _global_force(analysis, b, tag, e, geometric=True):
@@ -153,12 +241,10 @@ def _global_force(analysis, b, tag, e, geometric=True):
         if isinstance(e, BeamColumn):                     # minus its element loads' nodal loads
             return Ke @ U - element_load_forces(analysis.domain, tag, analysis.domain.time)
         return Ke @ U
-    out = np.zeros(2 * b.ndf)
-    for (_, direction, *_), (_, f) in zip(b.springs[tag], material_forces(analysis, tag)):
-        out[:b.ndf] -= f * direction
-        out[b.ndf:] += f * direction
+    springs = spring_state(analysis)
+    out = springs["force"][0, springs.table.elements[tag]]
     if isinstance(e, Truss) and e.rho:
-        out += _truss_inertia_load(analysis, b, e)
+        out = out + _truss_inertia_load(analysis, b, e)
     return out
 
 
@@ -208,28 +294,41 @@ def element_response(analysis, tag, *args):
     -------
     list of floats
     """
+    if len(args) == 1 and isinstance(args[0], str):
+        springs = _current_springs(analysis)
+        if springs is not None:
+            hit = springs.table.lookup.get((tag, args[0]))
+            if hit is not None:
+                return springs[hit[0]][hit[1]].tolist()
     what = _Label("eleResponse", tag, args)
     tag, e = _element(analysis, tag, what)
     b = _ready(analysis, what)
     name = args[0] if args else None
-    beam = isinstance(e, (BeamColumn, BeamColumn3D))
-    if name in ("force", "forces", "globalForce", "globalForces") and (beam or name in ("force", "forces")):
-        return [float(x) for x in _global_force(analysis, b, tag, e)]
-    if beam:
+    if tag in b.springs:                                  # a zeroLength or a truss
+        kind = spring_kind(e, name)
+        if kind == "force":
+            if not (isinstance(e, Truss) and e.rho):
+                _remember(analysis, (tag, name), kind, spring_state(analysis).table.elements[tag])
+            return _global_force(analysis, b, tag, e).tolist()
+        if kind is not None:
+            springs = spring_state(analysis)
+            _remember(analysis, (tag, name), kind, springs.table.columns[tag])
+            return springs[kind][0, springs.table.columns[tag]].tolist()
+    else:
+        if name in ("force", "forces", "globalForce", "globalForces"):
+            return [float(x) for x in _global_force(analysis, b, tag, e)]
         values = _beam_response(analysis, b, tag, e, name)
         if values is not None:
             return values
-    else:
-        truss = isinstance(e, Truss)
-        if truss and name == "globalForce":
-            return [float(x) for x in _global_force(analysis, b, tag, e)]
-        pairs = material_forces(analysis, tag)
-        if name in ("deformation", "deformations", "basicDeformation", "basicDeformations"):
-            return [float(de) for de, _ in pairs]
-        if name in ("basicForce", "basicForces") or (truss and name == "axialForce"):
-            return [float(f) for _, f in pairs]
     refuse(what, "the response is not in the subset", "'force' or 'deformation' (zeroLength); 'force', "
            "'localForce' or 'basicForce' (elasticBeamColumn); 'force', 'axialForce' or 'deformation' (truss)")
+
+
+def _remember(analysis, key, kind, at):
+    """Enter the response ``key`` (``(tag, name)``) of a spring in the table of the fast path:
+    ``springs[kind][0, at]``."""
+    if isinstance(key[1], str):
+        spring_state(analysis).table.lookup[key] = (kind, (0, at))
 
 
 def nodal_reactions(analysis, *args):

@@ -34,7 +34,7 @@ from .build import build
 from .control import DisplacementPath, parse_displacement_control
 from .eleloads import pattern_forces
 from .pdelta import MAX_ITER, STATIC_TOL, axial_forces, with_axial
-from .queries import material_forces
+from .queries import spring_state
 from .refusals import OpenSeesRefused, refuse
 
 __all__ = ["Analysis"]
@@ -337,14 +337,21 @@ class Analysis:
 
     def _check_gaps(self):
         """An ElasticPPGap whose force reaches its yield force is refused (its yielding is not modelled)."""
-        for tag, table in self.built.springs.items():
-            if not any(material.kind == "ElasticPPGap" for material, *_ in table):
-                continue
-            for (material, *_), (_, f) in zip(table, material_forces(self, tag)):
-                if material.kind == "ElasticPPGap" and abs(f) > abs(material.Fy) * (1 + 1e-12):
-                    refuse(f"ElasticPPGap of element {tag}", f"its force {f:.6g} passed its yield force "
-                           f"{material.Fy:.6g} at time {self.domain.time:g}: the yielding of a gap is not in this "
-                           "slice", "a larger Fy (an elastic gap) or ENT")
+        b = self.built
+        gaps = getattr(b, "_gaps", None)
+        if gaps is None:                                 # (tag, k, material) of the gaps, listed once per model
+            gaps = b._gaps = [(tag, k, material) for tag, table in b.springs.items()
+                              for k, (material, *_) in enumerate(table) if material.kind == "ElasticPPGap"]
+        if not gaps:
+            return
+        springs = spring_state(self)
+        forces, columns = springs["f"][0], springs.table.columns
+        for tag, k, material in gaps:
+            f = float(forces[columns[tag].start + k])
+            if abs(f) > abs(material.Fy) * (1 + 1e-12):
+                refuse(f"ElasticPPGap of element {tag}", f"its force {f:.6g} passed its yield force "
+                       f"{material.Fy:.6g} at time {self.domain.time:g}: the yielding of a gap is not in this "
+                       "slice", "a larger Fy (an elastic gap) or ENT")
 
 
 def _check_loaded(b, d, p, f):
