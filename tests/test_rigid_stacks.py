@@ -72,7 +72,8 @@ def test_a_block_on_a_stiff_frames_floor_tends_to_the_block_on_the_ground():
         theta = st.node_displacement(sol, "B.base", "rz")
         errors.append(np.abs(theta[:k] - theta0[:k]).max())
         impacts.append(abs(sol.stats["impacts"][0]["time"] - first))
-    # measured 2.0e-3, 3.1e-5, 2.1e-8 rad; first impact times 1.2e-3, 3.1e-5, 2.2e-8 s off
+    # measured 2.0e-3, 3.1e-5, 2.1e-8 rad; first impact times 3.8e-3, 5.7e-5, 5.5e-8 s off (after the
+    # first impact the floor's mass recoils and the corner chatters on it: 1e-4 rad apart at any stiffness)
     assert errors[0] > 30 * errors[1] > 900 * errors[2], errors
     assert errors[2] < 1e-7 and impacts[2] < 1e-7 and impacts[0] > impacts[1] > impacts[2], impacts
 
@@ -186,7 +187,7 @@ def test_a_stack_on_a_shaken_ground_lifts_only_above_the_upper_blocks_uplift(sca
 
 
 def test_a_block_on_a_flexible_frames_floor_is_in_the_frames_base_shear():
-    st, block = _frame_with_block(1.0)          # the column's first period 0.13 s
+    st, block = _frame_with_block(1.0)          # 3 EI / L^3 = 1.1e3 kN/m under 6 t: a sway period near 0.5 s
     a_g = _sine(1.5 * G / 3)
     load = LoadHistory(st.gravity(G), [rigid.ground_motion(st, a_g)])
     dt = 1e-3
@@ -401,3 +402,20 @@ def test_a_model_file_with_a_bad_on_is_refused(tmp_path, blocks, match):
     path.write_text(_MODEL.format(blocks=blocks))
     with pytest.raises((ModelFileError, ValueError), match=match):
         load_model_file(path)
+
+
+def test_a_tie_makes_a_dof_equal_to_another_nodes_and_a_cycle_of_ties_is_refused():
+    from unilateral.structure import DofMap
+
+    coords = {"m": np.array([0.0, 0.0]), "s": np.array([0.0, 2.0]), "b": np.array([0.0, 2.0]),
+              "t": np.array([1.0, 2.0])}
+    # s rigidly linked to m (2 above it), b's ux tied to s's, t rigidly linked to b
+    dofs = DofMap(coords, set(), {"m", "b"}, {"s": "m", "t": "b"}, ties={("b", "ux"): "s"})
+    assert dofs.names == ["m.ux", "m.uy", "m.rz", "b.uy", "b.rz"]
+    row = lambda node, dof: dict(zip(dofs.names, dofs.T[dofs.full_index(node, dof)].toarray().ravel()))
+    assert row("b", "ux") == row("s", "ux") == {"m.ux": 1.0, "m.uy": 0.0, "m.rz": -2.0, "b.uy": 0.0, "b.rz": 0.0}
+    assert row("t", "ux") == row("b", "ux")            # b's slave follows the tie (offset along x only)
+    with pytest.raises(ValueError, match="b.ux is not a free DOF: it is tied to the ux of node 's'"):
+        dofs.index("b", "ux")
+    with pytest.raises(ValueError, match="the ties form a cycle through"):
+        DofMap(coords, set(), {"m", "b"}, {"s": "m", "t": "b"}, ties={("b", "ux"): "s", ("m", "ux"): "t"})

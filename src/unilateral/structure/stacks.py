@@ -67,7 +67,8 @@ def support(frame, where, name, node, on, *, b, h):
     while below[0] == "block":                  # down the stack to the floor or the ground
         chain.append(below[1])
         lower = blocks[below[1]]
-        below = ("block", lower.on) if lower.on in blocks and lower.seat == blocks[lower.on].base else ("node", lower.on)
+        on_block = lower.on in blocks and lower.seat == blocks[lower.on].base
+        below = ("block" if on_block else "node", lower.on)
     if below[1] is not None and below[1] == node:
         raise ValueError(f"{where}: on={on!r} closes a cycle of stacks: {' on '.join(map(repr, chain))} on node "
                          f"{node!r}, the centre of {name!r}")
