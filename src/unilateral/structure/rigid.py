@@ -1,9 +1,10 @@
 """Rigid unilateral contacts and rigid rocking blocks for :class:`~unilateral.structure.Frame2D`.
 
 **Rigid contact** (``Frame2D.contact``, :meth:`RigidContacts.contact`): a node against the fixed ground with
-no compliance (or against another node, ``on``: the column of the relative motion; :mod:`.stacks`). The paper's contact is a spring ``k`` in series with the unilateral deformation
-``v`` (the opening); with ``k -> infinity`` its ``H = k`` has no finite value, so a rigid contact
-is written in the *dual* (force) form instead, a column of ``F`` with ``H = 0``:
+no compliance (or against another node, ``on``: the column of the relative motion; :mod:`.stacks`).
+The paper's contact is a spring ``k`` in series with the unilateral deformation ``v`` (the opening);
+with ``k -> infinity`` its ``H = k`` has no finite value, so a rigid contact is written in the *dual*
+(force) form instead, a column of ``F`` with ``H = 0``:
 
     M u'' + C u' + K u = q + N v,        psi = N^T u - g,   g = -gap,
     v >= 0 (the compressive contact force),  psi >= 0 (the opening),  psi^T v = 0
@@ -190,7 +191,8 @@ class RigidPart:
     Attributes
     ----------
     contacts : tuple of RigidContact, in the order of their unknowns (after the frame's own)
-    N : (n, mr) csr, the columns of ``F`` of the contacts (``N = T^T e_d``)
+    N : (n, mr) csr, the columns of ``F`` of the contacts (``N = T^T e_d``; ``T^T (e_d(node) - e_d(on))``
+        for a contact between two nodes)
     gap : (mr,) initial openings, length
     geometric : (n, n) csr, the blocks' second-order gravity terms (``-W h`` on each block's
         ``rz``, on each 3-D box's ``rx`` and ``ry``), added to ``K``

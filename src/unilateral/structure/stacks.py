@@ -72,7 +72,6 @@ def support(frame, where, name, node, on, *, b, h):
     if below[1] is not None and below[1] == node:
         raise ValueError(f"{where}: on={on!r} closes a cycle of stacks: {' on '.join(map(repr, chain))} on node "
                          f"{node!r}, the centre of {name!r}")
-    check_centre(frame, where, name, node)
     x, y = float(frame._coords[node][0]), float(frame._coords[node][1]) - h
     if is_block:
         _on_top(where, blocks[on], frame._coords[blocks[on].base], x, y, b)
