@@ -168,11 +168,14 @@ def frame_solution(structure, sol):
 def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
     """The ground's forces on the structure through its rigid contacts and blocks: ``(forces, at)``.
 
-    ``forces[contact]``: the compressive force ``v`` (force) along the contact's normal at its node;
-    ``forces["<block>.base"]``: the horizontal force of the ground on a block or box (its held base,
-    or its corners' friction), ``m a`` with ``a`` the horizontal absolute acceleration of its centre
-    (the block is rigid and the ground the only horizontal force on it; at the base's level, so with
-    no moment about a point there). Each (N+1, 3) ``(fx, fy, mz)`` in 2-D, (N+1, 6) ``(fx, fy, fz, mx,
+    ``forces[contact]``: the compressive force ``v`` (force) along the contact's normal at its node,
+    for the contacts with the ground only (a contact between two nodes, ``on``, is internal: a block
+    on a floor or on another block); ``forces["<block>.base"]``: the horizontal force of the ground on
+    a block or box standing on the ground (its held base, or its corners' friction), ``sum m a`` over
+    the block and the blocks stacked on it, ``a`` the horizontal absolute acceleration of each centre
+    (the stack is rigid bodies and the ground the only horizontal force on it; at the base's level,
+    so with no moment about a point there). A block on a frame's floor has none: its forces reach
+    the ground through the frame's elements (their supports' reactions). Each (N+1, 3) ``(fx, fy, mz)`` in 2-D, (N+1, 6) ``(fx, fy, fz, mx,
     my, mz)`` in 3-D; ``at``: the node of each. ``h``: the frame's histories (its accelerations of
     the rule, the mean of each step for ``moreau-jean``); ``motions``: ``[(direction, a_g (N+1,))]``
     the ground's accelerations at its times, read as ``h``'s (:func:`~unilateral.analysis.results.step_means`)."""
@@ -181,6 +184,8 @@ def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
     m, steps = structure.m, len(h.t)
     forces, at = {}, {}
     for j, contact in enumerate(structure.rigid.contacts):
+        if getattr(contact, "on", None) is not None:
+            continue                                 # between two bodies: internal
         d, f = dict(contact.terms), np.zeros((steps, len(names)))
         for k, dof in enumerate(axes):
             f[:, k] = d.get(dof, 0.0) * sol.v[:, m + j]
@@ -190,10 +195,15 @@ def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
         ground[:, axes.index(direction)] += a_g
     accelerations, nodes = structure.dofs.nodal(h.uddot), list(structure.dofs.nodes)
     horizontal = len(axes) - 1                       # ux (2-D); ux, uy (3-D)
-    for name, block in structure.rigid.blocks.items():
+    from ..structure.stacks import stack_of
+
+    blocks = structure.rigid.blocks
+    for name, block in blocks.items():
+        if getattr(block, "on", None) is not None:
+            continue                                 # on a floor or on a block: not on the ground
         f = np.zeros((steps, len(names)))
-        f[:, :horizontal] = block.mass * (accelerations[:, nodes.index(block.node), :horizontal]
-                                          + ground[:, :horizontal])
+        for b in stack_of(blocks, block):
+            f[:, :horizontal] += b.mass * (accelerations[:, nodes.index(b.node), :horizontal] + ground[:, :horizontal])
         forces[f"{name}.base"], at[f"{name}.base"] = f, block.base
     return forces, at
 

@@ -68,6 +68,12 @@ class MoreauJean(Method):
             return (f"method='moreau-jean' solves models whose every unknown is a rigid contact (H = 0: "
                     f"Frame2D.contact, rigid_block); {len(others)} are not ({', '.join(map(repr, others[:4]))}"
                     f"{', ...' if len(others) > 4 else ''}): use method='direct'")
+        massless = _massless_contact_dofs(model)
+        if massless:
+            return (f"method='moreau-jean': rigid contacts move DOFs without mass ({', '.join(massless[:4])}"
+                    f"{', ...' if len(massless) > 4 else ''}), whose velocity the velocity-level impact law does "
+                    "not define (their velocities are not held by their inertia: the march's impacts go wrong); give "
+                    "them mass (Frame2D.mass(node, m, J=...): a floor node's rotary inertia J) or use method='direct'")
         if rule.name not in THETA:
             return (f"rule={rule.name!r}: method='moreau-jean' is the theta-method; valid rules: 'trapezoidal' "
                     "(theta = 1/2) or 'bdf1' (theta = 1)")
@@ -150,6 +156,22 @@ def _not_rigid(model) -> list:
         if family.impact_law:
             rigid[family.indices] = True
     return [model.constraint_names[i] for i in np.flatnonzero(~rigid)]
+
+
+def _massless_contact_dofs(model) -> list:
+    """Names of the DOFs without mass that a rigid contact's column moves (``F``'s rows of the
+    unknowns with an impact law; a floor node's rotation under a block standing on it)."""
+    from ..linalg import dense
+
+    rigid = [f for f in getattr(model, "families", ()) if f.impact_law]
+    cols = np.concatenate([f.indices for f in rigid] or [[]]).astype(int)
+    if cols.size == 0:
+        return []
+    moved = np.any(dense(model.F)[:, cols] != 0.0, axis=1)
+    for f in rigid:                                 # the tangents of the contacts with friction
+        if getattr(f, "tangent", None) is not None:
+            moved |= np.any(np.asarray(f.tangent) != 0.0, axis=1)
+    return [model.dof_names[i] for i in np.flatnonzero(moved & ~(np.diag(dense(model.M)) > 0))]
 
 
 def start_state(model, system, initial):

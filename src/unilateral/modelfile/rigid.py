@@ -16,12 +16,15 @@ from typing import ClassVar
 from pydantic import Field
 
 
-def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative):
+def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative, *, NodeId=None):
     """The pydantic tables ``(Contact, RigidBlock)`` of ``[[contacts]]`` and ``[[rigid_blocks]]``,
-    built on the schema's base ``Table`` and value types."""
+    built on the schema's base ``Table`` and value types (``NodeId``: a node id that is not checked
+    as a node reference, for a block's ``on``: a node or a block's name)."""
+    NodeId = NodeRef if NodeId is None else NodeId
 
     class Contact(Table):
-        """[[contacts]]: a rigid unilateral contact of a node with the fixed ground (no compliance)."""
+        """[[contacts]]: a rigid unilateral contact of a node with the fixed ground, or with another
+        node (``on``; no compliance)."""
 
         EXAMPLE: ClassVar[str] = '[[contacts]] name = "stop", node = 1, direction = "uy", gap = 0.01'
         name: Name
@@ -33,6 +36,9 @@ def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative):
             "Newton's coefficient of restitution e (method = \"moreau-jean\"): 0 perfectly plastic, 1 elastic."))
         mu: NonNegative | None = Field(None, description=(
             "Coulomb friction along the tangent (the normal turned by -90 degrees); method = \"moreau-jean\" only."))
+        on: NodeRef | None = Field(None, description=(
+            "The node the contact bears on (the relative motion along the normal; internal, not a ground "
+            "reaction); none: the fixed ground."))
 
     class RigidBlock(Table):
         """[[rigid_blocks]]: a rigid rectangular block rocking on its two base corners (Housner)."""
@@ -50,12 +56,19 @@ def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative):
         mu: NonNegative | None = Field(None, description=(
             "None: the base does not slide (held); a number: Coulomb friction at the corners, the base free "
             "(it slides where mu < b/h and the base acceleration exceeds mu g; method = \"moreau-jean\" only)."))
+        on: NodeId | None = Field(None, description=(
+            "What the block stands on: none, the ground; a node of [[nodes]], a floor (the base centre at that "
+            "node: node height/2 above it); the name of another [[rigid_blocks]] entry, its top face (a stack)."))
 
     return Contact, RigidBlock
 
 
 _NO_FRICTION_3D = ("Not available in a 3-D frame (method = \"moreau-jean\" takes friction on one tangent per "
                    "contact, in 2-D): leave it out.")
+
+
+_NO_ON_3D = ("Not available in a 3-D frame (a contact between two nodes, a box on a floor or on another box: "
+             "2-D only): leave it out.")
 
 
 def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNegative):
@@ -71,6 +84,7 @@ def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNega
         direction: Direction3 = Field("uz", description="The normal, from the ground to the node: the "
                                       "direction in which the node separates.")
         mu: NonNegative | None = Field(None, description=_NO_FRICTION_3D)
+        on: NodeRef | None = Field(None, description=_NO_ON_3D)
 
     class RigidBox(Table):
         """[[rigid_blocks]] of a 3-D frame: a rigid box rocking on its four base corners (Housner in
@@ -94,6 +108,7 @@ def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNega
         restitution: float = Field(0.0, ge=0.0, le=1.0, description=(
             "Newton's e of the corners (0: Housner's impact, the angular momentum about the new edge kept)."))
         mu: NonNegative | None = Field(None, description=_NO_FRICTION_3D)
+        on: NodeRef | None = Field(None, description=_NO_ON_3D)
 
     return Contact3D, RigidBox
 
@@ -109,17 +124,36 @@ def add_rigid(fr, document, to_mass, each, g=None) -> None:
     if not (document.contacts or document.rigid_blocks):
         return
     each(document, "contacts", lambda c: fr.contact(c.name, c.node, direction=c.direction, gap=c.gap,
-                                                    restitution=c.restitution, mu=c.mu))
+                                                    restitution=c.restitution, mu=c.mu, on=c.on))
     g = 0.0 if g is None else g
     if not hasattr(fr, "rigid_box"):
-        each(document, "rigid_blocks", lambda b: fr.rigid_block(
+        each(document, "rigid_blocks", lambda b: _stacked_order(document, b) or fr.rigid_block(
             b.name, b.node, width=b.width, height=b.height, mass=b.mass * to_mass,
-            J=None if b.J is None else b.J * to_mass, restitution=b.restitution, mu=b.mu, g=g))
+            J=None if b.J is None else b.J * to_mass, restitution=b.restitution, mu=b.mu, g=g, on=b.on))
         return
     scaled = lambda J: None if J is None else J * to_mass
     each(document, "rigid_blocks", lambda b: _vertical(document) or fr.rigid_box(
         b.name, b.node, width_x=b.width, width_y=b.width_y, height=b.height, mass=b.mass * to_mass, Jx=scaled(b.Jx),
-        Jy=scaled(b.Jy), Jz=scaled(b.Jz), restitution=b.restitution, mu=b.mu, g=g))
+        Jy=scaled(b.Jy), Jz=scaled(b.Jz), restitution=b.restitution, mu=b.mu, g=g, on=b.on))
+
+
+def _stacked_order(document, block) -> None:
+    """Raise unless the block that ``block`` stands on (``on`` a block's name) comes before it in
+    ``[[rigid_blocks]]`` (the lower block is built first), naming a cycle of stacks if there is one."""
+    blocks = document.rigid_blocks
+    position = {b.name: k for k, b in enumerate(blocks)}
+    k = position.get(block.name)
+    if block.on not in position or k is None or position[block.on] < k:
+        return
+    chain, seen, below = [block.name], {block.name}, block.on
+    while below in position and below not in seen:
+        chain.append(below)
+        seen.add(below)
+        below = blocks[position[below]].on
+    if below in seen:
+        raise ValueError(f"on = {block.on!r} closes a cycle of stacks: {' on '.join(map(repr, chain + [below]))}")
+    raise ValueError(f"on = {block.on!r} is a block listed after it (rigid_blocks[{position[block.on]}]); list the "
+                     "lower block first")
 
 
 def _vertical(document) -> None:

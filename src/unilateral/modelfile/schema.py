@@ -716,7 +716,8 @@ class FrameKind(Table):
         "uz, rx, ry, rz; z up): see \"3-D frames\" in docs/model-file.md."))
 
 
-Contact, RigidBlock = rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative)   # modelfile/rigid.py
+Contact, RigidBlock = rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative,  # modelfile/rigid.py
+                                   NodeId=NodeId)
 
 
 class ModelFile(Table):

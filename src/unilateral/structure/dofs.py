@@ -6,6 +6,10 @@ node rigidly linked to a master follows the master's rigid-body motion
 
     ux_s = ux_m - (y_s - y_m) rz_m,   uy_s = uy_m + (x_s - x_m) rz_m,   rz_s = rz_m
 
+A *tie* (``ties``) makes one nodal DOF of a node equal to the same DOF of another node (OpenSees'
+``equalDOF``), the rest of its DOFs its own: a rigid block standing on a floor or on another block
+has its base's ``ux`` tied to the point it stands on (no slip; :mod:`.stacks`).
+
 A node gets a free ``rz`` only if something rotates it (a beam end, an ``"rz"`` spring, a
 rotational mass, or a rigid link whose slave is offset or rotated), so that trusses and springs
 do not leave rotations without stiffness. Rotations of the other nodes are reported as 0.
@@ -30,6 +34,8 @@ class DofMap:
     restrained : set of (node, dof) supported DOFs
     rotated : set of nodes whose rotation something uses
     links : dict slave node -> master node (chains allowed, no cycles)
+    ties : dict ``(node, dof) -> other node``: the nodal DOF ``dof`` of ``node`` (free otherwise)
+        equals the same DOF of ``other`` (a slave or free node), or None (no ties); no cycles
 
     Attributes
     ----------
@@ -43,7 +49,7 @@ class DofMap:
     #: the six of a 3-D frame).
     dof_names: tuple[str, ...] = DOF_NAMES
 
-    def __init__(self, coords: dict, restrained: set, rotated: set, links: dict):
+    def __init__(self, coords: dict, restrained: set, rotated: set, links: dict, ties=None):
         self.nodes = list(coords)
         self._position = {node: p for p, node in enumerate(self.nodes)}
         self.masters = {s: _root(s, links) for s in links}
@@ -82,6 +88,32 @@ class DofMap:
         cols = np.concatenate([np.arange(n), np.array(tied_cols, dtype=int)])
         vals = np.concatenate([np.ones(n), np.array(tied_vals, dtype=float)])
         self.T = csr_of_entries(vals, rows, cols, (width * len(self.nodes), n))
+        self.ties = dict(ties or {})
+        if self.ties:
+            self._tie()
+
+    def _tie(self) -> None:
+        """Eliminate the tied DOFs: the column of each tied ``(node, dof)`` is replaced by the row of
+        ``T`` of the DOF it equals, ``T <- T + T[:, j] (T[other] - e_j)``, and dropped (the order does
+        not matter; a tie that comes back to itself is a cycle)."""
+        T = self.T.tocsc()
+        for (node, dof), other in self.ties.items():
+            j = self._index.get((node, dof))
+            if j is None:
+                raise ValueError(f"tie of {node}.{dof} to node {other!r}: {node}.{dof} is not a free DOF "
+                                 "(supported, a slave's or already tied)")
+            row = T[self.full_index(other, dof)]
+            if row[0, j] != 0.0:
+                raise ValueError(f"tie of {node}.{dof} to node {other!r}: the ties form a cycle through {node}.{dof}")
+            unit = sp.csr_matrix(([1.0], ([0], [j])), shape=row.shape)
+            T = (T + T[:, j] @ (row - unit)).tocsc()
+        keep = [k for k, key in enumerate(self.free) if key not in self.ties]
+        T = T[:, keep].tocsr()
+        T.eliminate_zeros()
+        self.T = T
+        self._free_rows = self._free_rows[keep]
+        self.free = [self.free[k] for k in keep]
+        self._index = dict(zip(self.free, range(len(self.free))))
 
     def _known(self, node) -> bool:
         """Whether ``node`` is a node of the map (False for an unhashable ``node``)."""
@@ -115,7 +147,9 @@ class DofMap:
         self.full_index(node, dof)
         if (node, dof) in self._index:
             return self._index[(node, dof)]
-        if node in self.masters:
+        if (node, dof) in getattr(self, "ties", {}):
+            reason = f"it is tied to the {dof} of node {self.ties[(node, dof)]!r}"
+        elif node in self.masters:
             reason = f"node {node!r} is rigidly linked to node {self.masters[node]!r} (a slave node)"
         elif (node, dof) in self._restrained:
             reason = f"{dof} of node {node!r} is supported"

@@ -574,7 +574,7 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         for footing in self._foundations:
             if footing.rigid and footing.m > 1:
                 rotated.add(footing.node)               # the footing rocks on its patches
-        dofs = DofMap(self._coords, self._restrained, rotated, self._links)
+        dofs = DofMap(self._coords, self._restrained, rotated, self._links, ties=rigid.ties(self))
         on_soil = rigid.exempt_dofs(self, dofs)         # held by rigid contacts (rigid.py), and:
         for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
             for terms in footing.moved_rows(self._coords) + (footing.shear_rows() if footing.sliding else []):

@@ -1,9 +1,10 @@
 """Rigid unilateral contacts and rigid rocking blocks for :class:`~unilateral.structure.Frame2D`.
 
 **Rigid contact** (``Frame2D.contact``, :meth:`RigidContacts.contact`): a node against the fixed ground with
-no compliance. The paper's contact is a spring ``k`` in series with the unilateral deformation
-``v`` (the opening); with ``k -> infinity`` its ``H = k`` has no finite value, so a rigid contact
-is written in the *dual* (force) form instead, a column of ``F`` with ``H = 0``:
+no compliance (or against another node, ``on``: the column of the relative motion; :mod:`.stacks`).
+The paper's contact is a spring ``k`` in series with the unilateral deformation ``v`` (the opening);
+with ``k -> infinity`` its ``H = k`` has no finite value, so a rigid contact is written in the *dual*
+(force) form instead, a column of ``F`` with ``H = 0``:
 
     M u'' + C u' + K u = q + N v,        psi = N^T u - g,   g = -gap,
     v >= 0 (the compressive contact force),  psi >= 0 (the opening),  psi^T v = 0
@@ -39,7 +40,7 @@ family :class:`~unilateral.constraints.RigidContact`, not among the model's unkn
 **Rigid block** (``Frame2D.rigid_block``, :meth:`RigidContacts.rigid_block`): a rectangle of width ``2 b`` and
 height ``2 h`` with its centre of mass at a node, standing on its two base corners; see
 :class:`RigidBlock` and ``docs/rocking.md`` for the linearised equations of rocking it reproduces
-(Housner 1963).
+(Housner 1963). ``on=`` stands it on a frame's floor or on another block (a stack: :mod:`.stacks`).
 
 In 3-D (``Frame3D.contact``, ``Frame3D.rigid_box``: a box on four corners) the builders are those of
 :mod:`unilateral.structure.rigid3d`; the assembly and the model here are shared.
@@ -58,13 +59,15 @@ import scipy.sparse as sp
 
 from ..loads.units import STANDARD_GRAVITY
 from . import elements as el
+from . import stacks
 
 
 @dataclass(frozen=True)
 class RigidContact:
     """One rigid contact as given: ``name``, ``node``, the normal's ``terms`` ``((dof, d), ...)``
     (unit, from the ground to the node), the initial ``gap`` (opening at ``u = 0``, length) and
-    Newton's coefficient of ``restitution`` (used by ``method="moreau-jean"``)."""
+    Newton's coefficient of ``restitution`` (used by ``method="moreau-jean"``), Coulomb's ``mu`` and
+    ``on``: the node it bears on (None: the ground; the column is then the relative motion)."""
 
     name: str
     node: object
@@ -72,6 +75,7 @@ class RigidContact:
     gap: float
     restitution: float = 0.0
     mu: float = 0.0
+    on: object = None
 
     @property
     def tangent_terms(self) -> tuple:
@@ -94,6 +98,10 @@ class RigidBlock:
     b, h : half-width and half-height, length (the centre is ``h`` above the contact plane)
     mass : mass, force time^2/length;  J : rotary inertia about the centre, force length time^2
     g : gravity of the second-order term, length/time^2 (0: none)
+    on : what it stands on: None (the ground), a node of the frame (a floor) or the name of a rigid
+        block (a stack; :mod:`.stacks`)
+    seat : the node its corners' bearing points are rigidly linked to (the floor node, the lower
+        block's base), or None on the ground
     """
 
     name: str
@@ -105,6 +113,8 @@ class RigidBlock:
     mass: float
     J: float
     g: float
+    on: object = None
+    seat: object = None
 
     @property
     def W(self) -> float:
@@ -181,7 +191,8 @@ class RigidPart:
     Attributes
     ----------
     contacts : tuple of RigidContact, in the order of their unknowns (after the frame's own)
-    N : (n, mr) csr, the columns of ``F`` of the contacts (``N = T^T e_d``)
+    N : (n, mr) csr, the columns of ``F`` of the contacts (``N = T^T e_d``; ``T^T (e_d(node) - e_d(on))``
+        for a contact between two nodes)
     gap : (mr,) initial openings, length
     geometric : (n, n) csr, the blocks' second-order gravity terms (``-W h`` on each block's
         ``rz``, on each 3-D box's ``rx`` and ``ry``), added to ``K``
@@ -217,15 +228,19 @@ def _parts(frame) -> dict:
 class RigidContacts:
     """The rigid contacts and blocks of :class:`~unilateral.structure.Frame2D` (a base of it)."""
 
-    def contact(self, name, node, *, direction="uy", gap=0.0, mu=None, restitution=0.0) -> None:
-        """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``).
+    def contact(self, name, node, *, on=None, direction="uy", gap=0.0, mu=None, restitution=0.0) -> None:
+        """Rigid unilateral contact of ``node`` with the fixed ground, or with the node ``on`` (no
+        compliance, ``H = 0``).
 
         Parameters
         ----------
         name : str, the contact's name (its unknown and row, after the frame's own unknowns)
         node : the node (a slave of a rigid link too)
-        direction : ``"ux"``, ``"uy"`` or a vector ``(dx, dy)``: the normal, from the ground to the
-            node (the direction in which the node separates); default ``"uy"``
+        on : the node the contact bears on, or None (default: the fixed ground). The column is the
+            relative motion, ``N = T^T (e_d(node) - e_d(on))``; the force pushes ``node`` along ``d``
+            and ``on`` back (internal: the ground's reactions do not count it; :mod:`.stacks`)
+        direction : ``"ux"``, ``"uy"`` or a vector ``(dx, dy)``: the normal, from the ground (from
+            ``on``) to the node (the direction in which the node separates); default ``"uy"``
         gap : initial opening at ``u = 0``, length, >= 0
         mu : Coulomb's coefficient of friction (>= 0) along the tangent (the normal turned by -90
             degrees), or None (no friction; the tangential motion then free or held by supports);
@@ -238,6 +253,11 @@ class RigidContacts:
         """
         where = self._label("contact", name)
         self._node(where, "node", node)
+        if on is not None:
+            self._node(where, "on", on)
+            if on == node:
+                raise ValueError(f"{where}: on={on!r} is the node itself; give the node it bears on, or None "
+                                 "(the ground)")
         mu = 0.0 if mu is None else _number(where, "mu", mu, ">=0")
         terms = el.direction_terms(where, direction)
         if any(dof == "rz" for dof, _ in terms):
@@ -246,11 +266,12 @@ class RigidContacts:
         if e > 1.0:
             raise ValueError(f"{where}: restitution={restitution!r} must lie in [0, 1] (Newton's coefficient: "
                              "0 perfectly plastic, 1 elastic)")
-        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0"), e, mu))
+        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0"), e, mu,
+                                                     on))
         self._names.add(name)
 
     def rigid_block(self, name, node, *, width, height, mass, J=None, base=None, g=STANDARD_GRAVITY,
-                    restitution=0.0, mu=None) -> RigidBlock:
+                    restitution=0.0, mu=None, on=None) -> RigidBlock:
         """A rigid rectangular block rocking on its base corners, its centre of mass at ``node``.
 
         Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
@@ -276,6 +297,12 @@ class RigidContacts:
             free and each corner has Coulomb friction ``mu`` (``method="moreau-jean"`` only): the block
             slides, rocks or both (a block with ``mu < b/h`` under a base acceleration above ``mu g``
             slides before it can rock)
+        on : None (default): the block stands on the ground; a node ``f`` of the frame: on its floor
+            at ``f`` (the base centre at ``f``: give ``node`` ``height / 2`` above it; the corners bear
+            on points rigidly linked to ``f``, the base's ``ux`` tied to ``f``'s); the name of a rigid
+            block ``L``: on ``L``'s top face (a stack; the base within ``L``'s width, the corners on
+            points rigidly linked to ``L``'s base). The corners' contacts are then between the two
+            bodies, the weight's second-order term that of a block on a moving base (:mod:`.stacks`)
 
         Returns
         -------
@@ -290,21 +317,25 @@ class RigidContacts:
         m = _number(where, "mass", mass, ">0")
         J = m * (b * b + h * h) / 3.0 if J is None else _number(where, "J", J, ">=0")
         g = _number(where, "g", g, ">=0")
+        below = None if on is None else stacks.support(self, where, name, node, on, b=b, h=h)
+        stacks.check_centre(self, where, name, node)
         base = f"{name}.base" if base is None else base
         corners = (f"{name}.left", f"{name}.right")
         x, y = (float(c) for c in self._coords[node])
         self.node(base, x, y - h)
         self.node(corners[0], x - b, y - h)
         self.node(corners[1], x + b, y - h)
-        if mu is None:
+        if mu is None and below is None:
             self.support(base, ux=True, uy=False, rz=False)
         for slave in (node, *corners):
             self.rigid_link(base, slave)
+        seat, bearings = (None, (None, None)) if below is None else stacks.seat(
+            self, name, base, corners, *below, tie=mu is None)
         self.mass(node, m, J=J)
         self._names.add(name)
-        for corner in corners:
-            self.contact(corner, corner, direction="uy", restitution=restitution, mu=mu)
-        block = RigidBlock(name, node, base, corners, b, h, m, J, g)
+        for corner, bearing in zip(corners, bearings):
+            self.contact(corner, corner, on=bearing, direction="uy", restitution=restitution, mu=mu)
+        block = RigidBlock(name, node, base, corners, b, h, m, J, g, on, seat)
         _parts(self)["blocks"][name] = block
         return block
 
@@ -342,11 +373,10 @@ def attach(frame, structure):
     contacts = tuple(parts["contacts"])
     N = sp.hstack([_column(c, dofs).T for c in contacts], format="csr")
     for j, c in enumerate(contacts):
-        if N[:, j].nnz == 0:
-            raise ValueError(f"contact {c.name!r}: node {c.node!r} cannot move along the normal (supported); "
-                             "the contact would act on nothing")
+        _check_column(c, N[:, j], dofs)
     terms = [(dofs.index(block.base, dof), value) for block in parts["blocks"].values() if block.g
              for dof, value in block.geometric_terms()]       # a block's rz; a box's rx, ry (rigid3d.py)
+    terms += stacks.carried_terms(frame, parts["blocks"], dofs)  # the weights a block or floor carries
     rows, vals = [r for r, _ in terms], [v for _, v in terms]
     geometric = sp.csr_matrix((vals, (rows, rows)), shape=(dofs.n, dofs.n))
     Tt = sp.hstack([_column(c, dofs, c.tangent_terms).T if c.mu else sp.csr_matrix((dofs.n, 1)) for c in contacts],
@@ -374,11 +404,39 @@ def _with_rigid(base):
     return cls
 
 
+def _check_column(contact, column, dofs) -> None:
+    """Raise if the contact's column ``column`` (n, 1) is zero, or if it bears on a node ``on`` held
+    along the normal (a support: that is the ground, whose reactions would miss the force)."""
+    held = [dof for dof, _ in contact.terms if (contact.on, dof) in dofs._restrained]
+    if contact.on is not None and held:
+        raise ValueError(f"contact {contact.name!r}: node on={contact.on!r} is supported ({', '.join(held)}): it is "
+                         "the ground; give on=None")
+    root = lambda node: dofs.masters.get(node, node)
+    if contact.on is not None and root(contact.node) == root(contact.on):
+        raise ValueError(f"contact {contact.name!r}: nodes {contact.node!r} and on={contact.on!r} are rigidly linked "
+                         f"together (one body, master {root(contact.on)!r}): they cannot move apart")
+    if column.nnz == 0:
+        if contact.on is not None:
+            raise ValueError(f"contact {contact.name!r}: nodes {contact.node!r} and on={contact.on!r} cannot move "
+                             "apart along the normal (rigidly linked together, or supported)")
+        raise ValueError(f"contact {contact.name!r}: node {contact.node!r} cannot move along the normal (supported); "
+                         "the contact would act on nothing")
+
+
+def ties(frame) -> dict:
+    """The ties of :class:`~unilateral.structure.dofs.DofMap` the rigid blocks need (the bases of
+    blocks standing on a floor or on a block: their ``ux`` tied to the point under them)."""
+    return dict(stacks.ties(frame))
+
+
 def _column(contact, dofs, terms=None) -> sp.csr_matrix:
-    """``(T^T e_d)^T`` (1, n) of a contact: its normal (or the direction ``terms``) on the free DOFs."""
+    """``(T^T (e_d(node) - e_d(on)))^T`` (1, n) of a contact: its normal (or the direction
+    ``terms``) on the free DOFs, relative to the node ``on`` if it bears on one."""
     row = sp.csr_matrix((1, dofs.n))
     for dof, d in contact.terms if terms is None else terms:
         row = row + d * dofs.T[dofs.full_index(contact.node, dof)]
+        if contact.on is not None:
+            row = row - d * dofs.T[dofs.full_index(contact.on, dof)]
     row = sp.csr_matrix(row)
     row.eliminate_zeros()
     return row

@@ -108,7 +108,7 @@ class RigidBox:
 class RigidBoxes:
     """The rigid contacts and boxes of :class:`~unilateral.structure.Frame3D` (a base of it)."""
 
-    def contact(self, name, node, *, direction="uz", gap=0.0, mu=None, restitution=0.0) -> None:
+    def contact(self, name, node, *, direction="uz", gap=0.0, mu=None, restitution=0.0, on=None) -> None:
         """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``), as
         :meth:`Frame2D.contact <unilateral.structure.Frame2D.contact>`.
 
@@ -121,11 +121,13 @@ class RigidBoxes:
         gap : initial opening at ``u = 0``, length, >= 0
         mu : None only: friction on a rigid contact is not available in 3-D (``ValueError``)
         restitution : Newton's coefficient ``e`` in [0, 1] of ``method="moreau-jean"``
+        on : None only: a contact between two nodes is not available in 3-D (``ValueError``)
 
         The contact's unknown ``v`` is the compressive force (force), ``-psi`` the opening (length).
         """
         where = self._label("contact", name)
         self._node(where, "node", node)
+        _not_on(where, on)
         _no_friction(where, mu)
         terms = el.direction_terms(where, direction, el3.DOF_NAMES, el3.AXES)
         if any(dof in el3.ROTATIONS for dof, _ in terms):
@@ -136,7 +138,7 @@ class RigidBoxes:
         self._names.add(name)
 
     def rigid_box(self, name, node, *, width_x, width_y, height, mass, Jx=None, Jy=None, Jz=None, base=None,
-                  g=STANDARD_GRAVITY, restitution=0.0, mu=None) -> RigidBox:
+                  g=STANDARD_GRAVITY, restitution=0.0, mu=None, on=None) -> RigidBox:
         """A rigid rectangular box rocking on its four base corners, its centre of mass at ``node``.
 
         Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
@@ -159,6 +161,8 @@ class RigidBoxes:
             itself is ``Structure3D.gravity(g)``); 0: none
         restitution : Newton's ``e`` of the corners' contacts, [0, 1] (default 0: Housner's impact)
         mu : None only (the base held); friction is not available in 3-D (``ValueError``)
+        on : None only: a box stands on the ground; on a floor or on another box is not available in
+            3-D (``ValueError``; in 2-D ``Frame2D.rigid_block(..., on=)``)
 
         Returns
         -------
@@ -166,6 +170,7 @@ class RigidBoxes:
         """
         where = self._label("rigid_box", name)
         self._node(where, "node", node)
+        _not_on(where, on)
         _no_friction(where, mu)
         bx = _number(where, "width_x", width_x, ">0") / 2
         by = _number(where, "width_y", width_y, ">0") / 2
@@ -199,6 +204,13 @@ def _no_friction(where, mu) -> None:
         raise ValueError(f"{where}: mu={mu!r}: friction on a rigid contact is not available in 3-D "
                          "(method='moreau-jean' takes Coulomb's law on one tangent per contact, the 2-D "
                          "Frame2D.contact; not a friction cone in the tangent plane); leave mu out")
+
+
+def _not_on(where, on) -> None:
+    if on is not None:
+        raise ValueError(f"{where}: on={on!r}: a rigid contact between two nodes (a box on a floor or on another "
+                         "box) is not available in 3-D, only with the ground; leave on out (in 2-D: "
+                         "Frame2D.contact(..., on=), Frame2D.rigid_block(..., on=))")
 
 
 def _restitution(where, restitution) -> float:
