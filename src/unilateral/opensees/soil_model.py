@@ -64,34 +64,9 @@ def rigid_model(st, T, M, C, names):
     st : the built frame with ``rigid``;  T : (n_structure, n) csr, the ties
     M, C : (n, n) the script's mass and damping (C None: none);  names : the n DOF names
     """
-    from ..constraints import RigidContact as RigidFamily
-    from ..model import Model
+    from ..structure.rigid import contact_model
 
-    part, nat = st.rigid, st.natural
     if st.foundation is not None:
         refuse("rigidContact with a footing on a soil medium", "the rigid contacts are mapped on the frame's own "
                "model only", "rigidContact on a frame without ops.footing")
-    G, E, B = sp.csr_matrix(T.T @ nat.G), sp.csr_matrix(nat.E), sp.csr_matrix(nat.B)
-    n, m, mr = G.shape[0], B.shape[1], len(part.contacts)
-    GE = G @ E
-    theta = nat.theta(0.0)
-    F = sp.hstack([GE @ B, sp.csr_matrix(T.T @ part.N)], format="csr").toarray()
-    H = np.zeros((m + mr, m + mr))
-    H[:m, :m] = nat.A + (B.T @ E @ B).toarray()
-    g = np.concatenate([np.asarray(B.T @ (E @ theta)).ravel() + nat.r, -part.gap])
-    F_v = H_v = None
-    if nat.E_v is not None:
-        GEv = G @ sp.csr_matrix(nat.E_v)
-        C = GEv @ G.T if C is None else C + GEv @ G.T
-        F_v = np.hstack([(GEv @ B).toarray(), np.zeros((n, mr))])
-        H_v = np.zeros((m + mr, m + mr))
-        H_v[:m, :m] = (B.T @ sp.csr_matrix(nat.E_v) @ B).toarray()
-    mu = [c.mu for c in part.contacts]
-    families = list(st.families()) + [RigidFamily(
-        np.arange(m, m + mr), name="rigid contact", restitution=[c.restitution for c in part.contacts], mu=mu,
-        tangent=(T.T @ part.tangent).toarray() if any(mu) else None)]
-    model = Model(M=M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,
-                  q_imposed=np.asarray(GE @ theta).ravel(), dof_names=list(names),
-                  constraint_names=list(st.constraint_names) + list(part.names), families=families)
-    model.K = (GE @ G.T).tocsr()
-    return model
+    return contact_model(st, st.rigid, M=M, C=C, dof_names=names, T=T)

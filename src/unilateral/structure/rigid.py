@@ -444,20 +444,42 @@ def _column(contact, dofs, terms=None) -> sp.csr_matrix:
 
 def _model(structure, part):
     """The Model of the frame's own elements with the rigid contacts appended (see the module)."""
+    return contact_model(structure, part, M=structure.M, C=structure.C, dof_names=structure.dofs.names)
+
+
+def contact_model(structure, part, *, M, C, dof_names, T=None):
+    """The Model of ``structure``'s elements (its natural form) with the rigid contacts of ``part``
+    appended: the columns ``N`` with ``H = 0``, ``g = -gap``, the family
+    :class:`~unilateral.constraints.RigidContact`; ``K = G E G^T`` plus the blocks' second-order terms
+    (singular or indefinite, see the module).
+
+    Parameters
+    ----------
+    structure : the built frame (its ``natural`` form, ``families()``, ``constraint_names``)
+    part : RigidPart
+    M, C : (n, n) mass and damping on the model's DOFs (C None: none)
+    dof_names : the n names of the model's DOFs
+    T : (n_structure, n) csr or None, a reduction ``u_structure = T u`` of the structure's DOFs (the
+        ties of ``unilateral.opensees``); None: the structure's own DOFs
+    """
     from ..constraints import RigidContact as RigidFamily
     from ..model import Model
 
+    def reduced(X):
+        return sp.csr_matrix(X if T is None else T.T @ X)
+
     nat = structure.natural
-    n, m, mr = structure.n, structure.m, len(part.contacts)
-    G, E, B = sp.csr_matrix(nat.G), sp.csr_matrix(nat.E), sp.csr_matrix(nat.B)
+    m, mr = structure.m, len(part.contacts)
+    G, E, B = reduced(nat.G), sp.csr_matrix(nat.E), sp.csr_matrix(nat.B)
+    n = G.shape[0]
     GE = G @ E
-    K = (GE @ G.T + part.geometric).tocsr()
+    K = (GE @ G.T + (part.geometric if T is None else T.T @ part.geometric @ T)).tocsr()
     theta = nat.theta(0.0)
-    F = sp.hstack([GE @ B, part.N], format="csr").toarray()
+    F = sp.hstack([GE @ B, reduced(part.N)], format="csr").toarray()
     H = np.zeros((m + mr, m + mr))
     H[:m, :m] = nat.A + (B.T @ E @ B).toarray()
     g = np.concatenate([np.asarray(B.T @ (E @ theta)).ravel() + nat.r, -part.gap])
-    C, F_v, H_v = structure.C, None, None
+    F_v = H_v = None
     if nat.E_v is not None:
         GEv = G @ sp.csr_matrix(nat.E_v)
         C = GEv @ G.T if C is None else C + GEv @ G.T
@@ -467,11 +489,11 @@ def _model(structure, part):
     mu = [c.mu for c in part.contacts]
     families = list(structure.families()) + [RigidFamily(
         np.arange(m, m + mr), name="rigid contact", restitution=[c.restitution for c in part.contacts], mu=mu,
-        tangent=part.tangent.toarray() if any(mu) else None)]
+        tangent=reduced(part.tangent).toarray() if any(mu) else None)]
     # K may be singular or indefinite (see the module): the Model is built on a placeholder and then
     # given K, as Structure.to_model does with P-Delta's geometric stiffness
-    model = Model(M=structure.M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,
-                  q_imposed=np.asarray(GE @ theta).ravel(), dof_names=structure.dofs.names,
+    model = Model(M=M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,
+                  q_imposed=np.asarray(GE @ theta).ravel(), dof_names=list(dof_names),
                   constraint_names=list(structure.constraint_names) + list(part.names), families=families)
     model.K = K
     return model
