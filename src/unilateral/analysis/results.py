@@ -42,11 +42,10 @@ import scipy.sparse as sp
 from ..linalg import dense as _dense
 from ..model import Model
 from ..structure import forces as F
+from ..structure import forces3d as F3
 from .energy import energy_balance, unknown_kinds
-from .footing_results import footing_histories, footing_peaks, footing_variables
-from .rigid import frame_solution, rigid_ground_reactions, rigid_summary
+from .rigid import frame_solution
 from .inelastic import Inelastic
-from .residual import residual_peaks
 from ..structure.modes import modes
 
 #: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
@@ -194,11 +193,16 @@ class _Scaled:
 
 def structure_results(structure, model, cases: dict, *, rule, load_samples=None, ground_motions=(),
                       point=None, storey_pairs=None, units=None, static_load=None) -> dict:
-    """Results of each solved case of a frame.
+    """Results of each solved case of a frame, 2-D or 3-D.
+
+    One pipeline for both (:func:`unilateral.analysis.result_steps.case_results`), the dimension's
+    names, components, units and steps from its :class:`~unilateral.analysis.dimension.Dimension`.
+    A 3-D frame's rigid contacts are completed by
+    :func:`unilateral.analysis.rigid3d.structure_results_rigid_3d` (``cases``: the frame's parts).
 
     Parameters
     ----------
-    structure : Structure
+    structure : Structure (2-D) or Structure3D
     model : Model (for the modes)
     cases : dict name -> Solution
     rule : the time rule of the runs (name or Rule)
@@ -206,12 +210,14 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         acceleration; without it no energy balance is computed)
     ground_motions : ``[(direction, a_g)]``: the samples (N+1,) the run used, :func:`ground_motion_samples`
         (or time functions, :func:`ground_motions_of`, evaluated at the steps)
-    point : (x0, y0) of the overturning moment; default: the centre of the base
-        (:func:`unilateral.structure.forces.base_point`: the mean x of the ground-connected nodes
-        at the lowest level)
-    storey_pairs : ``[(lower, upper)]`` nodes of the storeys; default: levels by elevation
+    point : (x0, y0) of the overturning moment of a 2-D frame, (x, y, z) of the base forces of a
+        3-D one; default: the centre of the base (:func:`unilateral.structure.forces.base_point`:
+        the mean x of the ground-connected nodes at the lowest level;
+        :func:`unilateral.structure.forces3d.base_point`)
+    storey_pairs : ``[(lower, upper)]`` nodes of the storeys of a 2-D frame; default: levels by elevation
     units : dict of the base units (for the attributes)
-    static_load : (n,) the load without the excitation, for the static residual (default: ``load_samples[0]``)
+    static_load : (n,) the load without the excitation, for the static residual of a 2-D frame
+        (default: ``load_samples[0]``)
 
     Returns
     -------
@@ -219,202 +225,40 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     ``static`` (name -> (dims, array, attrs)): case-independent variables (modes),
     ``peaks`` (case -> summary dict), ``attrs`` (dataset attributes).
     """
-    units = dict(units or {})
-    L, Fu, T = (units.get(k, "") for k in ("length", "force", "time"))
-    acc_unit = f"{L}/{T}^2" if L and T else ""
-    moment_unit = f"{Fu} {L}".strip()
-    point = F.base_point(structure) if point is None else (float(point[0]), float(point[1]))
-    variables: dict = {}
-    peaks: dict = {}
-    coords: dict = {}
+    from .dimension import Units, dimension_of
+    from .result_steps import Settings, case_results
 
-    def put(name, dims, case, array, long_name, unit=""):
-        _put(variables, name, dims, case, array, long_name, unit)
-
-    foundation = getattr(structure, "foundation", None)
-    inelastic = Inelastic(structure, units)
-    coords |= inelastic.coords()
-    energy_keys = _energy_keys(structure)
-    for case, sol in cases.items():
-        if sol.u is None or len(sol.t) < 2:
-            continue
-        contact, contact_sol, sol = _frame_part(structure, foundation, sol)
-        q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
-        h = F.Histories.from_solution(structure, sol, rule, load0=q0)
-        motions = step_means(ground_motions, sol)
-        acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
-        ends = _end_force_results(put, coords, structure, h, case=case, force_unit=Fu, moment_unit=moment_unit)
-        reaction, footings = _reactions(variables, coords, structure, h, case=case, foundation=foundation,
-                                        contact_sol=contact_sol, units=units, motions=motions)
-        base, per_frame = _base_results(put, variables, coords, structure, reaction, case=case, point=point,
-                                        force_unit=Fu, moment_unit=moment_unit)
-        drifts = _drift_results(put, coords, structure, h, storey_pairs, case=case, length_unit=L)
-        histories = _constraint_results(put, structure, h, inelastic, case=case, foundation=foundation,
-                                        length_unit=L)
-        energy = None
-        if load_samples is not None:
-            energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
-                                    keys=energy_keys, unit=moment_unit, rule=pairing_rule(sol, rule),
-                                    stats=sol.stats)
-        peaks[case] = _case_peaks(structure, sol, h, inelastic, forces=(base, per_frame, ends, reaction, drifts),
-                                  energy=energy, footings=footings, contact_sol=contact_sol, histories=histories,
-                                  options=dict(point=point, ground_motions=motions, static_load=static_load,
-                                               load_samples=load_samples, storey_pairs=storey_pairs,
-                                               energy_keys=energy_keys))
-    model, static = bilateral_modes(structure, model, peaks, coords, time_unit=T)
-    if model is not None:
+    dim = dimension_of(structure)
+    if point is None:
+        point = (F3.base_point if dim.three_d else F.base_point)(structure)
+    else:
+        point = tuple(float(x) for x in point) if dim.three_d else (float(point[0]), float(point[1]))
+    unit_dict = dict(units or {})
+    s = Settings(structure, dim, Units.of(unit_dict), unit_dict, rule, point, Inelastic(structure, unit_dict),
+                 _energy_keys(structure), load_samples=load_samples, ground_motions=list(ground_motions),
+                 storey_pairs=storey_pairs, static_load=static_load)
+    s.coords |= s.inelastic.coords()
+    peaks = {case: case_results(s, case, sol) for case, sol in cases.items()
+             if sol.u is not None and len(sol.t) >= 2}
+    model, static = bilateral_modes(structure, model, peaks, s.coords, time_unit=s.units.time)
+    if model is not None and not dim.three_d:
         apart = _frame_periods(structure, model)
         for p in peaks.values():
             if apart:
                 p["frame_periods"] = apart
-    return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
-            "attrs": {"overturning_point": list(point)}}
+    return {"variables": s.variables, "coords": s.coords, "static": static, "peaks": peaks,
+            "attrs": {dim.point_attribute: list(point)}}
 
 
-def _end_force_results(put, coords, structure, h, *, case, force_unit, moment_unit):
-    """The elements' end forces in local axes (time, element, end_component) and their axial forces
-    (time, element) of ``case``, put as variables; returns
-    :func:`~unilateral.structure.forces.end_forces` (the peaks use it)."""
-    ends = F.end_forces(structure, h)
-    end = element_end_forces(coords, structure, ends, F.END_COMPONENTS, steps=len(h.t))
-    put("end_force", ("time", "element", "end_component"), case, end,
-        "end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
-        f"{force_unit} (N, V); {moment_unit} (M)".strip())
-    axial = np.where(np.any(end[:, :, 3] != 0, axis=0), end[:, :, 3], end[:, :, 5])
-    put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
-        "(moment of a rotational spring)", force_unit)
-    return ends
-
-
-def _base_results(put, variables, coords, structure, reaction, *, case, point, force_unit, moment_unit):
-    """The ground's forces on the structure of ``case``: base shear, vertical force and overturning
-    moment about ``point`` (x0, y0) (time,), and each frame's base shear (time, frame) when there
-    are several (pounding buildings), put as variables; returns ``(base, per_frame)`` of
-    :func:`~unilateral.structure.forces.base_forces` and ``base_forces_per_frame``."""
-    base = F.base_forces(structure, reaction, point)
-    per_frame = F.base_forces_per_frame(structure, reaction, point)
-    if per_frame:                           # several frames (pounding buildings): each its own
-        coords["frame"] = list(per_frame)
-        put("frame_base_shear", ("time", "frame"), case,
-            np.column_stack([b["base_shear"] for b in per_frame.values()]),
-            "base shear of each separate frame: sum of the x forces of the ground on it", force_unit)
-    put("base_shear", ("time",), case, base["base_shear"], "base shear: sum of the x forces of the ground",
-        force_unit)
-    put("base_vertical", ("time",), case, base["base_vertical"], "sum of the y forces of the ground", force_unit)
-    put("overturning_moment", ("time",), case, base["overturning_moment"],
-        f"overturning moment of the ground forces about ({point[0]:g}, {point[1]:g}), counter-clockwise",
-        moment_unit)
-    variables["overturning_moment"][2]["overturning_point"] = list(point)
-    return base, per_frame
-
-
-def _drift_results(put, coords, structure, h, storey_pairs, *, case, length_unit):
-    """The interstorey drifts ``ux(upper) - ux(lower)`` and drift ratios (time, storey) of ``case``,
-    put as variables; returns :func:`~unilateral.structure.forces.storey_drifts` (empty without
-    storeys)."""
-    drifts = F.storey_drifts(structure, h, storey_pairs)
-    if drifts:
-        coords["storey"] = list(drifts)
-        put("storey_drift", ("time", "storey"), case, np.column_stack([d for d, _ in drifts.values()]),
-            "interstorey drift ux(upper) - ux(lower)", length_unit)
-        put("drift_ratio", ("time", "storey"), case, np.column_stack([r for _, r in drifts.values()]),
-            "interstorey drift ratio", "1")
-    return drifts
-
-
-def _constraint_results(put, structure, h, inelastic, *, case, foundation, length_unit) -> dict:
-    """The deformations the constraints act on (time, constraint) of ``case`` -- the elements'
-    strains, then the footings' patches (upward motion plus the gap) and, sliding, their horizontal
-    motion for the shears and slip pairs -- and the inelastic histories, put as variables; returns
-    those histories (name -> (dims, values, long_name, unit), empty without constraints)."""
-    if not structure.m:
-        return {}
-    e, _ = structure.element_deformations(h.u, h.v, h.t)
-    histories = inelastic.histories(h, e)
-    if foundation is not None:              # the footings' patches follow: their upward motion + gap
-        e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])
-        if foundation.sliding:              # shears and slip pairs: the footing's horizontal motion there
-            x = h.u @ foundation.Tx(structure.dofs)
-            e = np.hstack([e, x, np.repeat(x, 2, axis=1)])
-    put("constraint_deformation", ("time", "constraint"), case, e,
-        ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
-         "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
-         "plus the gap; its shear and slips: its horizontal motion)"), length_unit)
-    for name, (dims, values, long_name, unit) in histories.items():
-        put(name, dims, case, values, long_name, unit)
-    return histories
-
-
-def _case_peaks(structure, sol, h, inelastic, *, forces, energy, footings, contact_sol, histories,
-                options) -> dict:
-    """The summary of one case: the peaks of :func:`_peaks`, each frame's, the static residual, the
-    footings', the rigid contacts', the note on linear members, the energy balance's and the
-    inelastic ones.
-
-    ``forces = (base, per_frame, ends, reaction, drifts)`` of the case's results; ``energy`` its
-    energy histories (or None); ``options``: ``point``, ``ground_motions``, ``static_load``,
-    ``load_samples``, ``storey_pairs`` and ``energy_keys`` of :func:`structure_results`.
-    """
-    base, per_frame, ends, reaction, drifts = forces
-    t = h.t
-    peaks = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=options["ground_motions"],
-                   structure=structure)
-    if per_frame:
-        peaks["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
-                           for label, b in per_frame.items()}
-    peaks |= {"overturning_point": list(options["point"])} | residual_peaks(
-        structure, sol, t, options["static_load"], options["load_samples"], options["storey_pairs"])
-    if footings is not None:
-        peaks["footings"] = footing_peaks(t, footings)
-    if getattr(structure, "rigid", None) is not None:               # analysis/rigid.py
-        peaks["rigid_contacts"] = rigid_summary(structure, contact_sol)
-    note = _linear_drift_note(structure, peaks)
-    if note:
-        peaks["linear_members_note"] = note
-    if energy is not None:
-        peaks["energy"] = energy_peaks(t, energy, options["energy_keys"])
-    if inelastic:
-        peaks |= inelastic.peaks(t, h, histories, None if energy is None else energy["unknown_work"])
-    return peaks
-
-
-def _reactions(variables, coords, structure, h, *, case, foundation, contact_sol, units, motions=()) -> tuple[dict, dict | None]:
-    """The reactions of a case (:func:`~unilateral.structure.forces.reactions`, the soil's contact forces
-    added as ground reactions at the footings, the rigid contacts' and blocks' of
-    :func:`~unilateral.analysis.rigid.rigid_ground_reactions`) and the footings' results
-    (:func:`~unilateral.analysis.footing_results.footing_histories`, None without footings on a soil),
-    with their variables ``support_reaction``, ``ground_reaction`` and ``footing_*`` of ``case`` put in
-    ``variables``."""
-    Fu = units.get("force", "")
-    moment_unit = f"{Fu} {units.get('length', '')}".strip()
-
-    def put(name, dims, array, long_name, unit):
-        _put(variables, name, dims, case, array, long_name, unit)
-
-    reaction, footings = F.reactions(structure, h), None
-    if getattr(structure, "rigid", None) is not None:
-        forces, at = rigid_ground_reactions(structure, h, contact_sol, motions_at(motions, h.t) if motions else [])
-        reaction["ground_elements"].update(forces)
-        reaction["at"].update(at)
-    if foundation is not None:
-        forces, at = foundation.ground_reactions(structure, contact_sol)
-        reaction["ground_elements"].update(forces)
-        reaction["at"].update(at)
-        footings = footing_histories(foundation, structure, h.u, contact_sol)
-        coords["foundation"] = list(footings)
-        for name, (values, long_name, unit) in footing_variables(footings, units).items():
-            put(name, ("time", "foundation"), values, long_name, unit)
-    if reaction["support"]:
-        coords["support"] = list(reaction["support"])
-        put("support_reaction", ("time", "support"), np.column_stack(list(reaction["support"].values())),
-            "force of the support on the structure at node.dof", f"{Fu} or {moment_unit}")
-    if reaction["ground_elements"]:
-        coords["ground_element"] = list(reaction["ground_elements"])
-        coords["force_component"] = ["fx", "fy", "mz"]
-        put("ground_reaction", ("time", "ground_element", "force_component"),
-            np.stack(list(reaction["ground_elements"].values()), axis=1),
-            "force of the ground on the structure through the element", f"{Fu} (fx, fy); {moment_unit} (mz)")
-    return reaction, footings
+def results_of_load(structure, model, cases, *, load, units, rule, point, storeys=None) -> dict:
+    """:func:`structure_results` of ``cases`` under ``load`` (a LoadHistory, array or callable): with the
+    load and ground-motion samples the runs used (:func:`load_samples_of`, :func:`ground_motion_samples`)
+    on the longest time axis of the cases, and the load's ``constant`` part as the static load."""
+    main = max(cases.values(), key=lambda sol: len(sol.t))        # the longest time axis
+    dt = main.stats.get("dt")
+    return structure_results(structure, model, cases, rule=rule, load_samples=load_samples_of(load, main.t, dt),
+                             ground_motions=ground_motion_samples(structure, load, main.t, dt), point=point,
+                             storey_pairs=storeys, units=units, static_load=getattr(load, "constant", None))
 
 
 def bilateral_modes(structure, model, peaks: dict, coords: dict, *, time_unit="", directions=("x", "y")):
@@ -483,16 +327,16 @@ def _frame_periods(structure, model, count=3) -> dict:
     return out
 
 
-def _frame_part(structure, foundation, sol):
+def _frame_part(structure, foundation, sol, *, rigid=True):
     """``(contact, full, frame)``: the load (N+1, n) of the contact forces of the footings on a soil
-    (``T c``, contact forces ``c = -psi``) or of the rigid contacts (``N v``) on the frame, or None;
-    the solution as solved; and the frame's own part of it, whose results are those of the frame
-    alone loaded by ``q + contact``."""
+    (``T c``, contact forces ``c = -psi``) or, with ``rigid``, of the rigid contacts (``N v``) on the
+    frame, or None; the solution as solved; and the frame's own part of it, whose results are those
+    of the frame alone loaded by ``q + contact``."""
     if foundation is not None:
         from ..structure.foundation import structural_solution
 
         return foundation.contact_load(structure, sol), sol, structural_solution(sol, foundation.first)
-    if getattr(structure, "rigid", None) is not None:
+    if rigid and getattr(structure, "rigid", None) is not None:
         contact, frame = frame_solution(structure, sol)
         return contact, sol, frame
     return None, sol, sol
