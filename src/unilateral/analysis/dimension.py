@@ -16,23 +16,27 @@ from dataclasses import dataclass, field
 
 @dataclass(frozen=True)
 class Spec:
-    """The attributes of one variable of the structure's results.
+    """One variable of the structure's results: its dimensions, long name and unit.
 
-    ``unit`` is a template of the base units (``{force}``, ``{length}``, ``{moment}``, ``{acc}``);
-    ``requires``: the name of the unit (``"force"``, ``"acc"``) without which the variable has no unit
-    at all; ``strip``: the unit without leading and trailing blanks (those of empty base units)."""
+    ``long_name`` may hold fields (``{x0:g}``) that the step fills in; ``unit`` is a template of the
+    base units (``{force}``, ``{length}``, ``{moment}``, ``{acc}``); ``requires``: the name of the
+    unit (``"force"``, ``"acc"``) without which the variable has no unit at all; ``strip``: the unit
+    without leading and trailing blanks (those of empty base units)."""
 
+    dims: tuple
     long_name: str
     unit: str = ""
     requires: str = ""
     strip: bool = False
 
-    def attributes(self, units: "Units") -> tuple[str, str]:
-        """``(long_name, unit)`` in ``units`` (the unit ``""``: no ``units`` attribute)."""
+    def attributes(self, units: "Units", **fields) -> tuple[str, str]:
+        """``(long_name, unit)`` in ``units`` (the unit ``""``: no ``units`` attribute), the long
+        name's ``fields`` filled in."""
+        long_name = self.long_name.format(**fields) if fields else self.long_name
         if self.requires and not getattr(units, self.requires):
-            return self.long_name, ""
+            return long_name, ""
         unit = self.unit.format(force=units.force, length=units.length, moment=units.moment, acc=units.acc)
-        return self.long_name, unit.strip() if self.strip else unit
+        return long_name, unit.strip() if self.strip else unit
 
 
 @dataclass(frozen=True)
@@ -72,7 +76,10 @@ class Dimension:
     acceleration_directions : the DOF names whose peak absolute accelerations the summary gives
     point_attribute : the dataset attribute (and summary entry) that holds the base point
     steps : the steps of a case's results, in the order they write their variables
-    specs : variable name -> :class:`Spec`, of the variables whose attributes differ by dimension
+    specs : variable name -> :class:`Spec` (dims, long name, unit) of the variables the steps write
+        (the accelerations, footings' and inelastic histories and energies have theirs in
+        :mod:`unilateral.analysis.result_parts`, :mod:`unilateral.analysis.footing_results`,
+        :mod:`unilateral.analysis.inelastic`, :mod:`unilateral.analysis.energy`)
     rigid_contacts : whether the pipeline handles rigid contacts itself (2-D); a 3-D frame's are
         completed by :func:`unilateral.analysis.rigid3d.structure_results_rigid_3d`
     footing_options : keywords of :func:`unilateral.analysis.footing_results.footing_histories`
@@ -93,12 +100,65 @@ class Dimension:
     def three_d(self) -> bool:
         return self.name == "3-D"
 
-    def attributes(self, name: str, units: Units) -> tuple[str, str]:
-        """``(long_name, unit)`` of the variable ``name`` in ``units``."""
-        return self.specs[name].attributes(units)
+    def spec(self, name: str) -> Spec:
+        """The :class:`Spec` of the variable ``name`` of this dimension's results."""
+        return self.specs[name]
 
 
-_AXIAL = Spec("element force along its axis, tension positive (moment of a rotational spring)", "{force}")
+#: The variables of the structure's results whose specs are those of both dimensions.
+SHARED = {
+    "axial_force": Spec(("time", "element"), "element force along its axis, tension positive (moment of a "
+                        "rotational spring)", "{force}"),
+}
+
+#: The variables of a plane frame's results (:data:`TWO_D`).
+SPECS_2D = SHARED | {
+    "end_force": Spec(("time", "element", "end_component"), "end forces on the element in local axes (N along "
+                      "i->j, V normal, M counter-clockwise)", "{force} (N, V); {moment} (M)", strip=True),
+    "support_reaction": Spec(("time", "support"), "force of the support on the structure at node.dof",
+                             "{force} or {moment}"),
+    "ground_reaction": Spec(("time", "ground_element", "force_component"),
+                            "force of the ground on the structure through the element",
+                            "{force} (fx, fy); {moment} (mz)"),
+    "frame_base_shear": Spec(("time", "frame"), "base shear of each separate frame: sum of the x forces of the "
+                             "ground on it", "{force}"),
+    "base_shear": Spec(("time",), "base shear: sum of the x forces of the ground", "{force}"),
+    "base_vertical": Spec(("time",), "sum of the y forces of the ground", "{force}"),
+    "overturning_moment": Spec(("time",), "overturning moment of the ground forces about ({x0:g}, {y0:g}), "
+                               "counter-clockwise", "{moment}"),
+    "storey_drift": Spec(("time", "storey"), "interstorey drift ux(upper) - ux(lower)", "{length}"),
+    "drift_ratio": Spec(("time", "storey"), "interstorey drift ratio", "1"),
+    "constraint_deformation": Spec(("time", "constraint"), (
+        "total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
+        "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
+        "plus the gap; its shear and slips: its horizontal motion)"), "{length}"),
+}
+
+#: The long names of the 3-D base forces (``base_Fx`` ... ``base_Mz``).
+BASE_WORDS = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
+              "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
+_NODES = ("time", "node", "component")
+
+#: The variables of a 3-D frame's results (:data:`THREE_D`).
+SPECS_3D = SHARED | {
+    "end_force": Spec(("time", "element", "end_component"), "end forces and moments on the element in its local "
+                      "axes x' (i->j), y', z' (N, Vy, Vz along them; T, My, Mz about them, right-hand positive)",
+                      "{force} (N, V); {moment} (T, M)", strip=True),
+    "support_reaction": Spec(("time", "support"), "force (moment about rx, ry, rz) of the support on the "
+                             "structure at node.dof", "{force} or {moment}", requires="force"),
+    "ground_reaction": Spec(("time", "ground_element", "force_component"), "force and moment of the ground on the "
+                            "structure through the element or the footing patch, at its node",
+                            "{force} (F); {force} {length} (M)", requires="force"),
+    "node_acceleration": Spec(_NODES, "acceleration of every node relative to the ground (of the time rule)",
+                              "{acc} (ux, uy, uz); rad/s^2 (rx, ry, rz)", requires="acc"),
+    "node_absolute_acceleration": Spec(_NODES, "absolute acceleration of every node: relative plus the ground's",
+                                       "{acc} (ux, uy, uz); rad/s^2 (rx, ry, rz)", requires="acc"),
+    **{f"base_{key}": Spec(("time",), f"{words}, the resultant of the ground's forces on the structure"
+                           + ("" if key.startswith("F") else " about base_point"),
+                           "{force}" if key.startswith("F") else "{moment}") for key, words in BASE_WORDS.items()},
+    **{f"drift_ratio_{axis}": Spec(("time", "storey"), f"interstorey drift ratio along {axis}, the largest over the "
+                                   "plan's corners", "1") for axis in "xy"},
+}
 
 TWO_D = Dimension(
     name="2-D",
@@ -108,14 +168,7 @@ TWO_D = Dimension(
     acceleration_directions=("ux", "uy"),
     point_attribute="overturning_point",
     steps=("accelerations", "end_forces", "footings", "reactions", "base", "drifts", "constraints", "energy"),
-    specs={
-        "end_force": Spec("end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
-                          "{force} (N, V); {moment} (M)", strip=True),
-        "axial_force": _AXIAL,
-        "support_reaction": Spec("force of the support on the structure at node.dof", "{force} or {moment}"),
-        "ground_reaction": Spec("force of the ground on the structure through the element",
-                                "{force} (fx, fy); {moment} (mz)"),
-    },
+    specs=SPECS_2D,
     rigid_contacts=True,
 )
 
@@ -128,20 +181,7 @@ THREE_D = Dimension(
     point_attribute="base_point",
     steps=("accelerations", "node_accelerations", "end_forces", "reactions", "base", "footings", "energy",
            "constraints", "drifts"),
-    specs={
-        "end_force": Spec("end forces and moments on the element in its local axes x' (i->j), y', z' (N, Vy, Vz "
-                          "along them; T, My, Mz about them, right-hand positive)", "{force} (N, V); {moment} (T, M)",
-                          strip=True),
-        "axial_force": _AXIAL,
-        "support_reaction": Spec("force (moment about rx, ry, rz) of the support on the structure at node.dof",
-                                 "{force} or {moment}", requires="force"),
-        "ground_reaction": Spec("force and moment of the ground on the structure through the element or the "
-                                "footing patch, at its node", "{force} (F); {force} {length} (M)", requires="force"),
-        "node_acceleration": Spec("acceleration of every node relative to the ground (of the time rule)",
-                                  "{acc} (ux, uy, uz); rad/s^2 (rx, ry, rz)", requires="acc"),
-        "node_absolute_acceleration": Spec("absolute acceleration of every node: relative plus the ground's",
-                                           "{acc} (ux, uy, uz); rad/s^2 (rx, ry, rz)", requires="acc"),
-    },
+    specs=SPECS_3D,
     footing_options={"three_d": True},
 )
 

@@ -20,7 +20,7 @@ from ..structure import forces as F
 from ..structure import forces3d as F3
 from .footing_results import footing_histories, footing_peaks, footing_variables
 from .residual import residual_peaks
-from .results import (_abs_peak, _extreme, _frame_part, _linear_drift_note, _peaks, _put, acceleration_peaks,
+from .result_parts import (_abs_peak, _extreme, _frame_part, _linear_drift_note, _peaks, _put, acceleration_peaks,
                       acceleration_results, element_end_forces, energy_peaks, energy_results, motions_at,
                       pairing_rule, step_means)
 from .rigid import rigid_ground_reactions, rigid_summary
@@ -84,9 +84,12 @@ def case_results(s: Settings, name, solved) -> dict:
     return (_peaks_3d if dim.three_d else _peaks_2d)(s, c)
 
 
-def _put_spec(s: Settings, name, dims, case, array):
-    """:func:`~unilateral.analysis.results._put` with the attributes of the Dimension's spec of ``name``."""
-    _put(s.variables, name, dims, case, array, *s.dim.attributes(name, s.units))
+def _put_spec(s: Settings, name, case, array, **fields):
+    """:func:`~unilateral.analysis.result_parts._put` of the variable ``name`` of ``case`` with the dims
+    and attributes of the Dimension's :class:`~unilateral.analysis.dimension.Spec` (its long name's
+    ``fields`` filled in)."""
+    spec = s.dim.spec(name)
+    _put(s.variables, name, spec.dims, case, array, *spec.attributes(s.units, **fields))
 
 
 def _accelerations(s: Settings, c: Case):
@@ -99,14 +102,14 @@ def _node_accelerations(s: Settings, c: Case):
     ground motions, ``node_absolute_acceleration``: plus the ground's translation ``sum a_g,k d_k`` on
     the translations of every node (a supported node moves with the ground)."""
     relative = s.structure.dofs.nodal(c.h.uddot)                # (N+1, nodes, DOFs per node)
-    _put_spec(s, "node_acceleration", ("time", "node", "component"), c.name, relative)
+    _put_spec(s, "node_acceleration", c.name, relative)
     if c.motions:
         absolute = relative.copy()
         for direction, a_g in motions_at(c.motions, c.h.t):
             d = np.zeros(relative.shape[2])
             d[list(s.structure.dofs.dof_names).index(direction)] = 1.0
             absolute += a_g[:, None, None] * d
-        _put_spec(s, "node_absolute_acceleration", ("time", "node", "component"), c.name, absolute)
+        _put_spec(s, "node_absolute_acceleration", c.name, absolute)
 
 
 def _end_forces(s: Settings, c: Case):
@@ -114,9 +117,9 @@ def _end_forces(s: Settings, c: Case):
     (time, element); keeps :func:`~unilateral.structure.forces.end_forces` (or the 3-D one) for the peaks."""
     c.ends = (F3 if s.dim.three_d else F).end_forces(s.structure, c.h)
     end = element_end_forces(s.coords, s.structure, c.ends, s.dim.end_components, steps=len(c.h.t))
-    _put_spec(s, "end_force", ("time", "element", "end_component"), c.name, end)
+    _put_spec(s, "end_force", c.name, end)
     first, other = s.dim.axial_columns
-    _put_spec(s, "axial_force", ("time", "element"), c.name,
+    _put_spec(s, "axial_force", c.name,
               np.where(np.any(end[:, :, first] != 0, axis=0), end[:, :, first], end[:, :, other]))
 
 
@@ -154,48 +157,35 @@ def _reactions(s: Settings, c: Case):
         grounded = c.reaction["ground_elements"]
     if c.reaction["support"]:
         s.coords["support"] = list(c.reaction["support"])
-        _put_spec(s, "support_reaction", ("time", "support"), c.name,
+        _put_spec(s, "support_reaction", c.name,
                   np.column_stack(list(c.reaction["support"].values())))
     if grounded:
         s.coords["ground_element"] = list(grounded)
         s.coords["force_component"] = list(s.dim.force_components)
-        _put_spec(s, "ground_reaction", ("time", "ground_element", "force_component"), c.name,
+        _put_spec(s, "ground_reaction", c.name,
                   np.stack(list(grounded.values()), axis=1))
 
 
 def _base_2d(s: Settings, c: Case):
     """Base shear, vertical force and overturning moment about the point (time,) and, with several
     frames (pounding buildings), each frame's base shear (time, frame)."""
-    force, moment, point = s.units.force, s.units.moment, s.point
+    point = s.point
     c.base = F.base_forces(s.structure, c.reaction, point)
     c.per_frame = F.base_forces_per_frame(s.structure, c.reaction, point)
     if c.per_frame:
         s.coords["frame"] = list(c.per_frame)
-        _put(s.variables, "frame_base_shear", ("time", "frame"), c.name,
-             np.column_stack([b["base_shear"] for b in c.per_frame.values()]),
-             "base shear of each separate frame: sum of the x forces of the ground on it", force)
-    _put(s.variables, "base_shear", ("time",), c.name, c.base["base_shear"],
-         "base shear: sum of the x forces of the ground", force)
-    _put(s.variables, "base_vertical", ("time",), c.name, c.base["base_vertical"],
-         "sum of the y forces of the ground", force)
-    _put(s.variables, "overturning_moment", ("time",), c.name, c.base["overturning_moment"],
-         f"overturning moment of the ground forces about ({point[0]:g}, {point[1]:g}), counter-clockwise", moment)
+        _put_spec(s, "frame_base_shear", c.name, np.column_stack([b["base_shear"] for b in c.per_frame.values()]))
+    for name in ("base_shear", "base_vertical"):
+        _put_spec(s, name, c.name, c.base[name])
+    _put_spec(s, "overturning_moment", c.name, c.base["overturning_moment"], x0=point[0], y0=point[1])
     s.variables["overturning_moment"][2]["overturning_point"] = list(point)
-
-
-#: The long names of the 3-D base forces (``base_Fx`` ... ``base_Mz``).
-BASE_WORDS = {"Fx": "base shear along x", "Fy": "base shear along y", "Fz": "vertical force of the ground (up)",
-              "Mx": "base moment about x", "My": "base moment about y", "Mz": "base torque about z"}
 
 
 def _base_3d(s: Settings, c: Case):
     """The resultants ``base_Fx`` ... ``base_Mz`` (time,) of the ground's forces about the base point."""
     c.base = F3.base_forces(s.structure, c.reaction, s.point)
     for key, values in c.base.items():
-        unit = s.units.force if key.startswith("F") else s.units.moment
-        _put(s.variables, f"base_{key}", ("time",), c.name, values,
-             f"{BASE_WORDS[key]}, the resultant of the ground's forces on the structure"
-             + ("" if key.startswith("F") else " about base_point"), unit)
+        _put_spec(s, f"base_{key}", c.name, values)
 
 
 def _drifts_2d(s: Settings, c: Case):
@@ -203,11 +193,8 @@ def _drifts_2d(s: Settings, c: Case):
     c.drifts = F.storey_drifts(s.structure, c.h, s.storey_pairs)
     if c.drifts:
         s.coords["storey"] = list(c.drifts)
-        _put(s.variables, "storey_drift", ("time", "storey"), c.name,
-             np.column_stack([d for d, _ in c.drifts.values()]), "interstorey drift ux(upper) - ux(lower)",
-             s.units.length)
-        _put(s.variables, "drift_ratio", ("time", "storey"), c.name,
-             np.column_stack([r for _, r in c.drifts.values()]), "interstorey drift ratio", "1")
+        _put_spec(s, "storey_drift", c.name, np.column_stack([d for d, _ in c.drifts.values()]))
+        _put_spec(s, "drift_ratio", c.name, np.column_stack([r for _, r in c.drifts.values()]))
 
 
 def _drifts_3d(s: Settings, c: Case):
@@ -218,9 +205,8 @@ def _drifts_3d(s: Settings, c: Case):
         return
     s.coords["storey"] = list(c.drifts)
     for axis in "xy":
-        _put(s.variables, f"drift_ratio_{axis}", ("time", "storey"), c.name,
-             np.column_stack([d[f"max_ratio_{axis}"] for d in c.drifts.values()]),
-             f"interstorey drift ratio along {axis}, the largest over the plan's corners", "1")
+        ratios = np.column_stack([d[f"max_ratio_{axis}"] for d in c.drifts.values()])
+        _put_spec(s, f"drift_ratio_{axis}", c.name, ratios)
 
 
 def _constraints(s: Settings, c: Case):
@@ -240,10 +226,7 @@ def _constraints(s: Settings, c: Case):
             if foundation.sliding:
                 x = h.u @ foundation.Tx(structure.dofs)
                 e = np.hstack([e, x, np.repeat(x, 2, axis=1)])
-        _put(s.variables, "constraint_deformation", ("time", "constraint"), c.name, e,
-             ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
-              "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
-              "plus the gap; its shear and slips: its horizontal motion)"), s.units.length)
+        _put_spec(s, "constraint_deformation", c.name, e)
     for name, (dims, values, long_name, unit) in c.histories.items():
         _put(s.variables, name, dims, c.name, values, long_name, unit)
 
