@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..structure import forces, forces3d
+
 
 @dataclass(frozen=True)
 class Spec:
@@ -80,9 +82,16 @@ class Dimension:
         (the accelerations, footings' and inelastic histories and energies have theirs in
         :mod:`unilateral.analysis.result_parts`, :mod:`unilateral.analysis.footing_results`,
         :mod:`unilateral.analysis.inelastic`, :mod:`unilateral.analysis.energy`)
+    forces : the module of the frame's forces (:mod:`unilateral.structure.forces` or
+        :mod:`unilateral.structure.forces3d`): its ``end_forces``, ``base_point``, ...
     rigid_contacts : whether the pipeline handles rigid contacts itself (2-D); a 3-D frame's are
         completed by :func:`unilateral.analysis.rigid3d.structure_results_rigid_3d`
     footing_options : keywords of :func:`unilateral.analysis.footing_results.footing_histories`
+    constraint_deformation : whether ``constraint_deformation`` is written (and the strains computed
+        without yield or friction elements)
+    frame_periods : whether the summary gives the periods of each separate frame (pounding buildings)
+    contact_at_start : whether the footings' contact forces at ``t = 0`` enter the initial
+        acceleration of a run without a load (3-D; a plane frame's have no initial acceleration then)
     """
 
     name: str
@@ -93,8 +102,12 @@ class Dimension:
     point_attribute: str
     steps: tuple
     specs: dict = field(default_factory=dict)
+    forces: object = forces
     rigid_contacts: bool = False
     footing_options: dict = field(default_factory=dict)
+    constraint_deformation: bool = False
+    frame_periods: bool = False
+    contact_at_start: bool = False
 
     @property
     def three_d(self) -> bool:
@@ -167,9 +180,12 @@ TWO_D = Dimension(
     force_components=("fx", "fy", "mz"),
     acceleration_directions=("ux", "uy"),
     point_attribute="overturning_point",
-    steps=("accelerations", "end_forces", "footings", "reactions", "base", "drifts", "constraints", "energy"),
+    steps=("accelerations", "end_forces", "footings", "reactions_2d", "base_2d", "drifts_2d", "constraints", "energy"),
     specs=SPECS_2D,
+    forces=forces,
     rigid_contacts=True,
+    constraint_deformation=True,
+    frame_periods=True,
 )
 
 THREE_D = Dimension(
@@ -179,10 +195,12 @@ THREE_D = Dimension(
     force_components=("Fx", "Fy", "Fz", "Mx", "My", "Mz"),
     acceleration_directions=("ux", "uy", "uz"),
     point_attribute="base_point",
-    steps=("accelerations", "node_accelerations", "end_forces", "reactions", "base", "footings", "energy",
-           "constraints", "drifts"),
+    steps=("accelerations", "node_accelerations", "end_forces", "reactions_3d", "base_3d", "footings", "energy",
+           "constraints", "drifts_3d"),
     specs=SPECS_3D,
+    forces=forces3d,
     footing_options={"three_d": True},
+    contact_at_start=True,
 )
 
 

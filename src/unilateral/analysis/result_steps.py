@@ -2,12 +2,14 @@
 
 :func:`case_results` runs the steps a :class:`~unilateral.analysis.dimension.Dimension` lists, in its
 order, on a :class:`Case` (the case's solution, histories and what the steps computed); each step
-adds its variables (name -> (dims, {case: array}, attrs)) and coordinates. The steps are those of both
-dimensions, their names, components and units from the Dimension; the base forces and the drifts
-have one step per dimension (:mod:`unilateral.structure.forces` and :mod:`unilateral.structure.forces3d`
-differ in what they return: base shear, vertical force and overturning moment of a plane frame; the
-six resultants of a 3-D one; the drift of each storey pair; the largest drift ratio over a plan's
-corners).
+adds its variables (name -> (dims, {case: array}, attrs)) with the dims and attributes of the
+Dimension's :class:`~unilateral.analysis.dimension.Spec` of each, and its coordinates. Most steps
+are those of both dimensions, their components from the Dimension; the reactions, the base forces
+and the drifts have one step per dimension (:mod:`unilateral.structure.forces` and
+:mod:`unilateral.structure.forces3d` differ in what they return: the footings' forces among the
+ground elements' or apart; base shear, vertical force and overturning moment of a plane frame, the
+six resultants of a 3-D one; the drift of each storey pair, the largest drift ratio over a plan's
+corners), and so does the summary of a case (:data:`PEAKS`).
 """
 
 from __future__ import annotations
@@ -75,13 +77,13 @@ def case_results(s: Settings, name, solved) -> dict:
     foundation = getattr(structure, "foundation", None)
     contact, solved, sol = _frame_part(structure, foundation, solved, rigid=dim.rigid_contacts)
     q0 = None if s.load_samples is None else s.load_samples[0]
-    if contact is not None and (q0 is not None or dim.three_d):     # 2-D without a load: no initial acceleration
+    if contact is not None and (q0 is not None or dim.contact_at_start):
         q0 = contact[0] if q0 is None else q0 + contact[0]
     h = F.Histories.from_solution(structure, sol, s.rule, load0=q0)
     c = Case(name, solved, sol, contact, h, step_means(s.ground_motions, sol))
     for step in dim.steps:
         STEPS[step](s, c)
-    return (_peaks_3d if dim.three_d else _peaks_2d)(s, c)
+    return PEAKS[dim.name](s, c)
 
 
 def _put_spec(s: Settings, name, case, array, **fields):
@@ -115,7 +117,7 @@ def _node_accelerations(s: Settings, c: Case):
 def _end_forces(s: Settings, c: Case):
     """``end_force`` (time, element, end_component) in the elements' local axes and ``axial_force``
     (time, element); keeps :func:`~unilateral.structure.forces.end_forces` (or the 3-D one) for the peaks."""
-    c.ends = (F3 if s.dim.three_d else F).end_forces(s.structure, c.h)
+    c.ends = s.dim.forces.end_forces(s.structure, c.h)
     end = element_end_forces(s.coords, s.structure, c.ends, s.dim.end_components, steps=len(c.h.t))
     _put_spec(s, "end_force", c.name, end)
     first, other = s.dim.axial_columns
@@ -134,36 +136,42 @@ def _footings(s: Settings, c: Case):
         _put(s.variables, name, ("time", "foundation"), c.name, values, long_name, unit)
 
 
-def _reactions(s: Settings, c: Case):
-    """``support_reaction`` (time, support) and ``ground_reaction`` (time, ground_element,
-    force_component): the ground's forces through the supports, the ground elements, the footings'
-    patches on a soil medium and (2-D) the rigid contacts and blocks
-    (:func:`~unilateral.analysis.rigid.rigid_ground_reactions`)."""
+def _reactions_2d(s: Settings, c: Case):
+    """The reactions of a plane frame (:func:`unilateral.structure.forces.reactions`), the rigid contacts'
+    and blocks' (:func:`~unilateral.analysis.rigid.rigid_ground_reactions`) and the footings' patches'
+    on a soil medium joining the ground elements' (:func:`_put_reactions`)."""
     structure = s.structure
-    if s.dim.three_d:
-        c.reaction = F3.reactions(structure, c.h, c.solved)
-        grounded = {**c.reaction["ground_elements"], **c.reaction.get("footings", {})}
-    else:
-        c.reaction = F.reactions(structure, c.h)
-        if s.dim.rigid_contacts and getattr(structure, "rigid", None) is not None:
-            motions = motions_at(c.motions, c.h.t) if c.motions else []
-            forces, at = rigid_ground_reactions(structure, c.h, c.solved, motions)
-            c.reaction["ground_elements"].update(forces)
-            c.reaction["at"].update(at)
-        if getattr(structure, "foundation", None) is not None:
-            forces, at = structure.foundation.ground_reactions(structure, c.solved)
-            c.reaction["ground_elements"].update(forces)
-            c.reaction["at"].update(at)
-        grounded = c.reaction["ground_elements"]
+    c.reaction = F.reactions(structure, c.h)
+    if s.dim.rigid_contacts and getattr(structure, "rigid", None) is not None:
+        motions = motions_at(c.motions, c.h.t) if c.motions else []
+        forces, at = rigid_ground_reactions(structure, c.h, c.solved, motions)
+        c.reaction["ground_elements"].update(forces)
+        c.reaction["at"].update(at)
+    if getattr(structure, "foundation", None) is not None:
+        forces, at = structure.foundation.ground_reactions(structure, c.solved)
+        c.reaction["ground_elements"].update(forces)
+        c.reaction["at"].update(at)
+    _put_reactions(s, c, c.reaction["ground_elements"])
+
+
+def _reactions_3d(s: Settings, c: Case):
+    """The reactions of a 3-D frame (:func:`unilateral.structure.forces3d.reactions`), the footings'
+    patches on a soil medium after the ground elements (:func:`_put_reactions`)."""
+    c.reaction = F3.reactions(s.structure, c.h, c.solved)
+    _put_reactions(s, c, {**c.reaction["ground_elements"], **c.reaction.get("footings", {})})
+
+
+def _put_reactions(s: Settings, c: Case, grounded: dict):
+    """``support_reaction`` (time, support) and ``ground_reaction`` (time, ground_element,
+    force_component): the ground's forces through the supports and through each of ``grounded``
+    (name -> (N+1, components))."""
     if c.reaction["support"]:
         s.coords["support"] = list(c.reaction["support"])
-        _put_spec(s, "support_reaction", c.name,
-                  np.column_stack(list(c.reaction["support"].values())))
+        _put_spec(s, "support_reaction", c.name, np.column_stack(list(c.reaction["support"].values())))
     if grounded:
         s.coords["ground_element"] = list(grounded)
         s.coords["force_component"] = list(s.dim.force_components)
-        _put_spec(s, "ground_reaction", c.name,
-                  np.stack(list(grounded.values()), axis=1))
+        _put_spec(s, "ground_reaction", c.name, np.stack(list(grounded.values()), axis=1))
 
 
 def _base_2d(s: Settings, c: Case):
@@ -215,11 +223,11 @@ def _constraints(s: Settings, c: Case):
     then the footings' patches (upward motion plus the gap) and, sliding, their horizontal motion for
     the shears and slip pairs."""
     structure, h = s.structure, c.h
-    if not structure.m or (s.dim.three_d and not s.inelastic):
+    if not structure.m or not (s.inelastic or s.dim.constraint_deformation):
         return
     e, _ = structure.element_deformations(h.u, h.v, h.t)
     c.histories = s.inelastic.histories(h, e)
-    if not s.dim.three_d:
+    if s.dim.constraint_deformation:
         foundation = getattr(structure, "foundation", None)
         if foundation is not None:
             e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])
@@ -240,10 +248,11 @@ def _energy(s: Settings, c: Case):
                               stats=c.sol.stats if s.dim.rigid_contacts else None)
 
 
+#: The steps by their names in :attr:`Dimension.steps <unilateral.analysis.dimension.Dimension>`.
 STEPS = {"accelerations": _accelerations, "node_accelerations": _node_accelerations, "end_forces": _end_forces,
-         "footings": _footings, "reactions": _reactions, "constraints": _constraints, "energy": _energy,
-         "base": lambda s, c: (_base_3d if s.dim.three_d else _base_2d)(s, c),
-         "drifts": lambda s, c: (_drifts_3d if s.dim.three_d else _drifts_2d)(s, c)}
+         "footings": _footings, "reactions_2d": _reactions_2d, "reactions_3d": _reactions_3d, "base_2d": _base_2d,
+         "base_3d": _base_3d, "drifts_2d": _drifts_2d, "drifts_3d": _drifts_3d, "constraints": _constraints,
+         "energy": _energy}
 
 
 def _end_force_peaks(s: Settings, c: Case) -> dict:
@@ -295,3 +304,7 @@ def _peaks_3d(s: Settings, c: Case) -> dict:
         peaks["drift_ratio"] = {f"{label} {axis}": _abs_peak(t, d[f"max_ratio_{axis}"])
                                 for label, d in c.drifts.items() for axis in "xy"}
     return peaks
+
+
+#: The summary of a case by the dimension's name.
+PEAKS = {"2-D": _peaks_2d, "3-D": _peaks_3d}

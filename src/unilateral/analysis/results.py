@@ -50,7 +50,6 @@ import scipy.sparse as sp
 from ..linalg import dense as _dense
 from ..model import Model
 from ..structure import forces as F
-from ..structure import forces3d as F3
 from ..structure.modes import modes
 from .energy import unknown_kinds
 from .inelastic import Inelastic
@@ -211,7 +210,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
 
     dim = dimension_of(structure)
     if point is None:
-        point = (F3.base_point if dim.three_d else F.base_point)(structure)
+        point = dim.forces.base_point(structure)
     else:
         point = tuple(float(x) for x in point) if dim.three_d else (float(point[0]), float(point[1]))
     unit_dict = dict(units or {})
@@ -222,7 +221,7 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     peaks = {case: case_results(s, case, sol) for case, sol in cases.items()
              if sol.u is not None and len(sol.t) >= 2}
     model, static = bilateral_modes(structure, model, peaks, s.coords, time_unit=s.units.time)
-    if model is not None and not dim.three_d:
+    if model is not None and dim.frame_periods:
         apart = _frame_periods(structure, model)
         for p in peaks.values():
             if apart:
