@@ -66,11 +66,10 @@ from ..solve import solve
 from .constraint_units import with_constraint_units
 from .terminal import (DISSIPATED, ENERGY_WARNING, FAILURE_HINT, _result_lines, case_name,  # noqa: F401 (re-exported)
                      energy_warnings, report)
-from .results import ground_motion_samples, load_samples_of, structure_results
-from .results3d import structure_results_3d
+from .results import load_samples_of, results_of_load
 
-#: :func:`unilateral.analysis.results3d.structure_results_3d` by its former name here.
-_structure_results_3d = structure_results_3d
+#: :func:`unilateral.analysis.results.results_of_load`, 2-D and 3-D, by its former names here.
+_structure_results = _structure_results_3d = results_of_load
 #: :func:`unilateral.analysis.results.load_samples_of` by its former name here.
 _load_samples = load_samples_of
 
@@ -232,7 +231,7 @@ def compute_results(cases: dict, *, structure=None, units=None, figure=None, tit
         ds = _with_node_displacements(ds, cases, structure, units)
         ds = _with_constraint_coords(ds, structure)
         if model is not None:
-            results_of = structure_results_3d if three_d else _structure_results
+            results_of = results_of_load
             if three_d and getattr(structure, "rigid", None) is not None:    # rigid contacts: analysis/rigid3d.py
                 from .rigid3d import structure_results_rigid_3d as results_of
             extra_results = results_of(structure, model, computed, load=load, units=units, rule=rule, point=point,
@@ -522,15 +521,6 @@ NOT_IN_3D = ("3-D frame: results.nc holds the displacements of every node (ux, u
              "constraints' deformations, the interstorey drifts themselves and the residual drift, the base shear "
              "of each separate frame and its periods, and the base forces figure; a 3-D model file cannot ask for "
              "floor_spectra yet (the model file's check refuses them)")
-
-
-def _structure_results(structure, model, cases, *, load, units, rule, point, storeys):
-    main = max(cases.values(), key=lambda sol: len(sol.t))        # the longest time axis
-    samples = load_samples_of(load, main.t, main.stats.get("dt"))
-    return structure_results(structure, model, cases, rule=rule, load_samples=samples,
-                             ground_motions=ground_motion_samples(structure, load, main.t, main.stats.get("dt")),
-                             point=point,
-                             storey_pairs=storeys, units=units, static_load=getattr(load, "constant", None))
 
 
 def _with_results(ds, res, multi, names):

@@ -26,12 +26,20 @@ variable                  dims                                   content
 ``mode_shape``, ...
 ========================  =====================================  ===================================
 
-A 3-D frame's results (:func:`unilateral.analysis.results3d.structure_results_3d`) share the
-accelerations (:func:`acceleration_results`), the energy balance (:func:`energy_results`, the
-arithmetic of :mod:`unilateral.analysis.energy` is that of the natural form, free of the dimension)
-and the yield and friction elements' histories (:class:`~unilateral.analysis.inelastic.Inelastic`:
-a 3-D hinge's and a friction cone's with the dimension ``yield_component`` or ``friction_component``);
-its ``end_force`` has the twelve components of :func:`unilateral.structure.forces3d.end_forces`.
+A 3-D frame's results come from the same function, one pipeline for both dimensions
+(:mod:`unilateral.analysis.result_steps`), what differs reduced to the data of a
+:class:`~unilateral.analysis.dimension.Dimension`: the names of the components (``end_force`` has the
+twelve of :func:`unilateral.structure.forces3d.end_forces`, ``ground_reaction`` ``Fx ... Mz``), the
+units and long names that differ, the base point (``base_point``: the six resultants ``base_Fx`` ...
+``base_Mz`` about it), the directions of the ground's translations, and which steps write what in
+which order (``node_acceleration`` and ``drift_ratio_x``, ``drift_ratio_y`` in 3-D;
+``constraint_deformation``, ``storey_drift``, the static residual and each frame's base shear in
+2-D). They share the accelerations (:func:`acceleration_results`), the energy balance
+(:func:`energy_results`, the arithmetic of :mod:`unilateral.analysis.energy` is that of the natural
+form, free of the dimension) and the yield and friction elements' histories
+(:class:`~unilateral.analysis.inelastic.Inelastic`: a 3-D hinge's and a friction cone's with the
+dimension ``yield_component`` or ``friction_component``). The shared parts live in
+:mod:`unilateral.analysis.result_parts` and are importable from here by their names.
 """
 
 from __future__ import annotations
@@ -42,21 +50,16 @@ import scipy.sparse as sp
 from ..linalg import dense as _dense
 from ..model import Model
 from ..structure import forces as F
-from .energy import energy_balance, unknown_kinds
-from .footing_results import footing_histories, footing_peaks, footing_variables
-from .rigid import frame_solution, rigid_ground_reactions, rigid_summary
-from .inelastic import Inelastic
-from .residual import residual_peaks
 from ..structure.modes import modes
+from .energy import unknown_kinds
+from .inelastic import Inelastic
+from .result_parts import (ENERGY_KEYS, FAMILY_ENERGY, LINEAR_DRIFT_LIMIT, _abs_peak, _extreme,  # noqa: F401
+                           _frame_part, _kind, _linear_drift_note, _peaks, _put, _residual_drift, acceleration_peaks,
+                           acceleration_results, element_end_forces, energy_peaks, energy_results, motions_at,
+                           pairing_rule, step_means)
 
 #: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
 MODES_MAX_N = 3000
-ENERGY_KEYS = ("kinetic", "elastic_structure", "elastic_unilateral", "geometric", "damping_dissipated",
-               "contact_dissipated", "plastic_work", "friction_work", "numerical_dissipation",
-               "numerical_storage", "input_work", "support_work", "balance_error", "relative_error")
-#: The energy terms written only for a structure with unknowns of that family.
-FAMILY_ENERGY = {"plastic_work": "yield", "friction_work": "friction"}
-
 
 def ground_terms(structure, load) -> list:
     """``[(direction, term, c)]``: the ground-motion terms ``(-M r, a_g)`` of a LoadHistory, each as
@@ -158,30 +161,6 @@ def load_samples_of(load, t, dt=None):
     return None
 
 
-def motions_at(ground_motions, t) -> list:
-    """``[(direction, a_g (N+1,))]`` of ``ground_motions`` at the times ``t`` (N+1,): a time function is
-    evaluated there, samples (of a longer run, :func:`ground_motion_samples`) are cut to ``t``'s length."""
-    t = np.asarray(t, dtype=float)
-    return [(d, np.asarray(a_g(t), dtype=float) if callable(a_g) else np.asarray(a_g, dtype=float)[: t.size])
-            for d, a_g in ground_motions]
-
-
-def step_means(ground_motions, sol) -> list:
-    """``ground_motions`` as ``sol``'s accelerations read them: for a run of ``method="moreau-jean"``,
-    whose accelerations are the means of the steps (:meth:`~unilateral.structure.forces.Histories.from_solution`),
-    the theta-weighted means ``theta a_k + (1 - theta) a_{k-1}`` of the samples the step integrated
-    (``[(direction, (N+1,))]``); the samples themselves for any other run."""
-    stats = getattr(sol, "stats", None) or {}
-    if stats.get("method") != "moreau-jean" or not ground_motions:
-        return ground_motions
-    theta, out = float(stats.get("theta", 0.5)), []
-    for direction, a in motions_at(ground_motions, sol.t):
-        mean = a.copy()
-        mean[1:] = theta * a[1:] + (1.0 - theta) * a[:-1]
-        out.append((direction, mean))
-    return out
-
-
 class _Scaled:
     """``c f(t)``: the component of a ground acceleration ``f`` along one axis."""
 
@@ -194,11 +173,16 @@ class _Scaled:
 
 def structure_results(structure, model, cases: dict, *, rule, load_samples=None, ground_motions=(),
                       point=None, storey_pairs=None, units=None, static_load=None) -> dict:
-    """Results of each solved case of a frame.
+    """Results of each solved case of a frame, 2-D or 3-D.
+
+    One pipeline for both (:func:`unilateral.analysis.result_steps.case_results`), the dimension's
+    names, components, units and steps from its :class:`~unilateral.analysis.dimension.Dimension`.
+    A 3-D frame's rigid contacts are completed by
+    :func:`unilateral.analysis.rigid3d.structure_results_rigid_3d` (``cases``: the frame's parts).
 
     Parameters
     ----------
-    structure : Structure
+    structure : Structure (2-D) or Structure3D
     model : Model (for the modes)
     cases : dict name -> Solution
     rule : the time rule of the runs (name or Rule)
@@ -206,12 +190,14 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
         acceleration; without it no energy balance is computed)
     ground_motions : ``[(direction, a_g)]``: the samples (N+1,) the run used, :func:`ground_motion_samples`
         (or time functions, :func:`ground_motions_of`, evaluated at the steps)
-    point : (x0, y0) of the overturning moment; default: the centre of the base
-        (:func:`unilateral.structure.forces.base_point`: the mean x of the ground-connected nodes
-        at the lowest level)
-    storey_pairs : ``[(lower, upper)]`` nodes of the storeys; default: levels by elevation
+    point : (x0, y0) of the overturning moment of a 2-D frame, (x, y, z) of the base forces of a
+        3-D one; default: the centre of the base (:func:`unilateral.structure.forces.base_point`:
+        the mean x of the ground-connected nodes at the lowest level;
+        :func:`unilateral.structure.forces3d.base_point`)
+    storey_pairs : ``[(lower, upper)]`` nodes of the storeys of a 2-D frame; default: levels by elevation
     units : dict of the base units (for the attributes)
-    static_load : (n,) the load without the excitation, for the static residual (default: ``load_samples[0]``)
+    static_load : (n,) the load without the excitation, for the static residual of a 2-D frame
+        (default: ``load_samples[0]``)
 
     Returns
     -------
@@ -219,202 +205,40 @@ def structure_results(structure, model, cases: dict, *, rule, load_samples=None,
     ``static`` (name -> (dims, array, attrs)): case-independent variables (modes),
     ``peaks`` (case -> summary dict), ``attrs`` (dataset attributes).
     """
-    units = dict(units or {})
-    L, Fu, T = (units.get(k, "") for k in ("length", "force", "time"))
-    acc_unit = f"{L}/{T}^2" if L and T else ""
-    moment_unit = f"{Fu} {L}".strip()
-    point = F.base_point(structure) if point is None else (float(point[0]), float(point[1]))
-    variables: dict = {}
-    peaks: dict = {}
-    coords: dict = {}
+    from .dimension import Units, dimension_of
+    from .result_steps import Settings, case_results
 
-    def put(name, dims, case, array, long_name, unit=""):
-        _put(variables, name, dims, case, array, long_name, unit)
-
-    foundation = getattr(structure, "foundation", None)
-    inelastic = Inelastic(structure, units)
-    coords |= inelastic.coords()
-    energy_keys = _energy_keys(structure)
-    for case, sol in cases.items():
-        if sol.u is None or len(sol.t) < 2:
-            continue
-        contact, contact_sol, sol = _frame_part(structure, foundation, sol)
-        q0 = None if load_samples is None else load_samples[0] + (0.0 if contact is None else contact[0])
-        h = F.Histories.from_solution(structure, sol, rule, load0=q0)
-        motions = step_means(ground_motions, sol)
-        acceleration_results(variables, coords, structure, h, motions, case=case, unit=acc_unit)
-        ends = _end_force_results(put, coords, structure, h, case=case, force_unit=Fu, moment_unit=moment_unit)
-        reaction, footings = _reactions(variables, coords, structure, h, case=case, foundation=foundation,
-                                        contact_sol=contact_sol, units=units, motions=motions)
-        base, per_frame = _base_results(put, variables, coords, structure, reaction, case=case, point=point,
-                                        force_unit=Fu, moment_unit=moment_unit)
-        drifts = _drift_results(put, coords, structure, h, storey_pairs, case=case, length_unit=L)
-        histories = _constraint_results(put, structure, h, inelastic, case=case, foundation=foundation,
-                                        length_unit=L)
-        energy = None
-        if load_samples is not None:
-            energy = energy_results(variables, structure, h, load_samples, case=case, contact=contact,
-                                    keys=energy_keys, unit=moment_unit, rule=pairing_rule(sol, rule),
-                                    stats=sol.stats)
-        peaks[case] = _case_peaks(structure, sol, h, inelastic, forces=(base, per_frame, ends, reaction, drifts),
-                                  energy=energy, footings=footings, contact_sol=contact_sol, histories=histories,
-                                  options=dict(point=point, ground_motions=motions, static_load=static_load,
-                                               load_samples=load_samples, storey_pairs=storey_pairs,
-                                               energy_keys=energy_keys))
-    model, static = bilateral_modes(structure, model, peaks, coords, time_unit=T)
-    if model is not None:
+    dim = dimension_of(structure)
+    if point is None:
+        point = dim.forces.base_point(structure)
+    else:
+        point = tuple(float(x) for x in point) if dim.three_d else (float(point[0]), float(point[1]))
+    unit_dict = dict(units or {})
+    s = Settings(structure, dim, Units.of(unit_dict), unit_dict, rule, point, Inelastic(structure, unit_dict),
+                 _energy_keys(structure), load_samples=load_samples, ground_motions=list(ground_motions),
+                 storey_pairs=storey_pairs, static_load=static_load)
+    s.coords |= s.inelastic.coords()
+    peaks = {case: case_results(s, case, sol) for case, sol in cases.items()
+             if sol.u is not None and len(sol.t) >= 2}
+    model, static = bilateral_modes(structure, model, peaks, s.coords, time_unit=s.units.time)
+    if model is not None and dim.frame_periods:
         apart = _frame_periods(structure, model)
         for p in peaks.values():
             if apart:
                 p["frame_periods"] = apart
-    return {"variables": variables, "coords": coords, "static": static, "peaks": peaks,
-            "attrs": {"overturning_point": list(point)}}
+    return {"variables": s.variables, "coords": s.coords, "static": static, "peaks": peaks,
+            "attrs": {dim.point_attribute: list(point)}}
 
 
-def _end_force_results(put, coords, structure, h, *, case, force_unit, moment_unit):
-    """The elements' end forces in local axes (time, element, end_component) and their axial forces
-    (time, element) of ``case``, put as variables; returns
-    :func:`~unilateral.structure.forces.end_forces` (the peaks use it)."""
-    ends = F.end_forces(structure, h)
-    end = element_end_forces(coords, structure, ends, F.END_COMPONENTS, steps=len(h.t))
-    put("end_force", ("time", "element", "end_component"), case, end,
-        "end forces on the element in local axes (N along i->j, V normal, M counter-clockwise)",
-        f"{force_unit} (N, V); {moment_unit} (M)".strip())
-    axial = np.where(np.any(end[:, :, 3] != 0, axis=0), end[:, :, 3], end[:, :, 5])
-    put("axial_force", ("time", "element"), case, axial, "element force along its axis, tension positive "
-        "(moment of a rotational spring)", force_unit)
-    return ends
-
-
-def _base_results(put, variables, coords, structure, reaction, *, case, point, force_unit, moment_unit):
-    """The ground's forces on the structure of ``case``: base shear, vertical force and overturning
-    moment about ``point`` (x0, y0) (time,), and each frame's base shear (time, frame) when there
-    are several (pounding buildings), put as variables; returns ``(base, per_frame)`` of
-    :func:`~unilateral.structure.forces.base_forces` and ``base_forces_per_frame``."""
-    base = F.base_forces(structure, reaction, point)
-    per_frame = F.base_forces_per_frame(structure, reaction, point)
-    if per_frame:                           # several frames (pounding buildings): each its own
-        coords["frame"] = list(per_frame)
-        put("frame_base_shear", ("time", "frame"), case,
-            np.column_stack([b["base_shear"] for b in per_frame.values()]),
-            "base shear of each separate frame: sum of the x forces of the ground on it", force_unit)
-    put("base_shear", ("time",), case, base["base_shear"], "base shear: sum of the x forces of the ground",
-        force_unit)
-    put("base_vertical", ("time",), case, base["base_vertical"], "sum of the y forces of the ground", force_unit)
-    put("overturning_moment", ("time",), case, base["overturning_moment"],
-        f"overturning moment of the ground forces about ({point[0]:g}, {point[1]:g}), counter-clockwise",
-        moment_unit)
-    variables["overturning_moment"][2]["overturning_point"] = list(point)
-    return base, per_frame
-
-
-def _drift_results(put, coords, structure, h, storey_pairs, *, case, length_unit):
-    """The interstorey drifts ``ux(upper) - ux(lower)`` and drift ratios (time, storey) of ``case``,
-    put as variables; returns :func:`~unilateral.structure.forces.storey_drifts` (empty without
-    storeys)."""
-    drifts = F.storey_drifts(structure, h, storey_pairs)
-    if drifts:
-        coords["storey"] = list(drifts)
-        put("storey_drift", ("time", "storey"), case, np.column_stack([d for d, _ in drifts.values()]),
-            "interstorey drift ux(upper) - ux(lower)", length_unit)
-        put("drift_ratio", ("time", "storey"), case, np.column_stack([r for _, r in drifts.values()]),
-            "interstorey drift ratio", "1")
-    return drifts
-
-
-def _constraint_results(put, structure, h, inelastic, *, case, foundation, length_unit) -> dict:
-    """The deformations the constraints act on (time, constraint) of ``case`` -- the elements'
-    strains, then the footings' patches (upward motion plus the gap) and, sliding, their horizontal
-    motion for the shears and slip pairs -- and the inelastic histories, put as variables; returns
-    those histories (name -> (dims, values, long_name, unit), empty without constraints)."""
-    if not structure.m:
-        return {}
-    e, _ = structure.element_deformations(h.u, h.v, h.t)
-    histories = inelastic.histories(h, e)
-    if foundation is not None:              # the footings' patches follow: their upward motion + gap
-        e = np.hstack([e, h.u @ foundation.T(structure.dofs, structure.coords) + foundation.gap])
-        if foundation.sliding:              # shears and slip pairs: the footing's horizontal motion there
-            x = h.u @ foundation.Tx(structure.dofs)
-            e = np.hstack([e, x, np.repeat(x, 2, axis=1)])
-    put("constraint_deformation", ("time", "constraint"), case, e,
-        ("total strain the constraint acts on (soil, gap: opening positive; cable, yield link: elongation; "
-         "slip: tangential motion; hinge: end rotation in rad; footing patch: its upward motion "
-         "plus the gap; its shear and slips: its horizontal motion)"), length_unit)
-    for name, (dims, values, long_name, unit) in histories.items():
-        put(name, dims, case, values, long_name, unit)
-    return histories
-
-
-def _case_peaks(structure, sol, h, inelastic, *, forces, energy, footings, contact_sol, histories,
-                options) -> dict:
-    """The summary of one case: the peaks of :func:`_peaks`, each frame's, the static residual, the
-    footings', the rigid contacts', the note on linear members, the energy balance's and the
-    inelastic ones.
-
-    ``forces = (base, per_frame, ends, reaction, drifts)`` of the case's results; ``energy`` its
-    energy histories (or None); ``options``: ``point``, ``ground_motions``, ``static_load``,
-    ``load_samples``, ``storey_pairs`` and ``energy_keys`` of :func:`structure_results`.
-    """
-    base, per_frame, ends, reaction, drifts = forces
-    t = h.t
-    peaks = _peaks(t, base, ends, reaction, drifts, energy, h=h, ground_motions=options["ground_motions"],
-                   structure=structure)
-    if per_frame:
-        peaks["frames"] = {label: {key: _extreme(t, value) for key, value in b.items()}
-                           for label, b in per_frame.items()}
-    peaks |= {"overturning_point": list(options["point"])} | residual_peaks(
-        structure, sol, t, options["static_load"], options["load_samples"], options["storey_pairs"])
-    if footings is not None:
-        peaks["footings"] = footing_peaks(t, footings)
-    if getattr(structure, "rigid", None) is not None:               # analysis/rigid.py
-        peaks["rigid_contacts"] = rigid_summary(structure, contact_sol)
-    note = _linear_drift_note(structure, peaks)
-    if note:
-        peaks["linear_members_note"] = note
-    if energy is not None:
-        peaks["energy"] = energy_peaks(t, energy, options["energy_keys"])
-    if inelastic:
-        peaks |= inelastic.peaks(t, h, histories, None if energy is None else energy["unknown_work"])
-    return peaks
-
-
-def _reactions(variables, coords, structure, h, *, case, foundation, contact_sol, units, motions=()) -> tuple[dict, dict | None]:
-    """The reactions of a case (:func:`~unilateral.structure.forces.reactions`, the soil's contact forces
-    added as ground reactions at the footings, the rigid contacts' and blocks' of
-    :func:`~unilateral.analysis.rigid.rigid_ground_reactions`) and the footings' results
-    (:func:`~unilateral.analysis.footing_results.footing_histories`, None without footings on a soil),
-    with their variables ``support_reaction``, ``ground_reaction`` and ``footing_*`` of ``case`` put in
-    ``variables``."""
-    Fu = units.get("force", "")
-    moment_unit = f"{Fu} {units.get('length', '')}".strip()
-
-    def put(name, dims, array, long_name, unit):
-        _put(variables, name, dims, case, array, long_name, unit)
-
-    reaction, footings = F.reactions(structure, h), None
-    if getattr(structure, "rigid", None) is not None:
-        forces, at = rigid_ground_reactions(structure, h, contact_sol, motions_at(motions, h.t) if motions else [])
-        reaction["ground_elements"].update(forces)
-        reaction["at"].update(at)
-    if foundation is not None:
-        forces, at = foundation.ground_reactions(structure, contact_sol)
-        reaction["ground_elements"].update(forces)
-        reaction["at"].update(at)
-        footings = footing_histories(foundation, structure, h.u, contact_sol)
-        coords["foundation"] = list(footings)
-        for name, (values, long_name, unit) in footing_variables(footings, units).items():
-            put(name, ("time", "foundation"), values, long_name, unit)
-    if reaction["support"]:
-        coords["support"] = list(reaction["support"])
-        put("support_reaction", ("time", "support"), np.column_stack(list(reaction["support"].values())),
-            "force of the support on the structure at node.dof", f"{Fu} or {moment_unit}")
-    if reaction["ground_elements"]:
-        coords["ground_element"] = list(reaction["ground_elements"])
-        coords["force_component"] = ["fx", "fy", "mz"]
-        put("ground_reaction", ("time", "ground_element", "force_component"),
-            np.stack(list(reaction["ground_elements"].values()), axis=1),
-            "force of the ground on the structure through the element", f"{Fu} (fx, fy); {moment_unit} (mz)")
-    return reaction, footings
+def results_of_load(structure, model, cases, *, load, units, rule, point, storeys=None) -> dict:
+    """:func:`structure_results` of ``cases`` under ``load`` (a LoadHistory, array or callable): with the
+    load and ground-motion samples the runs used (:func:`load_samples_of`, :func:`ground_motion_samples`)
+    on the longest time axis of the cases, and the load's ``constant`` part as the static load."""
+    main = max(cases.values(), key=lambda sol: len(sol.t))        # the longest time axis
+    dt = main.stats.get("dt")
+    return structure_results(structure, model, cases, rule=rule, load_samples=load_samples_of(load, main.t, dt),
+                             ground_motions=ground_motion_samples(structure, load, main.t, dt), point=point,
+                             storey_pairs=storeys, units=units, static_load=getattr(load, "constant", None))
 
 
 def bilateral_modes(structure, model, peaks: dict, coords: dict, *, time_unit="", directions=("x", "y")):
@@ -483,21 +307,6 @@ def _frame_periods(structure, model, count=3) -> dict:
     return out
 
 
-def _frame_part(structure, foundation, sol):
-    """``(contact, full, frame)``: the load (N+1, n) of the contact forces of the footings on a soil
-    (``T c``, contact forces ``c = -psi``) or of the rigid contacts (``N v``) on the frame, or None;
-    the solution as solved; and the frame's own part of it, whose results are those of the frame
-    alone loaded by ``q + contact``."""
-    if foundation is not None:
-        from ..structure.foundation import structural_solution
-
-        return foundation.contact_load(structure, sol), sol, structural_solution(sol, foundation.first)
-    if getattr(structure, "rigid", None) is not None:
-        contact, frame = frame_solution(structure, sol)
-        return contact, sol, frame
-    return None, sol, sol
-
-
 def _energy_keys(structure) -> tuple:
     """:data:`ENERGY_KEYS` without the plastic and friction work of families the structure lacks."""
     kinds = set(unknown_kinds(structure).tolist()) if structure.m else set()
@@ -505,152 +314,3 @@ def _energy_keys(structure) -> tuple:
     moving = getattr(structure.natural.theta, "motions", None) is not None    # support motions: their work
     return tuple(key for key in ENERGY_KEYS if (key not in FAMILY_ENERGY or FAMILY_ENERGY[key] in kinds)
                  and (key != "geometric" or p_delta) and (key != "support_work" or moving))
-
-
-def element_end_forces(coords, structure, ends, components, steps=0) -> np.ndarray:
-    """The end forces ``ends`` (element name -> (N+1, c)) as one array (N+1, elements, c), with the
-    coordinates ``element``, ``element_kind`` and ``end_component`` (``components``) set in ``coords``
-    (2-D and 3-D frames alike)."""
-    names = list(ends)
-    coords["element"] = names
-    coords["element_kind"] = ("element", [_kind(structure, name) for name in names])
-    coords["end_component"] = list(components)
-    if not names:                       # a frame of rigid blocks only: no element
-        return np.zeros((steps, 0, len(components)))
-    return np.stack([ends[name] for name in names], axis=1)
-
-
-def _kind(structure, name):
-    for e in list(structure.elements) + list(structure.dashpots):
-        if e.name == name:
-            return e.kind
-    return ""
-
-
-def _extreme(t, y) -> dict:
-    i, j = int(np.argmax(y)), int(np.argmin(y))
-    return {"max": float(y[i]), "t_max": float(t[i]), "min": float(y[j]), "t_min": float(t[j])}
-
-
-def _abs_peak(t, y) -> dict:
-    i = int(np.argmax(np.abs(y)))
-    return {"value": float(y[i]), "t": float(t[i])}
-
-
-#: Storey drift ratio above which a model whose members cannot yield gets a note.
-LINEAR_DRIFT_LIMIT = 0.02
-
-
-def _linear_drift_note(structure, peaks: dict) -> str | None:
-    """A note when the members are linear (no yield unknown: no hinge, no yield link) and a storey's
-    peak drift ratio exceeds :data:`LINEAR_DRIFT_LIMIT`, else None."""
-    drifts = peaks.get("drift_ratio") or {}
-    if not drifts or any(u.kind == "yield" for _, u in structure.constraints):
-        return None
-    label, d = max(drifts.items(), key=lambda item: abs(item[1]["value"]))
-    if abs(d["value"]) <= LINEAR_DRIFT_LIMIT:
-        return None
-    return (f"the members do not yield in this model: drifts above {100 * LINEAR_DRIFT_LIMIT:g} % (here "
-            f"{100 * abs(d['value']):.3g} %, storey {label}) are those of elastic members, beyond what real members "
-            "carry elastically; add plastic hinges or yield links for an inelastic response")
-
-
-def _peaks(t, base, ends, reaction, drifts, energy, *, h, ground_motions, structure) -> dict:
-    """Peaks with their times, for summary.json."""
-    out = {key: _extreme(t, value) for key, value in base.items()}
-    out["end_forces"] = {name: {comp: _abs_peak(t, f[:, k]) for k, comp in enumerate(F.END_COMPONENTS)
-                                if np.any(f[:, k])} for name, f in ends.items()}
-    out["support_reactions"] = {label: _extreme(t, f) for label, f in reaction["support"].items()}
-    out["ground_reactions"] = {name: {c: _extreme(t, f[:, k]) for k, c in enumerate(("fx", "fy", "mz"))
-                                      if np.any(f[:, k])}
-                               for name, f in reaction["ground_elements"].items()}
-    if drifts:
-        out["drift_ratio"] = {label: _abs_peak(t, ratio) for label, (_, ratio) in drifts.items()}
-        out["residual_drift"] = _residual_drift(t, drifts)
-    if ground_motions:
-        out["absolute_acceleration"] = acceleration_peaks(structure, h, ground_motions)
-    if energy is not None:
-        out["energy"] = energy_peaks(t, energy)
-    return out
-
-
-def _put(variables, name, dims, case, array, long_name, unit=""):
-    """Add case ``case`` of the variable ``name`` to ``variables`` (name -> (dims, {case: array}, attrs))."""
-    entry = variables.setdefault(name, (dims, {}, {"long_name": long_name} | ({"units": unit} if unit else {})))
-    entry[1][case] = np.asarray(array, dtype=float)
-
-
-def acceleration_results(variables, coords, structure, h, ground_motions, *, case, unit=""):
-    """The accelerations of a case, 2-D or 3-D: ``acceleration`` (time, dof), the ``u''`` of the time
-    rule relative to the ground, and under ground motions ``absolute_acceleration`` (time, dof),
-    ``u'' + sum r_k a_g,k``, and ``ground_acceleration`` (time, excitation), each ``a_g,k`` (the
-    coordinate ``excitation``: ``"<k>:<direction>"``)."""
-    _put(variables, "acceleration", ("time", "dof"), case, h.uddot,
-         "acceleration relative to the ground (of the time rule)", unit)
-    if ground_motions:
-        motions = motions_at(ground_motions, h.t)
-        _put(variables, "absolute_acceleration", ("time", "dof"), case,
-             F.absolute_acceleration(structure, h, motions), "absolute acceleration u'' + r a_g", unit)
-        _put(variables, "ground_acceleration", ("time", "excitation"), case,
-             np.column_stack([a_g for _, a_g in motions]),
-             "ground acceleration a_g as the run used it (the record's hat-function averages over the steps, "
-             "those of the input work)", unit)
-        coords["excitation"] = [f"{k}:{d}" for k, (d, _) in enumerate(ground_motions)]
-
-
-def acceleration_peaks(structure, h, ground_motions, directions=("ux", "uy")) -> dict:
-    """The peak absolute acceleration (``value``, ``t``) of each free DOF with mass along ``directions``."""
-    acc = F.absolute_acceleration(structure, h, motions_at(ground_motions, h.t))
-    names = structure.dofs.names
-    return {names[k]: _abs_peak(h.t, acc[:, k]) for k in range(acc.shape[1])
-            if names[k].endswith(directions) and structure.M[k, k] > 0}
-
-
-def energy_results(variables, structure, h, load_samples, *, case, contact=None, keys=ENERGY_KEYS, unit="",
-                   rule=None, stats=None):
-    """The energy balance of a case (:func:`unilateral.analysis.energy.energy_balance`, 2-D or 3-D, paired
-    as the run's ``rule``), its terms ``keys`` added to ``variables`` as ``energy_<key>`` (time); returns
-    the energies.
-
-    ``contact`` (N+1, n): the footings' contact load ``T c`` on a frame on a soil medium (its work
-    went into the soil, counted in ``contact_dissipated``); ``stats``: the run's, for the energies of
-    rigid contacts (:func:`unilateral.analysis.rigid.add_rigid_energy`)."""
-    energy = energy_balance(structure, h, np.asarray(load_samples)[: len(h.t)], rule=rule, contact=contact)
-    if getattr(structure, "rigid", None) is not None:       # rigid contacts: analysis/rigid.py
-        from .rigid import add_rigid_energy
-
-        energy = add_rigid_energy(energy, structure, h.u, h.udot, stats or {})
-    for key in keys:
-        _put(variables, f"energy_{key}", ("time",), case, energy[key], f"energy: {key.replace('_', ' ')}",
-             "1" if key == "relative_error" else unit)
-    return energy
-
-
-def pairing_rule(sol, rule):
-    """The rule the energy balance of a run is paired with: the run's ``rule``, or None (the
-    trapezoidal pairing) for a run that did not step by a rule (``method="event"``: exact
-    integration between events)."""
-    return None if sol.stats.get("method") == "event" else rule
-
-
-def energy_peaks(t, energy, keys=()) -> dict:
-    """The ``energy`` entry of a case's peaks: the largest relative error and its time, the input work,
-    the damping and contact dissipation and the plastic and friction work among ``keys`` at the end,
-    the largest kinetic energy."""
-    k = int(np.argmax(energy["relative_error"]))
-    out = {"max_relative_error": energy["max_relative_error"], "t_max_relative_error": float(t[k]),
-           "input_work": float(energy["input_work"][-1]),
-           "damping_dissipated": float(energy["damping_dissipated"][-1]),
-           "contact_dissipated": float(energy["contact_dissipated"][-1]),
-           "kinetic_max": float(energy["kinetic"].max()),
-           "numerical_dissipation": float(energy["numerical_dissipation"][-1]),
-           "numerical_share": energy["numerical_share"], "rule_identity": bool(energy["exact"])}
-    return out | {key: float(energy[key][-1]) for key in (*FAMILY_ENERGY, "geometric", "support_work") if key in keys}
-
-
-def _residual_drift(t, drifts) -> dict:
-    """The storey drifts at the last step: the largest (``storey``, ``drift``, ``ratio``, ``t``) and
-    every storey's (``storeys``: label -> ``drift``, ``ratio``)."""
-    storeys = {label: {"drift": float(d[-1]), "ratio": float(r[-1])} for label, (d, r) in drifts.items()}
-    label = max(storeys, key=lambda s: abs(storeys[s]["ratio"]))
-    return {"storey": label, **storeys[label], "t": float(t[-1]), "storeys": storeys}
