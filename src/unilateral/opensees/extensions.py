@@ -85,13 +85,13 @@ class ExtensionCommands:
 
     def eleForce(self, tag, dof=-1):
         """``eleForce(tag, dof)``; an extension's: see :func:`.extension_results.end_forces`."""
-        if _is_extension(self.domain, tag):
+        if self.domain.extensions and _is_extension(self.domain, tag):
             return pick(end_forces(self.analysis, int(tag)), dof, f"eleForce({tag!r})")
         return self._base_eleForce(tag, dof)
 
     def eleResponse(self, tag, *args):
         """``eleResponse(tag, ...)``; an extension's: see :func:`.extension_results.response`."""
-        if _is_extension(self.domain, tag):
+        if self.domain.extensions and _is_extension(self.domain, tag):
             return response(self.analysis, int(tag), *args)
         return self._base_eleResponse(tag, *args)
 
