@@ -288,14 +288,18 @@ def box_tilts(structure, sol, name) -> tuple:
 
 def box_energy(structure, sol, name) -> np.ndarray:
     """Mechanical energy (N+1,) of the box ``name`` in the linearised model, force length:
-    ``m uz'^2 / 2 + (Jx + m h^2) rx'^2 / 2 + (Jy + m h^2) ry'^2 / 2 - W h (rx^2 + ry^2) / 2 + W uz``."""
+    ``m |v_c|^2 / 2 + (Jx rx'^2 + Jy ry'^2 + Jz rz'^2) / 2 - W h (rx^2 + ry^2) / 2 + W uz``, with the
+    centre's velocity ``v_c = (ux' + h ry', uy' - h rx', uz')`` (``ux``, ``uy``, ``rz`` of the base
+    0 where held: a box without friction)."""
     box = structure.rigid.blocks[name]
     T = structure.dofs.T
-    rows = [T[structure.dofs.full_index(box.base, dof)] for dof in ("uz", "rx", "ry")]
-    (uz, rx, ry), (vz, wx, wy) = ([np.asarray(r @ x.T).ravel() for r in rows] for x in (sol.u, sol.udot))
+    rows = [T[structure.dofs.full_index(box.base, dof)] for dof in el3.DOF_NAMES]
+    (ux, uy, uz, rx, ry, rz), (vx, vy, vz, wx, wy, wz) = ([np.asarray(r @ x.T).ravel() for r in rows]
+                                                          for x in (sol.u, sol.udot))
     m, h, W = box.mass, box.h, box.W
-    return (0.5 * m * vz ** 2 + 0.5 * (box.Jx + m * h * h) * wx ** 2 + 0.5 * (box.Jy + m * h * h) * wy ** 2
-            - 0.5 * W * h * (rx ** 2 + ry ** 2) + W * uz)
+    kinetic = 0.5 * m * ((vx + h * wy) ** 2 + (vy - h * wx) ** 2 + vz ** 2) + 0.5 * (
+        box.Jx * wx ** 2 + box.Jy * wy ** 2 + box.Jz * wz ** 2)
+    return kinetic - 0.5 * W * h * (rx ** 2 + ry ** 2) + W * uz
 
 
 def box_results(structure, sol, name, corners) -> dict:
