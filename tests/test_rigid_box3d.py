@@ -214,7 +214,9 @@ def test_refusals():
                         (dict(width_y=-1.0), "width_y=-1.0"), (dict(height=0.0), "height=0.0"),
                         (dict(restitution=1.5), r"restitution=1.5 must lie in \[0, 1\]"),
                         (dict(restitution=-0.1), "restitution=-0.1"),
-                        (dict(mu=0.5), "friction on a rigid contact is not available in 3-D")]:
+                        (dict(mu=-0.5), "mu=-0.5 must be finite and >= 0"),
+                        (dict(mu=0.5, facets=3), "facets=3 is not valid"),
+                        (dict(facets=8), "facets=8 is a friction parameter")]:
         args = dict(width_x=0.4, width_y=0.4, height=1.2, mass=1.0) | kw
         with pytest.raises(ValueError, match=message):
             fr.rigid_box("B", "c", **args)
@@ -222,8 +224,8 @@ def test_refusals():
     fr.mass(1, 1.0)
     with pytest.raises(ValueError, match="restitution=2"):
         fr.contact("k", 1, restitution=2)
-    with pytest.raises(ValueError, match="not available in 3-D"):
-        fr.contact("k", 1, mu=0.3)
+    with pytest.raises(ValueError, match="mu=-0.3 must be finite and >= 0"):
+        fr.contact("k", 1, mu=-0.3)
     with pytest.raises(ValueError, match="not a normal"):
         fr.contact("k", 1, direction="rx")
     fr2 = Frame3D()
@@ -315,9 +317,10 @@ BOX = '[[rigid_blocks]]\nname = "B"\nnode = 1\nwidth = 0.4\nwidth_y = 0.6\nheigh
 @pytest.mark.parametrize("table, message", [
     (BOX.replace("width_y = 0.6", "width_y = 0.0"), "rigid_blocks[0].width_y"),
     (BOX + "restitution = 1.5\n", "rigid_blocks[0].restitution"),
-    (BOX + "mu = 0.3\n", "rigid_blocks[0]: rigid_box 'B': mu=0.3: friction on a rigid contact is not available in 3-D"),
+    (BOX + "mu = -0.3\n", "rigid_blocks[0].mu"),
+    (BOX + "mu = 0.3\nfacets = 5\n", "rigid_blocks[0]: rigid_box 'B': facets=5 is not valid"),
     (BOX.replace("width_y = 0.6\n", ""), "rigid_blocks[0].width_y"),
-    ('[[contacts]]\nname = "c"\nnode = 1\nmu = 0.3\n', "contacts[0]: contact 'c': mu=0.3"),
+    ('[[contacts]]\nname = "c"\nnode = 1\nfacets = 8\n', "contacts[0]: contact 'c': facets=8 is a friction"),
     ('[[contacts]]\nname = "c"\nnode = 9\n', "no node 9"),
 ])
 def test_model_file_bad_3d_rigid_tables_are_named(tmp_path, table, message):

@@ -177,7 +177,8 @@ def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
     so with no moment about a point there). A block on a frame's floor has none: its forces reach
     the ground through the frame's elements (their supports' reactions). Each (N+1, 3) ``(fx, fy, mz)`` in 2-D, (N+1, 6) ``(fx, fy, fz, mx,
     my, mz)`` in 3-D; ``at``: the node of each. ``h``: the frame's histories (its accelerations of
-    the rule, the mean of each step for ``moreau-jean``); ``motions``: ``[(direction, a_g (N+1,))]``
+    the rule, the mean of each step for ``moreau-jean``; a 3-D box's ``mz`` is ``Jz rz''``, the
+    torque of its corners' friction); ``motions``: ``[(direction, a_g (N+1,))]``
     the ground's accelerations at its times, read as ``h``'s (:func:`~unilateral.analysis.results.step_means`)."""
     names = tuple(structure.dofs.dof_names)
     axes = tuple(d for d in ("ux", "uy", "uz") if d in names)
@@ -204,6 +205,8 @@ def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
         f = np.zeros((steps, len(names)))
         for b in stack_of(blocks, block):
             f[:, :horizontal] += b.mass * (accelerations[:, nodes.index(b.node), :horizontal] + ground[:, :horizontal])
+        if len(names) == 6:                          # a box that twists on its corners' friction: Jz rz''
+            f[:, 5] = block.Jz * accelerations[:, nodes.index(block.node), 5]
         forces[f"{name}.base"], at[f"{name}.base"] = f, block.base
     return forces, at
 

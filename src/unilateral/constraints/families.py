@@ -131,14 +131,19 @@ class RigidContact(SoilContact):
 
     ``restitution`` (k,) holds Newton's coefficient ``e`` of each contact (0 <= e <= 1; a scalar
     for all), used by the velocity-level impact law of ``method="moreau-jean"``; ``mu`` (k,) the
-    Coulomb coefficients (0: no friction) and ``tangent`` (n, k) the contacts' tangential
-    directions on the DOFs, for the friction of ``method="moreau-jean"`` (the only method that
-    takes it).
+    Coulomb coefficients (0: no friction) and ``tangent`` the contacts' tangential directions on the
+    DOFs, for the friction of ``method="moreau-jean"`` (the only method that takes it): (n, k), one
+    tangent per contact (a 2-D contact: ``|T| <= mu N`` on that line), or (n, k, 2), the axes
+    ``t1``, ``t2`` of each contact's tangent plane (a 3-D contact), whose friction cone is the
+    polygon of ``facets`` (k,) facets (even, >= 4) circumscribing Coulomb's circle ``|T| <= mu N``:
+    facet ``j`` of the unit normal ``d_j = (cos th_j, sin th_j)`` on ``(t1, t2)``, ``th_j = 2 pi j /
+    facets``, keeps ``d_j . T <= mu N`` (:func:`friction_polygon`; the convention of the 3-D
+    frictional contacts and footings, :func:`unilateral.structure.elements3d.facet_directions`).
     """
 
     impact_law = True
 
-    def __init__(self, indices, *, restitution=0.0, mu=0.0, tangent=None, name=None):
+    def __init__(self, indices, *, restitution=0.0, mu=0.0, tangent=None, facets=None, name=None):
         super().__init__(indices, name=name)
         e = np.broadcast_to(np.asarray(restitution, dtype=float), self.indices.shape).copy()
         if not np.all((e >= 0) & (e <= 1)):
@@ -147,7 +152,51 @@ class RigidContact(SoilContact):
         self.mu = np.broadcast_to(np.asarray(mu, dtype=float), self.indices.shape).copy()
         if not np.all(self.mu >= 0) or (self.mu.any() and tangent is None):
             raise ValueError(f"mu={mu!r} must be >= 0, and friction needs the contacts' tangent directions")
-        self.tangent = tangent
+        self.tangent = None if tangent is None else np.asarray(tangent, dtype=float)
+        k = self.indices.size
+        if self.tangent is not None and (self.tangent.ndim not in (2, 3) or self.tangent.shape[1] != k
+                                         or (self.tangent.ndim == 3 and self.tangent.shape[2] != 2)):
+            raise ValueError(f"tangent has the shape {self.tangent.shape}; give (n, {k}) (one tangent per contact) "
+                             f"or (n, {k}, 2) (the axes t1, t2 of each contact's tangent plane)")
+        plane = self.tangent is not None and self.tangent.ndim == 3
+        if plane:
+            self.facets = np.broadcast_to(np.asarray(4 if facets is None else facets), (k,)).copy()
+            bad = [f for f in self.facets.tolist() if isinstance(f, bool) or not isinstance(f, int) or f < 4 or f % 2]
+            if bad:
+                raise ValueError(f"facets={facets!r} is not valid; give the facets of the friction polygon of each "
+                                 "contact, an even int >= 4 (opposite facets in pairs; 4: the pyramid of t1, t2)")
+        elif facets is not None:
+            raise ValueError(f"facets={facets!r} is for contacts with a tangent plane (tangent of shape (n, k, 2))")
+        else:
+            self.facets = np.full(k, 2, dtype=np.int64)
+
+    def tangent_axes(self, j) -> np.ndarray:
+        """The tangent axes (n, r) of the contact at position ``j`` of the family: r = 1 (2-D) or 2."""
+        return self.tangent[:, j][:, None] if self.tangent.ndim == 2 else self.tangent[:, j, :]
+
+
+def friction_polygon(facets: int) -> tuple[np.ndarray, np.ndarray]:
+    """The friction cone of a rigid contact on its tangent axes, for ``mu N = 1``:
+    ``(normals (F, r), generators (F, r))``.
+
+    ``facets = 2`` (a 2-D contact, ``r = 1``): the segment ``|T| <= 1``, normals and generators
+    ``+1``, ``-1``. ``facets >= 4`` (even; ``r = 2``): the polygon circumscribing the unit circle,
+    facet ``j`` of the outward normal ``d_j = (cos th_j, sin th_j)``, ``th_j = 2 pi j / facets``,
+    at distance 1 (``d_j . T <= 1``), its vertices the generators ``sec(pi/F) (cos(th_j + pi/F),
+    sin(th_j + pi/F))``. Components within 1e-12 of 0 or +-1 are made exact (``facets=4``: the
+    facets ``+-t1``, ``+-t2`` and the vertices ``(+-1, +-1)``).
+    """
+    if facets == 2:
+        unit = np.array([[1.0], [-1.0]])
+        return unit, unit.copy()
+    th = 2.0 * np.pi * np.arange(facets) / facets
+    out = []
+    for angle, radius in ((th, 1.0), (th + np.pi / facets, 1.0 / np.cos(np.pi / facets))):
+        d = radius * np.column_stack([np.cos(angle), np.sin(angle)])
+        for exact in (0.0, 1.0, -1.0):
+            d[np.abs(d - exact) < 1e-12] = exact
+        out.append(d)
+    return out[0], out[1]
 
 
 class SoilShear(ConstraintFamily):

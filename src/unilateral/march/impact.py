@@ -49,6 +49,20 @@ terms: the external work, the damping, the energy lost at impacts ``-P^T N^T v_b
 persistent contact; ``(1 - e^2)`` times the normal kinetic energy ``(N^T v-)^2 / (2 N^T X)`` at a
 located impact on one contact) and the numerical dissipation (zero for ``th = 1/2``), so that the
 balance closes to round-off (:mod:`unilateral.analysis.rigid`).
+
+**Friction** (contacts with ``mu > 0``): Coulomb's law on the tangential impulses, in the same
+velocity-level LCP. The friction cone of a contact is a polygon on its tangent axes (one axis
+``t`` in 2-D: the segment ``|Pt| <= mu P``; ``t1``, ``t2`` in 3-D: the polygon of ``facets``
+facets circumscribing Coulomb's circle, :func:`~unilateral.constraints.families.friction_polygon`)
+spanned by its generators ``g_k`` (the polygon's vertices): ``Pt = sum_k beta_k g_k``,
+``beta >= 0``, with the slip rate ``lam`` of the contact (Stewart and Trinkle's form)
+
+    g_k^T T^T v1 + lam >= 0  _|_  beta_k >= 0,        mu P - sum_k beta_k >= 0  _|_  lam >= 0,
+
+the principle of maximal dissipation over the polygon: a contact sticks (``T^T v1 = 0``) with
+``Pt`` in it, or slides with ``Pt`` on its boundary where the slip ``T^T v1`` is in the normal
+cone. Lemke's method solves this LCP (copositive: it terminates with a solution). The friction
+work ``-Pt^T T^T v_th`` of each step (and at impacts, in their loss) joins the balance.
 """
 
 from __future__ import annotations
@@ -77,8 +91,10 @@ class ImpactSystem:
     g : callable ``g(t) -> (m,)`` (opening ``N^T u - g``);  q : callable ``q(t) -> (n,)`` load
     X : (n, m) the velocity jump of a unit impulse on each contact (``M^-1 N``, massless DOFs
         condensed statically)
-    T : (n, m) the tangents of the contacts with friction (zero columns without), or None
+    T : (n, m) one tangent per contact (zero columns without friction), or None; replaced by the
+        cones' tangent axes ``cones.T`` (n, R)
     mu : (m,) Coulomb's coefficients (0: no friction)
+    cones : FrictionCones of the contacts with friction, or None (from ``T``: one tangent each)
     """
 
     M: np.ndarray
@@ -91,16 +107,75 @@ class ImpactSystem:
     X: np.ndarray = None
     T: np.ndarray = None
     mu: np.ndarray = None
+    cones: FrictionCones = None
 
     def __post_init__(self):
+        n, m = self.N.shape
         if self.X is None:
             self.X = inertia_solve(self.M, self.K, self.N)
         if self.mu is None or not np.any(self.mu > 0):
-            self.mu, self.T = np.zeros(self.N.shape[1]), np.zeros_like(self.N)
-        self.XT = inertia_solve(self.M, self.K, self.T) if self.mu.any() else np.zeros_like(self.N)
+            self.mu, self.cones = np.zeros(m), None
+        if self.cones is None:
+            self.cones = FrictionCones.build(n, [(j, self.T[:, j:j + 1], 2) for j in np.flatnonzero(self.mu > 0)])
+        self.T, self.D = self.cones.T, self.cones.T @ self.cones.G
+        self.XD = inertia_solve(self.M, self.K, self.D) if self.D.shape[1] else np.zeros((n, 0))
 
     def opening(self, u, t) -> np.ndarray:
         return self.N.T @ u - self.g(t)
+
+
+@dataclasses.dataclass
+class FrictionCones:
+    """The friction cones of the contacts with friction on the DOFs (see the module).
+
+    Attributes
+    ----------
+    T : (n, R) the contacts' tangent axes (one per 2-D contact, ``t1``, ``t2`` per 3-D contact)
+    axis_of : (R,) the contact (index in ``0..m-1``) of each axis
+    G : (R, L) the generators of the cones (their vertices for ``mu P = 1``) on the axes
+    of : (L,) the contact of each generator
+    normals : (Q, R) the unit outward normals of the cones' facets (at distance ``mu P``)
+    normal_of : (Q,) the contact of each facet
+    """
+
+    T: np.ndarray
+    axis_of: np.ndarray
+    G: np.ndarray
+    of: np.ndarray
+    normals: np.ndarray
+    normal_of: np.ndarray
+
+    @classmethod
+    def build(cls, n, contacts) -> FrictionCones:
+        """The cones of ``contacts``, a list of ``(j, axes (n, r), facets)`` (contact ``j``, its
+        tangent axes, the facets of its polygon: 2 for one axis); the generators ordered by their
+        number within the cone, then by contact (2-D: every ``+t``, then every ``-t``)."""
+        from ..constraints.families import friction_polygon
+
+        contacts = sorted(contacts, key=lambda c: c[0])
+        T = np.column_stack([c[1] for c in contacts]) if contacts else np.zeros((n, 0))
+        axis_of = np.concatenate([[c[0]] * c[1].shape[1] for c in contacts]).astype(int) if contacts else \
+            np.zeros(0, dtype=int)
+        polygons = [friction_polygon(int(c[2])) for c in contacts]
+        start = np.cumsum([0] + [c[1].shape[1] for c in contacts])
+        order = sorted((k, i) for i, (_, gens) in enumerate(polygons) for k in range(len(gens)))
+        G = np.zeros((T.shape[1], len(order)))
+        for col, (k, i) in enumerate(order):
+            G[start[i]:start[i + 1], col] = polygons[i][1][k]
+        normals = np.zeros((sum(len(p[0]) for p in polygons), T.shape[1]))
+        rows = np.cumsum([0] + [len(p[0]) for p in polygons])
+        for i, (d, _) in enumerate(polygons):
+            normals[rows[i]:rows[i + 1], start[i]:start[i + 1]] = d
+        normal_of = np.concatenate([[c[0]] * len(p[0]) for c, p in zip(contacts, polygons)]).astype(int) \
+            if contacts else np.zeros(0, dtype=int)
+        of = np.array([contacts[i][0] for _, i in order], dtype=int)
+        return cls(T=T, axis_of=axis_of, G=G, of=of, normals=normals, normal_of=normal_of)
+
+    def outside(self, Pt, P, mu, rtol=1e-9) -> bool:
+        """Whether a tangential force (or impulse) ``Pt`` (R,) on the axes lies outside the cone of
+        its normal force ``P`` (m,): ``d . Pt > mu P (1 + rtol)`` on a facet."""
+        bound = mu[self.normal_of] * P[self.normal_of]
+        return bool(np.any(self.normals @ Pt > bound * (1.0 + rtol) + 1e-300))
 
 
 def inertia_solve(M, K, R) -> np.ndarray:
@@ -188,7 +263,7 @@ class MoreauJeanMarch:
         if lu is None:
             s, th = self.s, self.theta
             W = np.linalg.inv(s.M + th * h * s.C + th * th * h * h * s.K)     # n is small: one product a step
-            lu = (W, W @ s.N, W @ s.T)
+            lu = (W, W @ s.N, W @ s.D)
             if h == self.dt:
                 self._lu[h] = lu
         return lu
@@ -197,46 +272,46 @@ class MoreauJeanMarch:
         """``(u1, v1, P (m,), work (4,), message)`` of a theta step of length ``h`` from ``(u, v)``
         at ``t`` with Newton's law on the contacts ``active`` (indices)."""
         s, th = self.s, self.theta
-        W, WN, WT = self._factor(h)
+        W, WN, WD = self._factor(h)
         q = np.asarray(s.q(t + th * h), dtype=float)
         v1 = W @ (s.M @ v - h * (1 - th) * (s.C @ v) - h * (s.K @ (u + th * (1 - th) * h * v)) + h * q)
-        P, Pt, message = np.zeros(s.N.shape[1]), np.zeros(s.N.shape[1]), ""
+        P, Pt, message = np.zeros(s.N.shape[1]), np.zeros(s.T.shape[1]), ""
         if active.size:
-            v1, P, Pt, message = self._contacts(v1, WN, WT, active, s.e[active] * (s.N[:, active].T @ v))
+            v1, P, Pt, message = self._contacts(v1, WN, WD, active, s.e[active] * (s.N[:, active].T @ v))
         u1 = u + h * ((1 - th) * v + th * v1)
         vth, du, dv = (1 - th) * v + th * v1, u1 - u, v1 - v
         work = np.array([h * q @ vth, h * vth @ (s.C @ vth), -P @ (s.N.T @ vth),
                          (th - 0.5) * (dv @ (s.M @ dv) + du @ (s.K @ du)), -Pt @ (s.T.T @ vth)])
         return u1, v1, P, work, message
 
-    def _contacts(self, v, GN, GT, active, shift):
-        """``(v1, P (m,), Pt (m,), message)``: the impulses of the contacts ``active`` from the free
-        velocity ``v``, ``GN``, ``GT`` (n, m) the velocity responses of unit normal and tangential
-        impulses: Newton's law ``U = N^T v1 + shift >= 0`` complementary to ``P >= 0``, and on the
-        contacts with friction Coulomb's law, ``|Pt| <= mu P``, slip opposite to ``Pt`` (the
-        velocity-level LCP with ``Pt = Pt+ - Pt-`` and the slip rate ``lam``; Lemke's method)."""
+    def _contacts(self, v, GN, GD, active, shift):
+        """``(v1, P (m,), Pt (R,), message)``: the impulses of the contacts ``active`` from the free
+        velocity ``v``, ``GN`` (n, m), ``GD`` (n, L) the velocity responses of unit normal impulses
+        and of unit impulses along the cones' generators: Newton's law ``U = N^T v1 + shift >= 0``
+        complementary to ``P >= 0``, and on the contacts with friction Coulomb's law in its
+        polygonal cone (the LCP of ``P``, the generators' ``beta`` and the slip rates ``lam``, see
+        the module; Lemke's method); ``Pt`` the tangential impulses on the axes ``T``."""
         s, m = self.s, self.s.N.shape[1]
-        P, Pt = np.zeros(m), np.zeros(m)
+        P, Pt = np.zeros(m), np.zeros(s.T.shape[1])
         NA = s.N[:, active]
         F = active[s.mu[active] > 0]
         if F.size == 0:
             p, message = self._lcp(NA.T @ GN[:, active], NA.T @ v + shift)
             P[active] = p
             return v + GN[:, active] @ p, P, Pt, message
-        from ..lcp import get_lcp_solver
-
-        TF, k, f = s.T[:, F], active.size, F.size
-        Ann, Ant = NA.T @ GN[:, active], NA.T @ GT[:, F]
-        Atn, Att = TF.T @ GN[:, active], TF.T @ GT[:, F]
-        E = (active[None, :] == F[:, None]).astype(float) * s.mu[F][:, None]       # mu P_n of F
-        I, Z = np.eye(f), np.zeros((f, f))
-        A = np.block([[Ann, Ant, -Ant, np.zeros((k, f))], [Atn, Att, -Att, I], [-Atn, -Att, Att, I], [E, -I, -I, Z]])
-        bt = TF.T @ v
-        res = get_lcp_solver("lemke").solve(A, np.concatenate([NA.T @ v + shift, bt, -bt, np.zeros(f)]))
+        gens = np.flatnonzero(np.isin(s.cones.of, F))
+        DF, k, L, f = s.D[:, gens], active.size, gens.size, F.size
+        Eg = (s.cones.of[gens][:, None] == F[None, :]).astype(float)                # generator of contact
+        Emu = (active[None, :] == F[:, None]).astype(float) * s.mu[F][:, None]       # mu P_n of F
+        A = np.block([[NA.T @ GN[:, active], NA.T @ GD[:, gens], np.zeros((k, f))],
+                      [DF.T @ GN[:, active], DF.T @ GD[:, gens], Eg], [Emu, -Eg.T, np.zeros((f, f))]])
+        res = friction_lcp(A, np.concatenate([NA.T @ v + shift, DF.T @ v, np.zeros(f)]))
         self.log.iterations += res.iterations
         self.log.max_error = max(self.log.max_error, res.error)
-        P[active], Pt[F] = res.v[:k], res.v[k:k + f] - res.v[k + f:k + 2 * f]
-        return v + GN[:, active] @ P[active] + GT[:, F] @ Pt[F], P, Pt, "" if res.success else res.message
+        x = spread_friction(NA, DF, Eg, Emu, res.v, res.w) if res.success else res.v
+        P[active], beta = x[:k], x[k:k + L]
+        Pt = s.cones.G[:, gens] @ beta
+        return v + GN[:, active] @ P[active] + GD[:, gens] @ beta, P, Pt, "" if res.success else res.message
 
     def impact(self, u, v, t, touching):
         """``(v+, P (m,), loss, message)``: the jump of the velocity at an impact at ``t`` on the
@@ -250,7 +325,7 @@ class MoreauJeanMarch:
         if np.any(e > 0):
             a = NA.T @ inertia_solve(s.M, s.K, (np.asarray(s.q(t), dtype=float) - s.K @ u - s.C @ v)[:, None])[:, 0]
             e[(U < 0) & (a < 0) & (2.0 * e * np.abs(U) < -a * self.dt)] = 0.0
-        v1, P, Pt, message = self._contacts(v, s.X, s.XT, touching, e * U)
+        v1, P, Pt, message = self._contacts(v, s.X, s.XD, touching, e * U)
         p = P[touching]
         loss = -0.5 * (P @ (s.N.T @ (v + v1)) + Pt @ (s.T.T @ (v + v1)))
         self.events.append({"time": float(t), "contacts": [int(j) for j in touching[p > 0]],
@@ -369,6 +444,42 @@ class MoreauJeanMarch:
         return self.done
 
 
+#: Relative sizes of the perturbations of ``b`` with which :func:`friction_lcp` retries Lemke's method.
+PERTURBATIONS = (1e-14, 1e-13, 1e-12, 1e-11, 1e-10)
+
+
+def friction_lcp(A, b):
+    """The :class:`~unilateral.lcp.LCPResult` of the friction LCP ``w = A x + b`` by Lemke's method.
+
+    The LCP of a box on four corners is degenerate: its four corners' normals and their cones'
+    generators span three DOFs each (a singular Delassus block) and the symmetric corners tie in
+    the ratio tests, where round-off may lead Lemke's method onto a secondary ray. Then it is
+    retried on ``b`` perturbed by a fixed pseudo-random vector of :data:`PERTURBATIONS` times
+    ``1 + max |b|``, and the complementary basis it ends on is solved with ``b`` itself: the
+    solution kept if its error (:func:`~unilateral.lcp.lcp_error`) is within Lemke's ``tol``."""
+    from ..lcp import LCPResult, get_lcp_solver, lcp_error
+    from ..lcp.base import PrincipalSystems
+
+    lemke = get_lcp_solver("lemke")
+    res = lemke.solve(A, b)
+    if res.success:
+        return res
+    pivots, scale = res.iterations, 1.0 + float(np.max(np.abs(b), initial=0.0))
+    noise = np.random.default_rng(20240611).uniform(0.5, 1.0, b.size)
+    for size in PERTURBATIONS:
+        trial = lemke.solve(A, b + size * scale * noise)
+        pivots += trial.iterations
+        if not trial.success:
+            continue
+        x = PrincipalSystems(A, b).solve(trial.active)
+        x[(x < 0) & (x >= -lemke.tol * scale)] = 0.0
+        w = A @ x + b
+        error = lcp_error(x, w, b)
+        if error <= lemke.tol and x.min() >= 0.0:
+            return LCPResult(x, w, trial.active, pivots, error, True, f"Lemke on b perturbed by {size:g}")
+    return res
+
+
 def spread(A, b, p) -> np.ndarray:
     """The least-norm impulses (or forces) ``p' >= 0`` of the LCP ``w = A p + b`` with the same ``w``
     as its solution ``p`` (k,), where ``A`` (k, k; symmetric positive semidefinite) is singular on the
@@ -387,6 +498,42 @@ def spread(A, b, p) -> np.ndarray:
         return p
     out = np.zeros_like(p)
     out[S] = np.maximum(x, 0.0)
+    return out
+
+
+def spread_friction(NA, DF, Eg, mu, x, w) -> np.ndarray:
+    """The least-norm solution ``x' = (P', beta', lam)`` of the friction LCP with the same normal and
+    tangential impulses on the DOFs as its solution ``x = (P, beta, lam)``, as :func:`spread` does
+    without friction: ``NA P' = NA P``, ``DF beta' = DF beta`` on the contacts and generators that
+    close (``w = 0``), ``sum beta' = mu P'`` on the contacts that slide (``lam > 0``), taken where it
+    is admissible (``x' >= 0``, ``sum beta' <= mu P'`` on those that stick) and not unique (a box's
+    four corners: ``W / 4`` on each corner of a box at rest or sliding); ``x`` otherwise.
+
+    ``NA`` (n, k), ``DF`` (n, L) the normals and the generators on the DOFs, ``Eg`` (L, f) the
+    contact of each generator, ``mu`` (f, k) ``mu`` on the position of each contact with friction
+    among the ``k`` (the LCP's block), ``x``, ``w`` (k + L + f,) the LCP's solution."""
+    n, k, L = NA.shape[0], NA.shape[1], DF.shape[1]
+    P, beta, lam = x[:k], x[k:k + L], x[k + L:]
+    tol = 1e-12 * (1.0 + float(np.max(np.abs(w), initial=0.0)))
+    Sn, Sg = np.flatnonzero(w[:k] <= tol), np.flatnonzero(w[k:k + L] <= tol)
+    slide = lam > 0
+    E = np.zeros((2 * n + mu.shape[0], Sn.size + Sg.size))
+    E[:n, :Sn.size], E[n:2 * n, Sn.size:] = NA[:, Sn], DF[:, Sg]
+    E[2 * n:, :Sn.size], E[2 * n:, Sn.size:] = -mu[:, Sn], Eg[Sg].T          # sum beta - mu P per contact
+    E[2 * n:][~slide] = 0.0                          # sticking contacts: an inequality, checked below
+    rhs = np.concatenate([NA @ P, DF @ beta, np.zeros(mu.shape[0])])
+    y, _, rank, _ = np.linalg.lstsq(E, rhs, rcond=1e-10)
+    if rank == E.shape[1]:
+        return x
+    out = x.copy()
+    out[:k], out[k:k + L] = 0.0, 0.0
+    out[Sn], out[k + Sg] = y[:Sn.size], y[Sn.size:]
+    P1, beta1 = out[:k], out[k:k + L]
+    small = 1e-12 * (1.0 + float(np.abs(x).max()))
+    if (np.abs(E @ y - rhs).max() > small or out[:k + L].min() < -small
+            or np.any(Eg.T @ beta1 - mu @ P1 > small)):
+        return x
+    out[:k + L] = np.maximum(out[:k + L], 0.0)
     return out
 
 
@@ -410,12 +557,12 @@ def system_of(model, load, dt) -> ImpactSystem:
     """The :class:`ImpactSystem` of a matrix ``model`` with rigid contacts only and a ``load``
     (None, a callable ``q(t)`` such as a LoadHistory, or an array (N+1, n) at ``t_k = k dt``,
     interpolated linearly); the imposed-strain load ``model.q_imposed(t)`` is added."""
-    e, mu, T = np.zeros(model.m), np.zeros(model.m), np.zeros((model.n, model.m))
+    e, mu, cones = np.zeros(model.m), np.zeros(model.m), []
     for family in model.families:
         if family.impact_law:
             e[family.indices], mu[family.indices] = family.restitution, family.mu
-            if family.tangent is not None:
-                T[:, family.indices] = family.tangent
+            cones += [(int(j), family.tangent_axes(p), int(family.facets[p]))
+                      for p, j in enumerate(family.indices) if family.mu[p] > 0]
     if load is None:
         q = model.q_imposed
     elif callable(load):
@@ -425,7 +572,8 @@ def system_of(model, load, dt) -> ImpactSystem:
         times = np.arange(table.shape[0]) * dt
         q = lambda t: np.array([np.interp(t, times, c) for c in table.T]) + model.q_imposed(t)
     M, K = dense(model.M), dense(model.K)
-    return ImpactSystem(M=M, K=K, C=dense(model.damping()), N=dense(model.F), e=e, g=model.g, q=q, T=T, mu=mu)
+    return ImpactSystem(M=M, K=K, C=dense(model.damping()), N=dense(model.F), e=e, g=model.g, q=q, mu=mu,
+                        cones=FrictionCones.build(model.n, cones))
 
 
 def moreau_jean(model, load, *, dt, t_end, u0, udot0=None, e=None, theta=0.5, locate=True):

@@ -213,7 +213,8 @@ def _held_static(system, n):
     s = system
     A = np.flatnonzero(s.opening(np.zeros(n), 0.0) <= 0.0)
     F = A[s.mu[A] > 0]                              # with friction: held tangentially too (sticking)
-    NA = np.hstack([s.N[:, A], s.T[:, F]])
+    axes = np.flatnonzero(np.isin(s.cones.axis_of, F))
+    NA = np.hstack([s.N[:, A], s.T[:, axes]])
     Z = sla.null_space(NA.T) if A.size else np.eye(n)
     if Z.shape[1] and np.linalg.eigvalsh(Z.T @ s.K @ Z).min() <= 0:
         return None, None, ("K is not definite (a free or rocking body) and the rigid contacts that touch at u = 0 "
@@ -221,13 +222,16 @@ def _held_static(system, n):
                             "{'u0': ..., 'udot0': ...}")
     k = NA.shape[1]
     saddle = np.block([[s.K, -NA], [NA.T, np.zeros((k, k))]])
-    rhs = np.concatenate([np.asarray(s.q(0.0), dtype=float), s.g(0.0)[A], np.zeros(F.size)])
+    rhs = np.concatenate([np.asarray(s.q(0.0), dtype=float), s.g(0.0)[A], np.zeros(axes.size)])
     if k and np.linalg.matrix_rank(NA) < k:            # redundant held rows (two corners' tangents, a 3-D box's
         x = np.linalg.lstsq(saddle, rhs, rcond=None)[0]     # four corners on uz, rx, ry): the least-norm forces
     else:
         x = np.linalg.solve(saddle, rhs)
-    lam, shear = x[n:n + A.size], x[n + A.size:]
-    if np.any(np.abs(shear) > s.mu[F] * lam[np.searchsorted(A, F)] * (1 + 1e-9)):
+    lam, shear = x[n:n + A.size], np.zeros(s.T.shape[1])
+    shear[axes] = x[n + A.size:]
+    normal = np.zeros(s.N.shape[1])
+    normal[A] = lam
+    if s.cones.outside(shear, normal, s.mu):
         return None, None, ("the static state with the touching rigid contacts held needs more friction than mu "
                             "gives (it slides at once); give initial='rest' or {'u0': ..., 'udot0': ...}")
     if np.any(lam < -1e-9 * (1.0 + np.abs(lam).max(initial=0.0))):

@@ -63,8 +63,9 @@ def rigid_tables(Table, NodeRef, Direction, Name, Positive, NonNegative, *, Node
     return Contact, RigidBlock
 
 
-_NO_FRICTION_3D = ("Not available in a 3-D frame (method = \"moreau-jean\" takes friction on one tangent per "
-                   "contact, in 2-D): leave it out.")
+_FACETS_3D = ("The facets of the friction polygon in the tangent plane (with mu; an even integer >= 4, default 8): "
+              "it circumscribes Coulomb's circle |T| <= mu N, exact along its facet normals (x and y for a multiple "
+              "of 4), sec(pi/facets) too strong along its vertices.")
 
 
 _NO_ON_3D = ("Not available in a 3-D frame (a contact between two nodes, a box on a floor or on another box: "
@@ -83,7 +84,9 @@ def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNega
         EXAMPLE: ClassVar[str] = '[[contacts]] name = "stop", node = 1, direction = "uz", gap = 0.01'
         direction: Direction3 = Field("uz", description="The normal, from the ground to the node: the "
                                       "direction in which the node separates.")
-        mu: NonNegative | None = Field(None, description=_NO_FRICTION_3D)
+        mu: NonNegative | None = Field(None, description=(
+            "Coulomb friction in the tangent plane (a polygonal cone of facets facets); method = \"moreau-jean\" only."))
+        facets: int | None = Field(None, description=_FACETS_3D)
         on: NodeRef | None = Field(None, description=_NO_ON_3D)
 
     class RigidBox(Table):
@@ -107,7 +110,10 @@ def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNega
             "Rotary inertia about z through the centre [mass length^2]; none: the solid box's m (bx^2 + by^2) / 3."))
         restitution: float = Field(0.0, ge=0.0, le=1.0, description=(
             "Newton's e of the corners (0: Housner's impact, the angular momentum about the new edge kept)."))
-        mu: NonNegative | None = Field(None, description=_NO_FRICTION_3D)
+        mu: NonNegative | None = Field(None, description=(
+            "None: the base does not slide or twist (held); a number: Coulomb friction at the corners, the base "
+            "free (it slides in plan and twists; method = \"moreau-jean\" only)."))
+        facets: int | None = Field(None, description=_FACETS_3D)
         on: NodeRef | None = Field(None, description=_NO_ON_3D)
 
     return Contact3D, RigidBox
@@ -123,8 +129,10 @@ def add_rigid(fr, document, to_mass, each, g=None) -> None:
     """
     if not (document.contacts or document.rigid_blocks):
         return
+    plane = {"facets": lambda t: t.facets} if hasattr(fr, "rigid_box") else {}        # 3-D: the friction polygon
     each(document, "contacts", lambda c: fr.contact(c.name, c.node, direction=c.direction, gap=c.gap,
-                                                    restitution=c.restitution, mu=c.mu, on=c.on))
+                                                    restitution=c.restitution, mu=c.mu, on=c.on,
+                                                    **{k: f(c) for k, f in plane.items()}))
     g = 0.0 if g is None else g
     if not hasattr(fr, "rigid_box"):
         each(document, "rigid_blocks", lambda b: _stacked_order(document, b) or fr.rigid_block(
@@ -134,7 +142,8 @@ def add_rigid(fr, document, to_mass, each, g=None) -> None:
     scaled = lambda J: None if J is None else J * to_mass
     each(document, "rigid_blocks", lambda b: _vertical(document) or fr.rigid_box(
         b.name, b.node, width_x=b.width, width_y=b.width_y, height=b.height, mass=b.mass * to_mass, Jx=scaled(b.Jx),
-        Jy=scaled(b.Jy), Jz=scaled(b.Jz), restitution=b.restitution, mu=b.mu, g=g, on=b.on))
+        Jy=scaled(b.Jy), Jz=scaled(b.Jz), restitution=b.restitution, mu=b.mu, facets=b.facets, g=g,
+        on=b.on))
 
 
 def _stacked_order(document, block) -> None:

@@ -239,7 +239,7 @@ def reactions(structure, h: Histories, sol=None) -> dict:
         footings, where = fnd.ground_reactions(structure, sol)
         at |= where
     support = support_forces(dofs, _onto_masters(structure, nodal_forces(structure, h)), DOF_NAMES, at)
-    return {"support": support, "ground_elements": ground, "footings": footings, "at": at}
+    return {"support": support, "ground_elements": ground, "footings": footings, "at": at, "steps": len(h.t)}
 
 
 def base_point(structure) -> tuple[float, float, float]:
@@ -282,7 +282,7 @@ def base_forces(structure, reaction: dict, point=(0.0, 0.0, 0.0)) -> dict:
         raise ValueError(f"point={point!r} must be (x0, y0, z0)")
     parts = [(label, _components(label, f)) for label, f in reaction["support"].items()]
     parts += list(reaction["ground_elements"].items()) + list(reaction.get("footings", {}).items())
-    N1 = len(parts[0][1]) if parts else 0
+    N1 = len(parts[0][1]) if parts else reaction.get("steps", 0)      # no support: a box free on friction
     F, M = np.zeros((N1, 3)), np.zeros((N1, 3))
     for label, f in parts:
         arm = np.asarray(coords[reaction["at"][label]], dtype=float) - p

@@ -83,6 +83,12 @@ class RigidContact:
         d = dict(self.terms)
         return tuple((dof, c) for dof, c in (("ux", d.get("uy", 0.0)), ("uy", -d.get("ux", 0.0))) if c)
 
+    @property
+    def tangent_axes(self) -> tuple:
+        """The tangent axes of the friction, each ``((dof, t), ...)``: ``(tangent_terms,)`` (a 3-D
+        contact has two, :class:`~unilateral.structure.rigid3d.RigidContact3D`)."""
+        return (self.tangent_terms,)
+
 
 @dataclass(frozen=True)
 class RigidBlock:
@@ -197,7 +203,8 @@ class RigidPart:
     geometric : (n, n) csr, the blocks' second-order gravity terms (``-W h`` on each block's
         ``rz``, on each 3-D box's ``rx`` and ``ry``), added to ``K``
     blocks : dict name -> RigidBlock (or :class:`~unilateral.structure.rigid3d.RigidBox` in 3-D)
-    tangent : (n, mr) csr, the tangent columns of the contacts with friction (zero columns without)
+    tangent : (n, mr) csr, the tangent columns of the contacts with friction (zero columns without);
+        in 3-D a pair of them, the axes ``t1``, ``t2``
     """
 
     contacts: tuple
@@ -357,8 +364,8 @@ def exempt_dofs(frame, dofs) -> set:
     out = set()
     for contact in contacts:
         out |= {dofs.free[i] for i in _column(contact, dofs).indices}
-        if contact.mu:
-            out |= {dofs.free[i] for i in _column(contact, dofs, contact.tangent_terms).indices}
+        for axis in contact.tangent_axes if contact.mu else ():
+            out |= {dofs.free[i] for i in _column(contact, dofs, axis).indices}
     return out
 
 
@@ -379,9 +386,11 @@ def attach(frame, structure):
     terms += stacks.carried_terms(frame, parts["blocks"], dofs)  # the weights a block or floor carries
     rows, vals = [r for r, _ in terms], [v for _, v in terms]
     geometric = sp.csr_matrix((vals, (rows, rows)), shape=(dofs.n, dofs.n))
-    Tt = sp.hstack([_column(c, dofs, c.tangent_terms).T if c.mu else sp.csr_matrix((dofs.n, 1)) for c in contacts],
-                   format="csr")
-    part = RigidPart(contacts, N, np.array([c.gap for c in contacts]), geometric, dict(parts["blocks"]), Tt)
+    axes = max(len(c.tangent_axes) for c in contacts)            # 1 (2-D) or 2 (3-D: t1, t2)
+    Tt = tuple(sp.hstack([_column(c, dofs, c.tangent_axes[a]).T if c.mu else sp.csr_matrix((dofs.n, 1))
+                          for c in contacts], format="csr") for a in range(axes))
+    part = RigidPart(contacts, N, np.array([c.gap for c in contacts]), geometric, dict(parts["blocks"]),
+                     Tt[0] if axes == 1 else Tt)
     values = {f.name: getattr(structure, f.name) for f in dataclasses.fields(structure)}
     return _with_rigid(type(structure))(**values, rigid=part)
 
@@ -487,9 +496,12 @@ def contact_model(structure, part, *, M, C, dof_names, T=None):
         H_v = np.zeros((m + mr, m + mr))
         H_v[:m, :m] = (B.T @ sp.csr_matrix(nat.E_v) @ B).toarray()
     mu = [c.mu for c in part.contacts]
+    plane = isinstance(part.tangent, tuple)                  # 3-D: the axes t1, t2 and a polygonal cone
+    tangent = (np.stack([reduced(t).toarray() for t in part.tangent], axis=2) if plane
+               else reduced(part.tangent).toarray()) if any(mu) else None
     families = list(structure.families()) + [RigidFamily(
         np.arange(m, m + mr), name="rigid contact", restitution=[c.restitution for c in part.contacts], mu=mu,
-        tangent=reduced(part.tangent).toarray() if any(mu) else None)]
+        tangent=tangent, facets=[c.facets for c in part.contacts] if plane and any(mu) else None)]
     # K may be singular or indefinite (see the module): the Model is built on a placeholder and then
     # given K, as Structure.to_model does with P-Delta's geometric stiffness
     model = Model(M=M, K=sp.identity(n, format="csr"), F=F, H=H, C=C, g=g, F_v=F_v, H_v=H_v,

@@ -6,13 +6,16 @@ The 3-D counterpart of :mod:`unilateral.structure.rigid` (whose assembly, model 
 
 **Rigid contact** (``Frame3D.contact``, :meth:`RigidBoxes.contact`): a node against the fixed
 ground along a normal ``d`` (``"ux"``, ``"uy"``, ``"uz"`` or a vector), with Newton's coefficient
-of restitution. Friction is refused in 3-D: ``method="moreau-jean"`` takes Coulomb's law on one
-tangent per contact (the 2-D tangent), not a friction cone in the tangent plane.
+of restitution and, with ``mu``, Coulomb friction in its tangent plane (axes ``t1``, ``t2``,
+:func:`~unilateral.structure.elements3d.tangents`): a polygonal cone of ``facets`` facets
+circumscribing Coulomb's circle ``|T| <= mu N`` (default 8; facet ``k`` of the normal ``(cos th_k,
+sin th_k)`` on ``(t1, t2)``, ``th_k = 2 pi k / facets``, the convention of ``Frame3D.soil`` and the
+footings in plan), solved by ``method="moreau-jean"`` (:mod:`unilateral.march.impact`).
 
 **Rigid box** (``Frame3D.rigid_box``, :class:`RigidBox`): a rectangular box of plan ``2 bx x 2 by``
 and height ``2 h`` with its centre of mass at a node, standing on its four base corners. Its base
 centre (the master) moves by ``uz``, ``rx``, ``ry`` (``ux``, ``uy``, ``rz`` held: no slip, no
-twist). With the corners in the plane of the base, a corner ``(x, y)`` (from the base centre)
+twist; with ``mu`` free too: the corners' friction holds them, the box slides in plan and twists). With the corners in the plane of the base, a corner ``(x, y)`` (from the base centre)
 rises by ``uz + rx y - ry x``; the centre's height drops by ``h (rx^2 + ry^2) / 2`` at second
 order, so the weight ``W = m g`` adds ``-W h`` on the base's ``rx`` and ``ry`` to ``K``. Rocking
 about an edge parallel to y (tilt ``ry``, the x-z plane) is then Housner's block of half-width
@@ -37,6 +40,22 @@ from .rigid import RigidBlock, RigidContact, _number, _parts
 
 #: The corners of a box: name suffix -> (sign of x, sign of y) from the base centre.
 CORNERS = {"sw": (-1.0, -1.0), "se": (1.0, -1.0), "ne": (1.0, 1.0), "nw": (-1.0, 1.0)}
+#: The facets of a rigid contact's friction polygon unless given (as a footing's in plan).
+DEFAULT_FACETS = 8
+
+
+@dataclass(frozen=True)
+class RigidContact3D(RigidContact):
+    """A rigid contact of a 3-D frame (:class:`~unilateral.structure.rigid.RigidContact`) with the
+    axes ``(t1 terms, t2 terms)`` of its tangent plane and the ``facets`` of its friction polygon."""
+
+    axes: tuple = ()
+    facets: int = DEFAULT_FACETS
+
+    @property
+    def tangent_axes(self) -> tuple:
+        """``(t1, t2)``, each ``((dof, t), ...)`` on ``ux``, ``uy``, ``uz``."""
+        return self.axes
 
 
 @dataclass(frozen=True)
@@ -108,7 +127,8 @@ class RigidBox:
 class RigidBoxes:
     """The rigid contacts and boxes of :class:`~unilateral.structure.Frame3D` (a base of it)."""
 
-    def contact(self, name, node, *, direction="uz", gap=0.0, mu=None, restitution=0.0, on=None) -> None:
+    def contact(self, name, node, *, direction="uz", gap=0.0, mu=None, restitution=0.0, facets=None,
+                tangent=None, on=None) -> None:
         """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``), as
         :meth:`Frame2D.contact <unilateral.structure.Frame2D.contact>`.
 
@@ -119,31 +139,48 @@ class RigidBoxes:
         direction : ``"ux"``, ``"uy"``, ``"uz"`` or a vector ``(dx, dy, dz)``: the normal, from the
             ground to the node (the direction in which the node separates); default ``"uz"``
         gap : initial opening at ``u = 0``, length, >= 0
-        mu : None only: friction on a rigid contact is not available in 3-D (``ValueError``)
+        mu : Coulomb's coefficient of friction (>= 0) in the tangent plane, or None (no friction: the
+            tangential motion free or held by supports); ``method="moreau-jean"`` only
         restitution : Newton's coefficient ``e`` in [0, 1] of ``method="moreau-jean"``
+        facets : int, even, >= 4 (default 8; with ``mu`` only): the facets of the friction polygon
+        tangent : (3,) vector, optional: the first tangent axis ``t1`` (projected on the tangent
+            plane; default global X, or Y for a normal along X), ``t2 = d x t1`` (with ``mu`` only)
         on : None only: a contact between two nodes is not available in 3-D (``ValueError``)
 
         The contact's unknown ``v`` is the compressive force (force), ``-psi`` the opening (length).
+
+        Notes
+        -----
+        The friction cone is the polygon of ``N = facets`` facets circumscribing Coulomb's circle
+        ``|T| <= mu v``: facet ``k`` keeps ``d_k . T <= mu v``, ``d_k = (cos th_k, sin th_k)`` on
+        ``(t1, t2)``, ``th_k = 2 pi k / N`` (``tangent`` turns it). The step's LCP takes it by its
+        vertices (:mod:`unilateral.march.impact`). Sliding along a facet normal (``t1``, and ``t2``
+        for ``N`` a multiple of 4) is Coulomb's; along a vertex the polygon is ``sec(pi/N)`` too
+        strong (8.2 % for 8, 2.0 % for 16), and in between the slip leaves the direction of the
+        driving force by up to ``pi/N`` (``docs/rocking.md``, "Friction in 3-D").
         """
         where = self._label("contact", name)
         self._node(where, "node", node)
         _not_on(where, on)
-        _no_friction(where, mu)
         terms = el.direction_terms(where, direction, el3.DOF_NAMES, el3.AXES)
         if any(dof in el3.ROTATIONS for dof, _ in terms):
             raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy', 'uz' or a vector "
                              "(dx, dy, dz)")
+        mu, facets = _friction(where, mu, facets, tangent)
+        axes = tuple(tuple((dof, float(x)) for dof, x in zip(el3.TRANSLATIONS, t) if x != 0.0)
+                     for t in el3.tangents(where, terms, tangent)) if mu else ()
         e = _restitution(where, restitution)
-        _parts(self)["contacts"].append(RigidContact(name, node, terms, _number(where, "gap", gap, ">=0"), e, 0.0))
+        _parts(self)["contacts"].append(RigidContact3D(name, node, terms, _number(where, "gap", gap, ">=0"), e,
+                                                       mu or 0.0, axes, facets))
         self._names.add(name)
 
     def rigid_box(self, name, node, *, width_x, width_y, height, mass, Jx=None, Jy=None, Jz=None, base=None,
-                  g=STANDARD_GRAVITY, restitution=0.0, mu=None, on=None) -> RigidBox:
+                  g=STANDARD_GRAVITY, restitution=0.0, mu=None, facets=None, on=None) -> RigidBox:
         """A rigid rectangular box rocking on its four base corners, its centre of mass at ``node``.
 
         Adds the base-centre node ``base`` (default ``"<name>.base"``) at ``height / 2`` below
         ``node`` as the master of the box (its ``ux``, ``uy``, ``rz`` supported: the base cannot
-        slide or twist; ``uz``, ``rx``, ``ry`` free), links ``node`` and the corners ``"<name>.sw"``,
+        slide or twist; ``uz``, ``rx``, ``ry`` free; with ``mu`` all six free), links ``node`` and the corners ``"<name>.sw"``,
         ``".se"``, ``".ne"``, ``".nw"`` (at ``(-+ width_x / 2, -+ width_y / 2)`` on the base plane)
         rigidly to it, puts ``mass`` and the inertias on ``node``, a vertical rigid contact with the
         ground (named after the corner) at each corner, and the second-order term of the weight,
@@ -160,7 +197,13 @@ class RigidBoxes:
         g : gravity of the weight's second-order term (length/time^2, >= 0; the load of the weight
             itself is ``Structure3D.gravity(g)``); 0: none
         restitution : Newton's ``e`` of the corners' contacts, [0, 1] (default 0: Housner's impact)
-        mu : None only (the base held); friction is not available in 3-D (``ValueError``)
+        mu : None (default): the base cannot slide or twist (its ``ux``, ``uy``, ``rz`` supported); a
+            number >= 0: the base is free and each corner has Coulomb friction ``mu`` in the plan
+            (``method="moreau-jean"`` only): the box slides in both plan directions, twists about the
+            vertical, rocks, or all of these (a box with ``mu`` below ``bx / h`` and ``by / h`` under a base
+            acceleration above ``mu g`` slides before it can rock)
+        facets : the facets of the corners' friction polygons (with ``mu``; an even int >= 4, default
+            8), on the axes x, y (:meth:`contact`)
         on : None only: a box stands on the ground; on a floor or on another box is not available in
             3-D (``ValueError``; in 2-D ``Frame2D.rigid_block(..., on=)``)
 
@@ -171,7 +214,7 @@ class RigidBoxes:
         where = self._label("rigid_box", name)
         self._node(where, "node", node)
         _not_on(where, on)
-        _no_friction(where, mu)
+        mu, facets = _friction(where, mu, facets, None)
         bx = _number(where, "width_x", width_x, ">0") / 2
         by = _number(where, "width_y", width_y, ">0") / 2
         h = _number(where, "height", height, ">0") / 2
@@ -187,23 +230,34 @@ class RigidBoxes:
         self.node(base, x, y, z - h)
         for corner, (sx, sy) in zip(corners, CORNERS.values()):
             self.node(corner, x + sx * bx, y + sy * by, z - h)
-        self.support(base, ux=True, uy=True, uz=False, rx=False, ry=False, rz=True)
+        if mu is None:
+            self.support(base, ux=True, uy=True, uz=False, rx=False, ry=False, rz=True)
         for slave in (node, *corners):
             self.rigid_link(base, slave)
         self.mass(node, m, Jx=J["Jx"], Jy=J["Jy"], Jz=J["Jz"])
         self._names.add(name)
         for corner in corners:
-            self.contact(corner, corner, direction="uz", restitution=e)
+            self.contact(corner, corner, direction="uz", restitution=e, mu=mu, facets=facets if mu is not None else None)
         box = RigidBox(name, node, base, corners, bx, by, h, m, J["Jx"], J["Jy"], J["Jz"], g)
         _parts(self)["blocks"][name] = box
         return box
 
 
-def _no_friction(where, mu) -> None:
-    if mu is not None:
-        raise ValueError(f"{where}: mu={mu!r}: friction on a rigid contact is not available in 3-D "
-                         "(method='moreau-jean' takes Coulomb's law on one tangent per contact, the 2-D "
-                         "Frame2D.contact; not a friction cone in the tangent plane); leave mu out")
+def _friction(where, mu, facets, tangent) -> tuple:
+    """``(mu, facets)`` checked: ``(None, DEFAULT_FACETS)`` without friction (``facets`` and
+    ``tangent`` refused then), else ``mu >= 0`` and ``facets`` an even int >= 4."""
+    if mu is None:
+        for arg, value in (("facets", facets), ("tangent", tangent)):
+            if value is not None:
+                raise ValueError(f"{where}: {arg}={value!r} is a friction parameter; give the friction "
+                                 "coefficient mu too (or remove it)")
+        return None, DEFAULT_FACETS
+    mu = _number(where, "mu", mu, ">=0")
+    facets = DEFAULT_FACETS if facets is None else facets
+    if isinstance(facets, (bool, np.bool_)) or not isinstance(facets, (int, np.integer)) or facets < 4 or facets % 2:
+        raise ValueError(f"{where}: facets={facets!r} is not valid; give the facets of the friction polygon, an "
+                         "even int >= 4 (opposite facets in pairs; fewer than 4 do not bound the tangent plane)")
+    return mu, int(facets)
 
 
 def _not_on(where, on) -> None:
@@ -246,14 +300,18 @@ def box_tilts(structure, sol, name) -> tuple:
 
 def box_energy(structure, sol, name) -> np.ndarray:
     """Mechanical energy (N+1,) of the box ``name`` in the linearised model, force length:
-    ``m uz'^2 / 2 + (Jx + m h^2) rx'^2 / 2 + (Jy + m h^2) ry'^2 / 2 - W h (rx^2 + ry^2) / 2 + W uz``."""
+    ``m |v_c|^2 / 2 + (Jx rx'^2 + Jy ry'^2 + Jz rz'^2) / 2 - W h (rx^2 + ry^2) / 2 + W uz``, with the
+    centre's velocity ``v_c = (ux' + h ry', uy' - h rx', uz')`` (``ux``, ``uy``, ``rz`` of the base
+    0 where held: a box without friction)."""
     box = structure.rigid.blocks[name]
     T = structure.dofs.T
-    rows = [T[structure.dofs.full_index(box.base, dof)] for dof in ("uz", "rx", "ry")]
-    (uz, rx, ry), (vz, wx, wy) = ([np.asarray(r @ x.T).ravel() for r in rows] for x in (sol.u, sol.udot))
+    rows = [T[structure.dofs.full_index(box.base, dof)] for dof in el3.DOF_NAMES]
+    (ux, uy, uz, rx, ry, rz), (vx, vy, vz, wx, wy, wz) = ([np.asarray(r @ x.T).ravel() for r in rows]
+                                                          for x in (sol.u, sol.udot))
     m, h, W = box.mass, box.h, box.W
-    return (0.5 * m * vz ** 2 + 0.5 * (box.Jx + m * h * h) * wx ** 2 + 0.5 * (box.Jy + m * h * h) * wy ** 2
-            - 0.5 * W * h * (rx ** 2 + ry ** 2) + W * uz)
+    kinetic = 0.5 * m * ((vx + h * wy) ** 2 + (vy - h * wx) ** 2 + vz ** 2) + 0.5 * (
+        box.Jx * wx ** 2 + box.Jy * wy ** 2 + box.Jz * wz ** 2)
+    return kinetic - 0.5 * W * h * (rx ** 2 + ry ** 2) + W * uz
 
 
 def box_results(structure, sol, name, corners) -> dict:
