@@ -170,7 +170,8 @@ def _massless_contact_dofs(model) -> list:
     moved = np.any(dense(model.F)[:, cols] != 0.0, axis=1)
     for f in rigid:                                 # the tangents of the contacts with friction
         if getattr(f, "tangent", None) is not None:
-            moved |= np.any(np.asarray(f.tangent) != 0.0, axis=1)
+            tangent = np.asarray(f.tangent)                # (n, mr) in 2-D, (n, mr, 2) in 3-D
+            moved |= np.any(tangent.reshape(tangent.shape[0], -1) != 0.0, axis=1)
     return [model.dof_names[i] for i in np.flatnonzero(moved & ~(np.diag(dense(model.M)) > 0))]
 
 

@@ -171,7 +171,7 @@ class RigidBoxes:
                      for t in el3.tangents(where, terms, tangent)) if mu else ()
         e = _restitution(where, restitution)
         _parts(self)["contacts"].append(RigidContact3D(name, node, terms, _number(where, "gap", gap, ">=0"), e,
-                                                       mu or 0.0, axes, facets))
+                                                       mu or 0.0, axes=axes, facets=facets))
         self._names.add(name)
 
     def rigid_box(self, name, node, *, width_x, width_y, height, mass, Jx=None, Jy=None, Jz=None, base=None,
