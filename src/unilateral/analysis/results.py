@@ -53,10 +53,7 @@ from ..structure import forces as F
 from ..structure.modes import modes
 from .energy import unknown_kinds
 from .inelastic import Inelastic
-from .result_parts import (ENERGY_KEYS, FAMILY_ENERGY, LINEAR_DRIFT_LIMIT, _abs_peak, _extreme,  # noqa: F401
-                           _frame_part, _kind, _linear_drift_note, _peaks, _put, _residual_drift, acceleration_peaks,
-                           acceleration_results, element_end_forces, energy_peaks, energy_results, motions_at,
-                           pairing_rule, step_means)
+from .result_parts import ENERGY_KEYS, FAMILY_ENERGY
 
 #: Models with more DOFs than this get no modes in the outputs (a dense eigenproblem).
 MODES_MAX_N = 3000

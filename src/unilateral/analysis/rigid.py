@@ -179,7 +179,7 @@ def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
     my, mz)`` in 3-D; ``at``: the node of each. ``h``: the frame's histories (its accelerations of
     the rule, the mean of each step for ``moreau-jean``; a 3-D box's ``mz`` is ``Jz rz''``, the
     torque of its corners' friction); ``motions``: ``[(direction, a_g (N+1,))]``
-    the ground's accelerations at its times, read as ``h``'s (:func:`~unilateral.analysis.results.step_means`)."""
+    the ground's accelerations at its times, read as ``h``'s (:func:`~unilateral.analysis.result_parts.step_means`)."""
     names = tuple(structure.dofs.dof_names)
     axes = tuple(d for d in ("ux", "uy", "uz") if d in names)
     m, steps = structure.m, len(h.t)

@@ -28,8 +28,8 @@ def structure_results_rigid_3d(structure, model, cases, *, load, units, rule, po
     load, units, rule, point, storeys : as for ``structure_results_3d``
     """
     from ..structure import forces3d as F3
-    from .results import (_energy_keys, _extreme, energy_peaks, energy_results, ground_motion_samples, load_samples_of,
-                          motions_at, pairing_rule, step_means)
+    from .result_parts import _extreme, energy_peaks, energy_results, motions_at, pairing_rule, step_means
+    from .results import _energy_keys, ground_motion_samples, load_samples_of
     from .results3d import structure_results_3d
     from .rigid import frame_solution, rigid_ground_reactions, rigid_summary
 
