@@ -25,7 +25,13 @@ import numpy as np
 from .extension_elements import Footing, KelvinContact, RigidContact, SpringFooting
 from .refusals import refuse
 
-__all__ = ["end_forces", "response", "pick", "state_psi"]
+__all__ = ["end_forces", "response", "response_names", "command_name", "pick", "state_psi"]
+
+#: The command that defines each kind of extension element.
+_COMMANDS = {Footing: "footing", SpringFooting: "springFooting", KelvinContact: "kelvinContact",
+             RigidContact: "rigidContact"}
+_FORCE = ("force", "forces", "globalForce", "globalForces")
+
 
 
 def pick(values, dof, what):
@@ -146,30 +152,52 @@ def end_forces(analysis, tag) -> np.ndarray:
     return -F
 
 
+def command_name(e) -> str:
+    """The command (``"footing"``, ``"springFooting"``, ...) that defines the extension element ``e``."""
+    return _COMMANDS[type(e)]
+
+
+def response_names(e) -> tuple:
+    """The names ``eleResponse`` of the extension element ``e`` answers (its ``'force'`` first), as the
+    error messages list them; ``'forces'``, ``'globalForce(s)'`` and ``'basicDeformation'`` are synonyms
+    accepted too."""
+    if isinstance(e, RigidContact):
+        return ("force", "contactForce", "opening")
+    if isinstance(e, KelvinContact):
+        return ("force", "basicForce", "deformation", "opening")
+    names = ("force", "contactForce", "uplift")
+    if isinstance(e, Footing) and e.mu is not None:
+        return names + ("slip",)
+    if isinstance(e, SpringFooting) and e.q_ult is not None:
+        return names + ("settlement",)
+    return names
+
+
+def accepted(e, name) -> bool:
+    """Whether ``eleResponse(tag, name)`` of the extension element ``e`` is one of its responses."""
+    return name in response_names(e) or name in _FORCE or (isinstance(e, KelvinContact) and name == "basicDeformation")
+
+
 def response(analysis, tag, *args) -> list:
     """``eleResponse`` of the extension element ``tag`` (see the module)."""
     e = analysis.domain.extensions[tag]
     name = args[0] if args else None
     what = f"eleResponse({', '.join(map(repr, (tag, *args)))})"
-    if name in ("force", "forces", "globalForce", "globalForces"):
+    if not accepted(e, name):
+        refuse(what, f"the response {name!r} is not one of this {command_name(e)}'s",
+               ", ".join(map(repr, response_names(e))))
+    if name in _FORCE:
         return [float(x) for x in end_forces(analysis, tag)]
     if isinstance(e, RigidContact):
         c, opening = _rigid(analysis, tag, e)
         table = {"contactForce": [c], "opening": [opening]}
-        valid = "'force', 'contactForce', 'opening'"
     elif isinstance(e, KelvinContact):
         f, t, de, opening = _kelvin(analysis, tag, e)
         table = {"basicForce": [f] if t is None else [f, t], "deformation": [de], "basicDeformation": [de],
                  "opening": [opening]}
-        valid = "'force', 'basicForce', 'deformation', 'opening'"
     else:
         _, c, openings, other = _footing(analysis, tag, e)
         table = {"contactForce": c, "uplift": openings}
-        valid = "'force', 'contactForce', 'uplift'"
         if other is not None:
-            key = "slip" if isinstance(e, Footing) else "settlement"
-            table[key] = other
-            valid += f", {key!r}"
-    if name not in table:
-        refuse(what, f"the response {name!r} is not one of this element's", valid)
+            table["slip" if isinstance(e, Footing) else "settlement"] = other
     return [float(x) for x in table[name]]

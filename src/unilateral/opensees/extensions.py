@@ -19,7 +19,7 @@ numbers, ``'-flag'`` options).
 The elements of the extensions are kept apart from the domain's OpenSees elements
 (``Domain.extensions``); :mod:`.build` adds them to the frame (:func:`.extension_elements.add_to_frame`) and the session
 answers ``eleForce``, ``eleResponse``, ``getEleTags`` and ``reactions`` for them
-(:class:`ExtensionCommands`). Their forces are the constraint reactions ``psi`` of the state the
+(:class:`ExtensionCommands`), and the ``Element`` recorders record them (:mod:`.recorders`). Their forces are the constraint reactions ``psi`` of the state the
 analysis reached (the stepping's, or the static state's). Footings on a soil medium are analysed
 by :mod:`.soil_analysis`.
 """

@@ -17,8 +17,10 @@ lines (min, max, absmax), each value preceded by its time with ``-time``, as Ope
 
 The states of the steps of one ``analyze`` are kept and written when it returns, computed as one
 block (vectorised over the steps and the nodes or springs, :mod:`.springs`) and formatted at once:
-the same numbers and text as one line per step. A recorder of beams or reactions writes its line
-at each step from the queries.
+the same numbers and text as one line per step. A recorder of beams, reactions or extension
+elements writes its line at each step from the queries (an extension's forces are the reactions
+``psi`` of the step, which the kept states do not hold), so its lines are the values the queries
+return after each step, as computed when the step is committed.
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .elements import Truss
+from .extension_results import accepted, command_name, response_names
 from .queries import spring_kind
 from .refusals import refuse
 from .springs import nodal_block, spring_table, stress_block
@@ -245,6 +248,19 @@ def _block_values(rec, steps) -> np.ndarray:
     return np.concatenate(parts, axis=1)[:, index]
 
 
+def _check_extensions(what, tags, response, domain):
+    """Refuse a response that an extension element among ``tags`` does not answer, naming its
+    command, the response and the valid ones."""
+    for tag in tags:
+        e = domain.extensions.get(tag) if tag not in domain.elements else None
+        if e is None:
+            continue
+        command = command_name(e)
+        if len(response) > 1 or not accepted(e, response[0]):
+            refuse(f"{what} of {command}({tag}) {' '.join(map(repr, response))}",
+                   f"the response is not one of a {command}'s", ", ".join(map(repr, response_names(e))))
+
+
 def _take_tags(rest):
     tags = []
     while rest and not isinstance(rest[0], str):
@@ -287,7 +303,7 @@ def parse_recorder(kind, args, domain) -> Recorder:
             opts["tags"].extend(_take_tags(rest))
         elif flag in ("-nodeRange", "-eleRange") and len(rest) >= 2:
             a, b = int(rest.pop(0)), int(rest.pop(0))
-            pool = domain.nodes if flag == "-nodeRange" else domain.elements
+            pool = list(domain.nodes) if flag == "-nodeRange" else [*domain.elements, *domain.extensions]
             opts["tags"].extend(t for t in pool if a <= t <= b)
         elif flag == "-dof" and rest:
             opts["dofs"].extend(_take_tags(rest))
@@ -305,7 +321,7 @@ def _checked(what, kind, opts, response, domain) -> Recorder:
     if not response:
         refuse(what, "the response is missing", "e.g. 'disp' (Node) or 'force' (Element)")
     node = kind in ("Node", "EnvelopeNode")
-    pool = domain.nodes if node else domain.elements
+    pool = domain.nodes if node else {**domain.elements, **domain.extensions}
     missing = [t for t in opts["tags"] if t not in pool]
     if missing or not opts["tags"]:
         refuse(what, f"{'the ' + kind.lower() + 's ' + str(missing) + ' are not defined' if missing else 'no tags'}",
@@ -315,6 +331,8 @@ def _checked(what, kind, opts, response, domain) -> Recorder:
             refuse(f"{what} {response[0]!r}", "the response is not in the subset", "'disp', 'vel', 'accel', 'reaction'")
         if not opts["dofs"] or any(d not in range(1, domain.ndf + 1) for d in opts["dofs"]):
             refuse(what, f"the DOFs {opts['dofs']} must be among 1..{domain.ndf}", "'-dof', 1, 2, ...")
+    else:
+        _check_extensions(what, opts["tags"], response, domain)
     rec = Recorder(kind, opts["path"], opts["tags"], response, opts["dofs"], opts["time"], opts["dT"],
                    opts["precision"])
     rec.open()
