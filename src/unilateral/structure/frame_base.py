@@ -143,6 +143,11 @@ class _Frame(ABC):
             names = self._dof_names
             raise ValueError(f"{where}: {', '.join(names[:-1])} and {names[-1]} are all False; the support "
                              "restrains nothing")
+        masters = {(m, dof) for (_, dof), m in self._equal.items()}
+        held = [dof for dof, flag in flags.items() if flag and (node, dof) in masters]
+        if held:
+            raise ValueError(f"{where}: {', '.join(held)} of node {node!r} are masters of equal_dof ties; a tie "
+                             "to a supported DOF is a support: support the tied nodes' DOFs instead of the ties")
         tied = [dof for dof, flag in flags.items() if flag and (node, dof) in self._equal]
         if tied:
             raise ValueError(f"{where}: {', '.join(tied)} of node {node!r} are tied by equal_dof to node "
@@ -179,6 +184,9 @@ class _Frame(ABC):
         for dof in dofs:
             if (slave, dof) in self._restrained:
                 raise ValueError(f"{where}: {dof} of slave node {slave!r} is supported; support the master's instead")
+            if (master, dof) in self._restrained:
+                raise ValueError(f"{where}: {dof} of master node {master!r} is supported; a tie to a supported DOF "
+                                 f"is a support: support {dof} of node {slave!r} instead of tying it")
             if self._follows(slave, dof):
                 raise ValueError(f"{where}: {dof} of node {slave!r} already follows node {self._master(slave)!r} "
                                  "(a rigid link or diaphragm)")
