@@ -219,10 +219,12 @@ REFUSED = {
 }
 
 
-def test_equal_dof_between_free_nodes_is_written(tmp_path, monkeypatch):
-    """equalDOF between free DOFs (formerly refused) becomes [[equal_dofs]]; the slave's DOF reads the master's."""
+@pytest.mark.parametrize("tie", ["2, 3, 1", "3, 2, 1"])
+def test_equal_dof_between_free_nodes_is_written(tie, tmp_path, monkeypatch):
+    """equalDOF between free DOFs (formerly refused) becomes [[equal_dofs]], the node defined first the
+    master (whose DOF names the pair, as in the module); the slave's DOF reads the master's."""
     script = tmp_path / "tied.py"
-    script.write_text(HEAD + FRAME.format(transf="Linear") + "ops.equalDOF(2, 3, 1)\n" + MOTION.format(newmark="0.5, 0.25"))
+    script.write_text(HEAD + FRAME.format(transf="Linear") + f"ops.equalDOF({tie})\n" + MOTION.format(newmark="0.5, 0.25"))
     out, session = converted(script, tmp_path, monkeypatch)
     assert tomllib.loads(out.read_text())["equal_dofs"] == [{"master": 2, "slave": 3, "dofs": ["ux"]}]
     spec = load_model_file(out)
