@@ -56,6 +56,7 @@ def test_frame2d_equal_dof_is_the_tie_eliminated_by_hand():
     np.testing.assert_allclose(dense(m.M), R.T @ dense(m0.M) @ R, rtol=0, atol=1e-14)
     assert np.trace(dense(m.M)) == pytest.approx(2 * (2 * 10.0 + 2 * 2.0))     # the slaves' masses kept
     f = tied.nodal_load(2, ux=1.0) + tied.nodal_load(6, rz=0.5)               # a load on a slave's own DOF
+    np.testing.assert_array_equal(tied.nodal_load(5, ux=1.0, uy=2.0), tied.nodal_load(2, ux=1.0, uy=2.0))
     u = np.linalg.solve(K, f)
     nodal = tied.dofs.nodal(u)
     at = {node: p for p, node in enumerate(tied.dofs.nodes)}
