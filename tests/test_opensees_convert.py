@@ -84,6 +84,7 @@ TRANSIENT = {   # script -> the largest relative error allowed (u and v), measur
     "beam_uniform.py": 1e-12,              # eleLoad -beamUniform Wy, Wx
     "convert/beam_rayleigh_springs.py": 1e-12,   # eleLoad, masses, betaK with -doRayleigh, truss -rho, Linear
     "convert/frame3d_diaphragm.py": 1e-12,       # 3-D: vecxz, rigidDiaphragm, zeroLength, two components
+    "convert/frame_hinges_equaldof.py": 1e-10,   # ElasticPP beam-end hinges tied to free joints by equalDOF 1 2
     "tcl/portal_hinges.tcl": 1e-12,        # the Tcl front
     "tcl/frame_on_ent.tcl": 1e-10,
 }
@@ -193,8 +194,9 @@ ops.analysis('Transient')
 ops.analyze(20, 0.01)
 """
 REFUSED = {
-    "equalDOF between free nodes": (HEAD + FRAME.format(transf="Linear") + "ops.equalDOF(2, 3, 1)\n"
-                                    + MOTION.format(newmark="0.5, 0.25"), "equalDOF(2, 3, 1)"),
+    "equalDOF to a rigid link's slave": (HEAD + FRAME.format(transf="Linear") + "ops.node(4, 4.0, 3.0)\n"
+                                         "ops.rigidLink('beam', 2, 4)\nops.equalDOF(4, 3, 1)\n"
+                                         + MOTION.format(newmark="0.5, 0.25"), "equalDOF(4, 3, 1)"),
     "PDelta": (HEAD + FRAME.format(transf="PDelta") + MOTION.format(newmark="0.5, 0.25"), "geomTransf('PDelta', 1)"),
     "Newmark": (HEAD + FRAME.format(transf="Linear") + MOTION.format(newmark="0.6, 0.3025"),
                 "integrator('Newmark', 0.6, 0.3025)"),
@@ -215,6 +217,25 @@ REFUSED = {
                       + "ops.timeSeries('Constant', 5)\nops.pattern('Plain', 5, 5)\nops.load(3, 1.0, 0.0, 0.0)\n"
                       + "ops.analyze(5, 0.01)\n", "the model or its loads changed"),
 }
+
+
+@pytest.mark.parametrize("tie", ["2, 3, 1", "3, 2, 1"])
+def test_equal_dof_between_free_nodes_is_written(tie, tmp_path, monkeypatch):
+    """equalDOF between free DOFs (formerly refused) becomes [[equal_dofs]], the node defined first the
+    master (whose DOF names the pair, as in the module); the slave's DOF reads the master's."""
+    script = tmp_path / "tied.py"
+    script.write_text(HEAD + FRAME.format(transf="Linear") + f"ops.equalDOF({tie})\n" + MOTION.format(newmark="0.5, 0.25"))
+    out, session = converted(script, tmp_path, monkeypatch)
+    assert tomllib.loads(out.read_text())["equal_dofs"] == [{"master": 2, "slave": 3, "dofs": ["ux"]}]
+    spec = load_model_file(out)
+    assert "3.ux" not in spec.model.dof_names and "2.ux" in spec.model.dof_names
+    sol = ul.run(spec, figures=()).solutions["unilateral"]
+    nodal = spec.structure.dofs.nodal(sol.u)
+    nodes = spec.structure.dofs.nodes
+    assert np.abs(nodal[:, nodes.index(2), 0]).max() > 0
+    assert np.array_equal(nodal[:, nodes.index(3), 0], nodal[:, nodes.index(2), 0])
+    e_u, _ = relative_errors(session.history, spec.model.dof_names, sol.u, spec.model.constraint_names, sol.v)
+    assert e_u <= 1e-10, e_u
 
 
 @pytest.mark.parametrize("case", sorted(REFUSED))

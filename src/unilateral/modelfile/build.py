@@ -163,6 +163,7 @@ def _build_structure(document: ModelFile, folder: Path) -> Structure:
     _each(document, "supports", lambda support: fr.support(support.node, ux=support.ux, uy=support.uy,
                                                            rz=support.rz))
     _each(document, "rigid_links", lambda link: fr.rigid_link(link.master, link.slave))
+    _each(document, "equal_dofs", lambda tie: fr.equal_dof(tie.master, tie.slave, *tie.dofs))
     for section in ("elements", "unilateral"):
         _each(document, section, lambda element: _add_element(fr, element, to_mass))
     _each(document, "masses", lambda mass: fr.mass(mass.node, mass.m * to_mass, J=mass.J * to_mass))
@@ -221,6 +222,7 @@ def _build_structure_3d(document: ModelFile, folder: Path) -> Structure:
                                                                             ("ux", "uy", "uz", "rx", "ry", "rz")}))
     _each(document, "rigid_links", lambda link: fr.rigid_link(link.master, link.slave))
     _each(document, "rigid_diaphragms", lambda diaphragm: fr.rigid_diaphragm(diaphragm.master, diaphragm.slaves))
+    _each(document, "equal_dofs", lambda tie: fr.equal_dof(tie.master, tie.slave, *tie.dofs))
     add_rigid(fr, document, to_mass, _each, _gravity_value(document) if document.loads.gravity else None)
     for section in ("elements", "unilateral"):
         _each(document, section, lambda element: _add_element_3d(fr, element, to_mass))

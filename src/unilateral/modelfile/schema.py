@@ -153,6 +153,16 @@ class RigidLink(_TwoNodes):
     slave: NodeRef
 
 
+class EqualDof(_TwoNodes):
+    """[[equal_dofs]]: the DOFs ``dofs`` of node ``slave`` equal the same DOFs of node ``master`` (equalDOF)."""
+
+    NODES: ClassVar[tuple[str, str]] = ("master", "slave")
+
+    master: NodeRef
+    slave: NodeRef
+    dofs: list[Literal["ux", "uy", "rz"]] = Field(min_length=1, description="The tied DOFs, each once.")
+
+
 class Mass(Table):
     """[[masses]]: lumped mass m on ux and uy [mass], rotational inertia J on rz [mass length^2].
 
@@ -729,6 +739,7 @@ class ModelFile(Table):
     nodes: list[Node] = []
     supports: list[Support] = []
     rigid_links: list[RigidLink] = []
+    equal_dofs: list[EqualDof] = []
     elements: list[Element] = []
     unilateral: list[Unilateral] = []
     masses: list[Mass] = []
@@ -769,5 +780,5 @@ class ModelFile(Table):
         return self
 
 
-FRAME_SECTIONS = ("frame", "nodes", "supports", "rigid_links", "rigid_diaphragms", "elements", "unilateral", "masses",
-                  "contacts", "rigid_blocks", "damping", "foundation", "foundations")
+FRAME_SECTIONS = ("frame", "nodes", "supports", "rigid_links", "rigid_diaphragms", "equal_dofs", "elements", "unilateral",
+                  "masses", "contacts", "rigid_blocks", "damping", "foundation", "foundations")

@@ -13,7 +13,7 @@ from pydantic import Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
 from .rigid import rigid_tables_3d
-from .schema import (Bar, Cable, Contact, ConstantLoad, Dashpot, Figure, FoundationSoil, Gap, GravityValue, GroundMotion, Hinge,
+from .schema import (Bar, Cable, Contact, ConstantLoad, Dashpot, EqualDof, Figure, FoundationSoil, Gap, GravityValue, GroundMotion, Hinge,
                      ModelFile, Name, NodeId, NodeRef, NonNegative, Output, Positive, Slider, SoilBase, Spring,
                      SupportMotion, Table, TimeFunction, YieldLink, _NUMBER_SCHEMA, _TwoNodes)
 
@@ -83,6 +83,12 @@ class RigidDiaphragm(Table):
 
     master: NodeRef
     slaves: list[NodeId] = Field(min_length=1, description="The other nodes of the floor, at the master's z.")
+
+
+class EqualDof3D(EqualDof):
+    """[[equal_dofs]] of a 3-D frame: the DOFs ``dofs`` of node ``slave`` equal those of node ``master``."""
+
+    dofs: list[Literal["ux", "uy", "uz", "rx", "ry", "rz"]] = Field(min_length=1, description="The tied DOFs, each once.")
 
 
 class Mass3D(Table):
@@ -314,6 +320,7 @@ class ModelFile3D(ModelFile):
     nodes: list[Node3D] = []
     supports: list[Support3D] = []
     rigid_diaphragms: list[RigidDiaphragm] = []
+    equal_dofs: list[EqualDof3D] = []
     elements: list[Element3D] = []
     unilateral: list[Unilateral3D] = []
     masses: list[Mass3D] = []

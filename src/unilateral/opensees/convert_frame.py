@@ -95,12 +95,13 @@ def structure_tables(domain) -> tuple[dict, dict]:
             not_convertible(f"geomTransf({kind!r}, {tag})", "the model file's p_delta is the consistent geometric "
                             "stiffness of the gravity's axial forces, not OpenSees's string stiffness of each "
                             "element's current axial force", "geomTransf('Linear', tag)")
-    fixed, links = _fixities(domain)
+    fixed, links, equal = _fixities(domain)
     names = ("ux", "uy", "rz") if domain.ndf == 3 else ("ux", "uy", "uz", "rx", "ry", "rz")
     tables = {"nodes": [{"id": tag, **dict(zip("xyz", map(float, xyz)))} for tag, xyz in domain.nodes.items()],
               "supports": [{"node": tag, **{n: bool(f) for n, f in zip(names, flags)}}
                            for tag, flags in fixed.items() if any(flags)],
-              "rigid_links": links + [{"master": m, "slave": s[0]} for kind, m, s in domain.rigid if kind == "link"]}
+              "rigid_links": links + [{"master": m, "slave": s[0]} for kind, m, s in domain.rigid if kind == "link"],
+              "equal_dofs": equal}
     if domain.ndm == 3:
         tables["rigid_diaphragms"] = [{"master": m, "slaves": list(s)} for kind, m, s in domain.rigid
                                       if kind == "diaphragm"]
@@ -113,10 +114,11 @@ def structure_tables(domain) -> tuple[dict, dict]:
 
 
 def _fixities(domain):
-    """The supports (fix, and equalDOF ties to a fixed DOF) and the ties that are rigid links.
+    """The supports (fix, and equalDOF ties to a fixed DOF), the ties that are rigid links and the
+    other ties (``[[equal_dofs]]``).
 
     A DOF tied by ``equalDOF`` to a fixed one is fixed (as :func:`.build._ties` eliminates it); a tie of
-    every DOF of two nodes at one point is a rigid link; any other tie is refused.
+    every DOF of two nodes at one point is a rigid link; any other tie is an ``[[equal_dofs]]`` entry.
     """
     nf = domain.ndf
     fixed = {tag: list(domain.fixes.get(tag, (0,) * nf)) for tag in domain.nodes}
@@ -128,7 +130,7 @@ def _fixities(domain):
                 if fixed[master][d - 1] != fixed[slave][d - 1]:
                     fixed[master][d - 1] = fixed[slave][d - 1] = 1
                     changed = True
-    links = []
+    links, between = [], []
     for master, slave, dofs in domain.ties:
         free = [d for d in dofs if not fixed[master][d - 1]]
         if not free:
@@ -136,12 +138,47 @@ def _fixities(domain):
         if sorted(dofs) == list(range(1, nf + 1)) and domain.nodes[master] == domain.nodes[slave]:
             links.append({"master": master, "slave": slave})
             continue
-        bar = f" (or rigidLink('bar', {master}, {slave}))" if tuple(dofs) == tuple(range(1, domain.ndm + 1)) else ""
-        not_convertible(f"equalDOF({master}, {slave}, {', '.join(map(str, dofs))}){bar}", "the model file has no key "
-                        f"for DOFs tied between nodes: DOFs {free} are not fixed ([[supports]] hold a DOF tied to a "
-                        "fixed one, [[rigid_links]] tie every DOF of a rigid body)", "equalDOF to a fixed node, "
-                        "every DOF of two nodes at one point (a rigid link), rigidLink('beam', ...), or a stiff "
-                        "element")
+        between.append((master, slave, free))
+    return {tag: tuple(flags) for tag, flags in fixed.items()}, links, _equal_dofs(domain, between, links)
+
+
+def _equal_dofs(domain, between, links) -> list:
+    """``[[equal_dofs]]`` of the ``equalDOF`` ties ``(master, slave, free DOFs)`` between free DOFs: each
+    group of DOFs tied together follows its node defined first (whose DOF names the group, as in
+    :func:`.build._ties`)."""
+    names = ("ux", "uy", "rz") if domain.ndf == 3 else ("ux", "uy", "uz", "rx", "ry", "rz")
+    followers = {link["slave"] for link in links} | {s for kind, _, slaves in domain.rigid for s in slaves}
+    parent = {}
+
+    def find(x):
+        while parent.get(x, x) != x:
+            x = parent[x]
+        return x
+
+    for master, slave, free in between:
+        for node in (master, slave):
+            if node in followers:
+                not_convertible(f"equalDOF({master}, {slave}, {', '.join(map(str, free))})", f"node {node} also "
+                                "follows a rigid link or diaphragm, and the model file ties a DOF to one master",
+                                "equalDOF to the master of the rigid link")
+        for d in free:
+            a, b = find((master, d)), find((slave, d))
+            if a != b:
+                parent[b] = a
+    order = {tag: k for k, tag in enumerate(domain.nodes)}
+    groups = {}
+    for key in {key for master, slave, free in between for node in (master, slave) for key in [(node, d) for d in free]}:
+        groups.setdefault(find(key), []).append(key)
+    pairs = {}
+    for members in groups.values():
+        root = min(members, key=lambda key: order[key[0]])
+        for node, d in members:
+            if node != root[0]:
+                pairs.setdefault((root[0], node), []).append(d)
+    return [{"master": m, "slave": s, "dofs": [names[d - 1] for d in sorted(dofs)]}
+            for (m, s), dofs in sorted(pairs.items(), key=lambda item: (order[item[0][1]], order[item[0][0]]))]
+
+
     return {tag: tuple(flags) for tag, flags in fixed.items()}, links
 
 

@@ -159,10 +159,10 @@ def _strain_names(elements) -> tuple:
 def _lumped_mass(dofs, nodal_mass) -> sp.csr_matrix:
     """``M = (T^T diag(m) T).tocsr()`` of the lumped masses ``nodal_mass`` (n_nodes, 3).
 
-    Without rigid links ``T`` picks the free rows of ``u_full`` (one 1 per column, at most one per
+    Without rigid links and ties ``T`` picks the free rows of ``u_full`` (one 1 per column, at most one per
     row): ``M`` is then the diagonal of the masses of the free DOFs, the zero ones not stored (as
     the product stores no zero), made directly; with links, the product."""
-    if type(dofs) is DofMap and not dofs.masters and nodal_mass.dtype == np.float64:
+    if type(dofs) is DofMap and not dofs.masters and not dofs.ties and nodal_mass.dtype == np.float64:
         n = dofs.n
         d = nodal_mass.ravel()[dofs._free_rows]
         if np.all(d >= 0):

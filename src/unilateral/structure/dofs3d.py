@@ -49,6 +49,8 @@ class DofMap3D(DofMap):
     rotated : set of (node, rotation) pairs (``"rx"``, ``"ry"``, ``"rz"``) that something uses
     ties : dict slave node -> (master node, tied DOFs): all six DOFs for a rigid link,
         :data:`IN_PLANE` for a rigid diaphragm (chains allowed, no cycles)
+    equal : dict ``(node, dof) -> other node`` or None: the nodal DOF ``dof`` of ``node`` equals the
+        same DOF of ``other`` (``Frame3D.equal_dof``); no cycles
 
     Attributes
     ----------
@@ -56,6 +58,7 @@ class DofMap3D(DofMap):
     free : list of (node, dof) pairs; ``u[k]`` is the DOF ``free[k]``
     masters : dict slave of a rigid link -> root master (the end of the chain of rigid links)
     ties : the ``ties`` given (rigid links and diaphragms)
+    equal : the ``equal`` ties given
     T : (6 n_nodes, n) csr matrix; row ``6 p + d`` is DOF ``DOF_NAMES[d]`` of ``nodes[p]``
 
     :meth:`full_index`, :meth:`nodal` (``(..., n_nodes, 6)``) and :meth:`gather` are those of
@@ -64,8 +67,9 @@ class DofMap3D(DofMap):
 
     dof_names = DOF_NAMES
 
-    def __init__(self, coords: dict, restrained: set, rotated: set, ties: dict):
+    def __init__(self, coords: dict, restrained: set, rotated: set, ties: dict, equal=None):
         self.nodes = list(coords)
+        self.equal = dict(equal or {})
         self._position = {node: p for p, node in enumerate(self.nodes)}
         self.ties = dict(ties)
         links = {s: m for s, (m, tied) in ties.items() if len(tied) == len(DOF_NAMES)}
@@ -82,9 +86,14 @@ class DofMap3D(DofMap):
                         new = {(m, r) for r, c in self._rows[s][dof] if r in ROTATIONS and c != 0.0} - used
                         used |= new
                         grown = grown or bool(new)
+            for (s, dof), m in self.equal.items():       # a used tied rotation uses the master's
+                if (s, dof) in used and (m, dof) not in used:
+                    used.add((m, dof))
+                    grown = True
         self._restrained = set(restrained)
         self.free = [(node, dof) for node in self.nodes for dof in DOF_NAMES
-                     if not self._tied(node, dof) and (node, dof) not in self._restrained
+                     if not self._tied(node, dof) and (node, dof) not in self.equal
+                     and (node, dof) not in self._restrained
                      and (dof in TRANSLATIONS or (node, dof) in used)]
         self._index = {key: k for k, key in enumerate(self.free)}
         memo: dict = {}
@@ -104,8 +113,13 @@ class DofMap3D(DofMap):
     def _expression(self, node, dof, memo) -> dict:
         """``{free (node, dof): coefficient}`` of nodal DOF ``dof`` of ``node``."""
         key = (node, dof)
+        if key in memo and memo[key] is None:
+            raise ValueError(f"the ties form a cycle through {node}.{dof} (equal_dof, rigid links and diaphragms)")
         if key not in memo:
-            if self._tied(node, dof):
+            memo[key] = None                            # in progress: met again, a cycle
+            if key in self.equal:
+                memo[key] = dict(self._expression(self.equal[key], dof, memo))
+            elif self._tied(node, dof):
                 master = self.ties[node][0]
                 out: dict = {}
                 for mdof, c in self._rows[node][dof]:
@@ -120,6 +134,9 @@ class DofMap3D(DofMap):
     def index(self, node: Hashable, dof: str) -> int:
         """Position of the free DOF ``(node, dof)`` in ``u``; ``ValueError`` if it is not free."""
         self.full_index(node, dof)
+        if (node, dof) in self.equal:
+            raise ValueError(f"{node}.{dof} is not a free DOF: it is tied to the {dof} of node "
+                             f"{self.equal[(node, dof)]!r}; use nodal() for the displacements of every node")
         if self._tied(node, dof) and node not in self.masters:
             raise ValueError(f"{node}.{dof} is not a free DOF: node {node!r} is in a rigid diaphragm of node "
                              f"{self.ties[node][0]!r} (its {dof} follows the master); use nodal() for the "

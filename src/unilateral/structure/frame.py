@@ -38,6 +38,20 @@ _isfinite = math.isfinite
 _INF = math.inf
 
 
+def _rz_ties(equal: dict, rotated: set) -> tuple[set, dict]:
+    """``(rotated, equal)``: the rotated nodes with both ends of each ``rz`` tie of
+    :meth:`Frame2D.equal_dof` one end of which something else rotates (the slave's ``rz`` then reads
+    the master's), and the ties without the ``rz`` ties between nodes nothing rotates (both read 0)."""
+    out, grown = set(rotated), True
+    while grown:
+        grown = False
+        for (slave, dof), master in equal.items():
+            if dof == "rz" and (slave in out) != (master in out):
+                out |= {slave, master}
+                grown = True
+    return out, {key: master for key, master in equal.items() if key[1] != "rz" or key[0] in out}
+
+
 def _no_bearing_capacity(where, q_ult) -> None:
     """Refuse a bearing capacity ``q_ult`` (not None) on a footing on a soil medium."""
     if q_ult is not None:
@@ -574,7 +588,8 @@ class Frame2D(rigid.RigidContacts, support_motion.SupportMotions, _Frame):
         for footing in self._foundations:
             if footing.rigid and footing.m > 1:
                 rotated.add(footing.node)               # the footing rocks on its patches
-        dofs = DofMap(self._coords, self._restrained, rotated, self._links, ties=rigid.ties(self))
+        rotated, equal = _rz_ties(self._equal, rotated)
+        dofs = DofMap(self._coords, self._restrained, rotated, self._links, ties=self._with_equal(rigid.ties(self), equal))
         on_soil = rigid.exempt_dofs(self, dofs)         # held by rigid contacts (rigid.py), and:
         for footing in self._foundations:               # the soil stiffens these (FoundationModel checks)
             for terms in footing.moved_rows(self._coords) + (footing.shear_rows() if footing.sliding else []):

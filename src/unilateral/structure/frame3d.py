@@ -566,7 +566,7 @@ class Frame3D(RigidBoxes, support_motion.SupportMotions, _Frame):
                 rows = rows + footing.shear_rows() + footing.shear_rows_y()
             on_soil |= {(node, dof) for terms in rows for node, dof, _ in terms}
         rotated |= {(node, dof) for node, dof in on_soil if dof in el3.ROTATIONS}
-        dofs = DofMap3D(self._coords, self._restrained, rotated, self._ties)
+        dofs = DofMap3D(self._coords, self._restrained, rotated, self._ties, equal=self._equal)
         on_soil |= rigid.exempt_dofs(self, dofs)        # held by rigid contacts (rigid3d.py)
         if any(not footing.rigid for footing in self._foundations):
             # a flexible footing's node may follow a master (rigid links): the soil stiffens the master's DOFs
@@ -596,6 +596,9 @@ class Frame3D(RigidBoxes, support_motion.SupportMotions, _Frame):
 
     def _master(self, node):
         return self._ties[node][0] if node in self._ties else None
+
+    def _follows(self, node, dof) -> bool:
+        return self._tied(node, dof)
 
     def _tie(self, where, master, slave, dofs) -> None:
         """Tie ``dofs`` of ``slave`` to ``master`` (a rigid link or a diaphragm), with the checks."""

@@ -48,6 +48,7 @@ class _Frame(ABC):
         self._modal: tuple | None = None
         self._beams: dict = {}              # name -> the beam as defined (before any hinge)
         self._hinges: dict = {}             # (beam, end) -> hinge name: one hinge per beam end
+        self._equal: dict = {}              # (slave, dof) -> master: the equal_dof ties
 
     # ------------------------------------------------------------------ damping
     def rayleigh(self, a0=0.0, a1=0.0) -> None:
@@ -142,7 +143,77 @@ class _Frame(ABC):
             names = self._dof_names
             raise ValueError(f"{where}: {', '.join(names[:-1])} and {names[-1]} are all False; the support "
                              "restrains nothing")
+        masters = {(m, dof) for (_, dof), m in self._equal.items()}
+        held = [dof for dof, flag in flags.items() if flag and (node, dof) in masters]
+        if held:
+            raise ValueError(f"{where}: {', '.join(held)} of node {node!r} are masters of equal_dof ties; a tie "
+                             "to a supported DOF is a support: support the tied nodes' DOFs instead of the ties")
+        tied = [dof for dof, flag in flags.items() if flag and (node, dof) in self._equal]
+        if tied:
+            raise ValueError(f"{where}: {', '.join(tied)} of node {node!r} are tied by equal_dof to node "
+                             f"{self._equal[(node, tied[0])]!r}; support the master's instead")
         return where, flags
+
+    def equal_dof(self, master, slave, *dofs) -> None:
+        """Tie the nodal DOFs ``dofs`` of node ``slave`` to the same DOFs of node ``master``
+        (OpenSees' ``equalDOF``): ``u_slave[dof] = u_master[dof]``; the slave keeps its other DOFs.
+
+        The tied DOFs are eliminated (the slave's DOF reads the master's in the results). Chains
+        are allowed (a master may itself be tied); a tied DOF cannot be supported (support the
+        master's), nor be a DOF a rigid link or diaphragm already ties.
+
+        Parameters
+        ----------
+        master, slave : node ids
+        *dofs : str, each one of the nodal DOFs (``"ux"``, ``"uy"``, ``"rz"`` in 2-D)
+        """
+        where = f"equal_dof({master!r}, {slave!r}{''.join(f', {d!r}' for d in dofs)})"
+        self._node(where, "master", master)
+        self._node(where, "slave", slave)
+        names = self._dof_names
+        if not dofs:
+            raise ValueError(f"{where}: no DOF given; give one or more of {', '.join(map(repr, names))}")
+        for k, dof in enumerate(dofs):
+            if not isinstance(dof, str) or dof not in names:
+                raise ValueError(f"{where}: dofs[{k}]={dof!r} is not a DOF of a {len(names) // 3 + 1}-D frame; "
+                                 f"use {', '.join(map(repr, names))}")
+            if dofs.index(dof) != k:
+                raise ValueError(f"{where}: {dof!r} is given twice")
+        if master == slave:
+            raise ValueError(f"{where}: master and slave are the same node {slave!r}")
+        for dof in dofs:
+            if (slave, dof) in self._restrained:
+                raise ValueError(f"{where}: {dof} of slave node {slave!r} is supported; support the master's instead")
+            if (master, dof) in self._restrained:
+                raise ValueError(f"{where}: {dof} of master node {master!r} is supported; a tie to a supported DOF "
+                                 f"is a support: support {dof} of node {slave!r} instead of tying it")
+            if self._follows(slave, dof):
+                raise ValueError(f"{where}: {dof} of node {slave!r} already follows node {self._master(slave)!r} "
+                                 "(a rigid link or diaphragm)")
+            if (slave, dof) in self._equal:
+                raise ValueError(f"{where}: {dof} of node {slave!r} is already tied to node "
+                                 f"{self._equal[(slave, dof)]!r}; a DOF follows one master")
+            root = master
+            while (root, dof) in self._equal:
+                root = self._equal[(root, dof)]
+                if root == slave:
+                    raise ValueError(f"{where}: the tie would close a loop of ties of {dof} through node {slave!r}")
+        self._equal.update({(slave, dof): master for dof in dofs})
+
+    def _follows(self, node, dof) -> bool:
+        """Whether DOF ``dof`` of ``node`` follows a master (a rigid link; 3-D: or a diaphragm)."""
+        return self._master(node) is not None
+
+    def _with_equal(self, ties: dict, equal=None) -> dict:
+        """The ties ``{(node, dof): other}`` of the DOF map: ``ties`` (rigid blocks') and ``equal`` (default:
+        every :meth:`equal_dof` tie)."""
+        equal = self._equal if equal is None else equal
+        both = set(ties) & set(equal)
+        if both:
+            node, dof = sorted(both, key=repr)[0]
+            raise ValueError(f"equal_dof: {dof} of node {node!r} is tied to node {self._equal[(node, dof)]!r} and "
+                             f"to node {ties[(node, dof)]!r} (a rigid block standing on it); tie it once")
+        return {**ties, **equal}
 
     @abstractmethod
     def _master(self, node):
@@ -158,6 +229,10 @@ class _Frame(ABC):
             raise ValueError(f"{where}: master and slave are the same node {slave!r}")
         if self._master(slave) is not None:
             raise ValueError(f"{where}: node {slave!r} is already a slave of node {self._master(slave)!r}")
+        tied = [dof for dof in dofs if (slave, dof) in self._equal]
+        if tied:
+            raise ValueError(f"{where}: {', '.join(tied)} of node {slave!r} are tied by equal_dof to node "
+                             f"{self._equal[(slave, tied[0])]!r}; a DOF follows one master")
         supported = [dof for dof in dofs if (slave, dof) in self._restrained]
         if supported:
             raise ValueError(f"{where}: slave node {slave!r} is supported ({', '.join(supported)}); "
