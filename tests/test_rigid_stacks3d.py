@@ -52,8 +52,9 @@ def _run(st, load, *, dt, t_end, initial):
 def test_a_3d_stack_rocking_in_the_x_z_plane_is_the_2d_stack():
     """A 0.4 x 0.4 x 1.2 m box on a 1.2 x 1.2 x 1.0 m box shaken along x above the upper's uplift
     (the 2-D stack of tests/test_rigid_stacks.py): the bases' uz, ry of the 3-D stack are the 2-D
-    stack's uy, -rz to round-off through its impacts, rx stays 0 and the impacts are at the same
-    times."""
+    stack's uy, -rz to round-off through its impacts (measured 2.7e-14 m and 1.4e-13 rad apart over
+    1.5 s, the upper's peak tilt 0.159 rad), rx stays at the static start's round-off (1.4e-14) and
+    the two located impacts are at the same times (to 1.5e-13 s)."""
     st3, _, upper = _stack3d(widths=((1.2, 1.2), (0.4, 0.4)), heights=(1.0, 1.2))
     fr = Frame2D()
     fr.node("c1", 0.0, 0.5)
@@ -79,8 +80,10 @@ def test_a_two_box_stack_tilted_about_the_diagonal_is_the_monolith_until_the_fir
     """Two equal square boxes 0.4 x 0.4 x 1.2 m tilted on the lower's ne corner about the axis
     perpendicular to the diagonal: Housner's block of half-width d = sqrt(bx^2 + by^2) and height
     2.4 m (the monolith box's :meth:`~unilateral.structure.rigid3d.RigidBox.diagonal`), the tilt to
-    0.1 dt^2 before the first impact, its time second order in dt, the upper box turning with the
-    lower and the interface in compression."""
+    0.1 dt^2 before the first impact (measured 2.0e-7, 5.1e-8, 1.3e-8 rad at dt = 2e-3, 1e-3,
+    5e-4), its time second order in dt (-5.8e-7, -1.4e-7, -3.6e-8 s off t1 = 0.29710 s, fitted
+    order 2.00), the upper box turning with the lower and the interface in compression (at least
+    9.42 of W = 9.81 kN); the landing strikes L.sw and three of the interface's corners."""
     st, lower, upper = _stack3d()
     fr = Frame3D()
     fr.node("c", 0.0, 0.0, 1.2)
@@ -103,7 +106,7 @@ def test_a_two_box_stack_tilted_about_the_diagonal_is_the_monolith_until_the_fir
         assert np.abs(tilt - tall.tilt(sol.t[:k], theta0)).max() <= 0.1 * dt ** 2
         for dof in ("rx", "ry", "uz"):
             assert np.abs(sol.dof(f"U.base.{dof}")[:k] - sol.dof(f"L.base.{dof}")[:k]).max() <= 1e-15
-        assert sol.v[1:k, interface].sum(axis=1).min() > 0.15 * upper.W
+        assert sol.v[1:k, interface].sum(axis=1).min() > 0.9 * upper.W
         assert np.abs(sol.v[1:k, names.index("L.sw")]).max() == 0.0             # it pivots on L.ne
     errors = np.abs(errors)
     order = np.polyfit(np.log(dts), np.log(errors), 1)[0]
@@ -163,8 +166,8 @@ def _sine(amplitude, f=2.0, duration=0.5):
 
 def test_a_box_on_a_stiff_frames_floor_tends_to_the_box_on_the_ground():
     """A skew shaking (1, 0.5, 0) at 1.5 g bx / h: the floor box's tilts tend to the ground box's up
-    to its first impact as the column stiffens (E x 1e2, 1e4, 1e6), by the ratio of the floor's
-    static drift (1/stiffness; measured below)."""
+    to its first impact (0.271 s; peak tilt 3.7e-3 rad) as the column stiffens (E x 1e2, 1e4, 1e6):
+    measured 1.8e-3, 8.6e-6, 9.6e-9 rad apart, at least 1/stiffness."""
     direction = (1.0, 0.5, 0.0)
     fr = Frame3D()
     fr.node("c", 0.0, 0.0, 0.6)
@@ -182,7 +185,7 @@ def test_a_box_on_a_stiff_frames_floor_tends_to_the_box_on_the_ground():
         sol, _ = _shaken(st, a_g, direction)
         tilt = np.column_stack([sol.dof("B.base.rx"), sol.dof("B.base.ry")])[:k]
         errors.append(np.abs(tilt - tilt0).max())
-    assert errors[0] > 30 * errors[1] > 900 * errors[2] and errors[2] < 1e-7, errors
+    assert errors[0] > 100 * errors[1] > 1e4 * errors[2] and errors[2] < 1e-7, errors
 
 
 def test_the_frames_base_forces_are_newton_with_the_box_on_its_floor():
@@ -219,7 +222,7 @@ def test_the_frames_base_forces_are_newton_with_the_box_on_its_floor():
 def test_a_stack_shaken_in_both_directions_balances_its_energy():
     """A 0.4 x 0.4 x 1.2 m box on a 1.2 x 1.2 x 1.0 m box, shaken along x and y above the upper's
     uplift: the upper rocks on the lower (which stays put), and the energy balance of the march
-    closes with the impact losses (measured below 1e-13)."""
+    closes with the impact losses (measured 1.6e-14; 132 located impacts, peak tilt 0.159 rad)."""
     st, lower, upper = _stack3d(widths=((1.2, 1.2), (0.4, 0.4)), heights=(1.0, 1.2))
     model = st.to_model()
     amp = 1.5 * upper.uplift_acceleration[0]
@@ -342,3 +345,42 @@ def test_a_model_file_3d_stack_is_the_api_stack(tmp_path):
 
     with pytest.raises(ModelFileError, match="neither a defined node nor a rigid block"):
         load_model_file(path)
+
+
+def test_the_ground_carries_a_3d_stack_through_its_lower_boxs_corners_and_base():
+    """The stack of the at-rest test (the upper box 0.3 m east and 0.1 m south of the lower's
+    centre) shaken along x and y above the upper's uplift: the ground's forces (the lower's corners
+    and base; the upper's are internal) are Newton's for the two boxes at every step, impacts
+    included: ``sum m a`` along x, y and z, and about the vertical through the base point
+    ``sum m (dx a_y - dy a_x)`` (no twist without friction)."""
+    fr = Frame3D()
+    fr.node("c1", 0.0, 0.0, 0.5)
+    fr.node("c2", 0.3, -0.1, 1.6)
+    lower = fr.rigid_box("L", "c1", width_x=1.2, width_y=0.8, height=1.0, mass=3.0)
+    upper = fr.rigid_box("U", "c2", width_x=0.4, width_y=0.4, height=1.2, mass=1.0, on="L")
+    st = fr.build()
+    ax, ay = _sine(1.5 * upper.uplift_acceleration[0]), _sine(0.8 * upper.uplift_acceleration[1], f=1.5)
+    load = LoadHistory(st.gravity(G), [rigid3d.ground_motion(st, ax, "ux"), rigid3d.ground_motion(st, ay, "uy")])
+    dt = 1e-3
+    sol = _run(st, load, dt=dt, t_end=1.0, initial="static")
+    assert np.hypot(sol.dof("U.base.rx"), sol.dof("U.base.ry")).max() > 0.02 and len(sol.stats["impacts"]) > 2
+    ds = ul.results_dataset(sol, st, load=load)
+    assert "U.base.ux" not in list(ds.coords["support"].values)             # the upper's base: tied, internal
+    nodes = list(st.dofs.nodes)
+    a = st.dofs.nodal(np.diff(sol.udot, axis=0) / dt)
+    a_ground = ds["ground_acceleration"].values[1:]                         # the steps' means, (steps, 2)
+    masses = np.array([lower.mass, upper.mass])
+    centres = [nodes.index(lower.node), nodes.index(upper.node)]
+    absolute = a[:, centres, :3].copy()
+    absolute[:, :, 0] += a_ground[:, [0]]
+    absolute[:, :, 1] += a_ground[:, [1]]
+    for k, c in enumerate("xyz"):
+        base = ds[f"base_F{c}"].values[1:]
+        expected = absolute[:, :, k] @ masses + (masses.sum() * G if c == "z" else 0.0)
+        assert np.abs(base - expected).max() <= 1e-12 * np.abs(base).max(), c
+    xp, yp = np.asarray(ds.attrs["base_point"], dtype=float)[:2]
+    dx = np.array([st.coords[lower.node][0], st.coords[upper.node][0]]) - xp
+    dy = np.array([st.coords[lower.node][1], st.coords[upper.node][1]]) - yp
+    mz = ds["base_Mz"].values[1:]
+    expected = (absolute[:, :, 1] * dx - absolute[:, :, 0] * dy) @ masses
+    assert np.abs(mz - expected).max() <= 1e-12 * np.abs(mz).max() and np.abs(mz).max() > 0.1

@@ -5,7 +5,7 @@ The 3-D counterpart of :mod:`unilateral.structure.rigid` (whose assembly, model 
 :class:`~unilateral.constraints.RigidContact`, solved by ``method="moreau-jean"``).
 
 **Rigid contact** (``Frame3D.contact``, :meth:`RigidBoxes.contact`): a node against the fixed
-ground along a normal ``d`` (``"ux"``, ``"uy"``, ``"uz"`` or a vector), with Newton's coefficient
+ground (or against another node, ``on``: the columns of the relative motion) along a normal ``d`` (``"ux"``, ``"uy"``, ``"uz"`` or a vector), with Newton's coefficient
 of restitution and, with ``mu``, Coulomb friction in its tangent plane (axes ``t1``, ``t2``,
 :func:`~unilateral.structure.elements3d.tangents`): a polygonal cone of ``facets`` facets
 circumscribing Coulomb's circle ``|T| <= mu N`` (default 8; facet ``k`` of the normal ``(cos th_k,
@@ -23,7 +23,8 @@ about an edge parallel to y (tilt ``ry``, the x-z plane) is then Housner's block
 ``by``, ``I0 = Jx + m (by^2 + h^2)`` (:meth:`RigidBox.plane`). A box with ``Jx = Jy`` (a square
 plan, solid) rocking about a corner with its tilt axis perpendicular to the diagonal stays in that
 plane: Housner's block of half-width ``d = sqrt(bx^2 + by^2)`` (:meth:`RigidBox.diagonal`).
-See ``docs/rocking.md``.
+``on=`` stands a box on a frame's floor or on another box (a stack: :mod:`.stacks`). See
+``docs/rocking.md``.
 """
 
 from __future__ import annotations

@@ -36,6 +36,13 @@ block on a block ``dy = 2 h_L``: a stack held together then has the second-order
 monolith, ``-sum W_i y_i`` (``y_i`` the height of each centre above the ground's corners), as
 ``docs/rocking.md`` derives it for one block. On a floor ``dy = 0`` (the bearing points at the
 node's level). Like P-Delta, this takes the carried force at its static value.
+
+**In 3-D** (:meth:`Frame3D.rigid_box(..., on=) <unilateral.structure.Frame3D.rigid_box>`) the same
+with four corners (bearing points ``"<name>.on.sw"``, ...), the plan of an upper box within the
+lower's top face along x and y, the base's ``ux``, ``uy``, ``rz`` tied to ``"<name>.on"`` (a partial
+rigid link of the 3-D frame; none with ``mu``), and the carried term ``-W_c dz`` on the seat's
+``rx`` and on its ``ry`` (the drop ``dz (rx^2 + ry^2) / 2``; the products with the seat's twist
+``rz`` are left out).
 """
 
 from __future__ import annotations
