@@ -17,7 +17,7 @@ import pytest
 import unilateral as ul
 from unilateral.analysis.rigid import energy_balance
 from unilateral.loads import LoadHistory
-from unilateral.structure import Frame2D, Frame3D, rigid
+from unilateral.structure import Frame2D, rigid
 from unilateral.structure.rigid import RigidBlock
 
 G = 9.80665
@@ -336,16 +336,6 @@ def test_moreau_jean_refuses_a_relative_contact_on_a_massless_rotation():
     sol = ul.solve(st.to_model(), LoadHistory(st.gravity(G)), dt=1e-3, t_end=0.01, method="direct", rule="bdf1",
                    initial={"u0": np.zeros(st.n)})
     assert sol.success                          # the position-level direct method takes it
-
-
-def test_on_is_refused_in_3d():
-    fr = Frame3D()
-    fr.node("c", 0.0, 0.0, 0.6)
-    fr.node("d", 1.0, 0.0, 0.0)
-    with pytest.raises(ValueError, match="on='d': a rigid contact between two nodes .* not available in 3-D"):
-        fr.rigid_box("B", "c", width_x=0.4, width_y=0.4, height=1.2, mass=1.0, on="d")
-    with pytest.raises(ValueError, match="not available in 3-D"):
-        fr.contact("k", "c", on="d")
 
 
 _MODEL = """

@@ -175,10 +175,12 @@ def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
     the block and the blocks stacked on it, ``a`` the horizontal absolute acceleration of each centre
     (the stack is rigid bodies and the ground the only horizontal force on it; at the base's level,
     so with no moment about a point there). A block on a frame's floor has none: its forces reach
-    the ground through the frame's elements (their supports' reactions). Each (N+1, 3) ``(fx, fy, mz)`` in 2-D, (N+1, 6) ``(fx, fy, fz, mx,
-    my, mz)`` in 3-D; ``at``: the node of each. ``h``: the frame's histories (its accelerations of
-    the rule, the mean of each step for ``moreau-jean``; a 3-D box's ``mz`` is ``Jz rz''``, the
-    torque of its corners' friction); ``motions``: ``[(direction, a_g (N+1,))]``
+    the ground through the frame's elements (their supports' reactions). Each (N+1, 3) ``(fx, fy,
+    mz)`` in 2-D, (N+1, 6) ``(fx, fy, fz, mx, my, mz)`` in 3-D; ``at``: the node of each. ``h``: the
+    frame's histories (its accelerations of the rule, the mean of each step for ``moreau-jean``; a
+    3-D box's ``mz`` is ``Jz rz''``, the torque of its corners' friction, a stack's the sum over its
+    boxes with ``m (dx a_y - dy a_x)`` of each centre off the base); ``motions``: ``[(direction,
+    a_g (N+1,))]``
     the ground's accelerations at its times, read as ``h``'s (:func:`~unilateral.analysis.result_parts.step_means`)."""
     names = tuple(structure.dofs.dof_names)
     axes = tuple(d for d in ("ux", "uy", "uz") if d in names)
@@ -205,10 +207,24 @@ def rigid_ground_reactions(structure, h, sol, motions) -> tuple[dict, dict]:
         f = np.zeros((steps, len(names)))
         for b in stack_of(blocks, block):
             f[:, :horizontal] += b.mass * (accelerations[:, nodes.index(b.node), :horizontal] + ground[:, :horizontal])
-        if len(names) == 6:                          # a box that twists on its corners' friction: Jz rz''
-            f[:, 5] = block.Jz * accelerations[:, nodes.index(block.node), 5]
+        if len(names) == 6:                          # boxes that twist on friction: Jz rz'', + a stack's offsets
+            f[:, 5] = _stack_torque(structure, stack_of(blocks, block), block.base, accelerations, ground)
         forces[f"{name}.base"], at[f"{name}.base"] = f, block.base
     return forces, at
+
+
+def _stack_torque(structure, stack, base, accelerations, ground) -> np.ndarray:
+    """``mz`` (N+1,) of the ground on a stack of 3-D boxes about the vertical through ``base``:
+    ``sum Jz rz'' + m (dx a_y - dy a_x)``, ``(dx, dy)`` each centre's plan offset from ``base`` and
+    ``a`` its absolute horizontal acceleration (``ground`` (N+1, 3) the ground's)."""
+    nodes, at = list(structure.dofs.nodes), np.asarray(structure.coords[base], dtype=float)
+    out = np.zeros(accelerations.shape[0])
+    for box in stack:
+        k = nodes.index(box.node)
+        dx, dy = np.asarray(structure.coords[box.node], dtype=float)[:2] - at[:2]
+        a = accelerations[:, k, :2] + ground[:, :2]
+        out += box.Jz * accelerations[:, k, 5] + box.mass * (dx * a[:, 1] - dy * a[:, 0])
+    return out
 
 
 def add_rigid_energy(energy: dict, structure, u, udot, stats) -> dict:

@@ -68,18 +68,17 @@ _FACETS_3D = ("The facets of the friction polygon in the tangent plane (with mu;
               "of 4), sec(pi/facets) too strong along its vertices.")
 
 
-_NO_ON_3D = ("Not available in a 3-D frame (a contact between two nodes, a box on a floor or on another box: "
-             "2-D only): leave it out.")
-
-
-def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNegative):
+def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNegative, *, NodeId=None):
     """The pydantic tables ``(Contact3D, RigidBox)`` of ``[[contacts]]`` and ``[[rigid_blocks]]`` of a
     3-D frame (``[frame] dimensions = 3``: :meth:`Frame3D.contact`, :meth:`Frame3D.rigid_box
     <unilateral.structure.Frame3D.rigid_box>`), built on the schema's ``Table``, the 2-D ``Contact`` and
-    the value types (``Direction3`` of :mod:`unilateral.modelfile.schema3d`)."""
+    the value types (``Direction3`` of :mod:`unilateral.modelfile.schema3d`; ``NodeId`` as in
+    :func:`rigid_tables`, for a box's ``on``)."""
+    NodeId = NodeRef if NodeId is None else NodeId
 
     class Contact3D(Contact):
-        """[[contacts]] of a 3-D frame: a rigid unilateral contact of a node with the fixed ground."""
+        """[[contacts]] of a 3-D frame: a rigid unilateral contact of a node with the fixed ground, or
+        with another node (``on``)."""
 
         EXAMPLE: ClassVar[str] = '[[contacts]] name = "stop", node = 1, direction = "uz", gap = 0.01'
         direction: Direction3 = Field("uz", description="The normal, from the ground to the node: the "
@@ -87,7 +86,9 @@ def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNega
         mu: NonNegative | None = Field(None, description=(
             "Coulomb friction in the tangent plane (a polygonal cone of facets facets); method = \"moreau-jean\" only."))
         facets: int | None = Field(None, description=_FACETS_3D)
-        on: NodeRef | None = Field(None, description=_NO_ON_3D)
+        on: NodeRef | None = Field(None, description=(
+            "The node the contact bears on (the relative motion along the normal and, with mu, in the tangent "
+            "plane; internal, not a ground reaction); none: the fixed ground."))
 
     class RigidBox(Table):
         """[[rigid_blocks]] of a 3-D frame: a rigid box rocking on its four base corners (Housner in
@@ -114,7 +115,10 @@ def rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNega
             "None: the base does not slide or twist (held); a number: Coulomb friction at the corners, the base "
             "free (it slides in plan and twists; method = \"moreau-jean\" only)."))
         facets: int | None = Field(None, description=_FACETS_3D)
-        on: NodeRef | None = Field(None, description=_NO_ON_3D)
+        on: NodeId | None = Field(None, description=(
+            "What the box stands on: none, the ground; a node of [[nodes]], a floor (the base centre at that "
+            "node: node height/2 above it); the name of another [[rigid_blocks]] entry, its top face (a stack, "
+            "the plan within the lower box's)."))
 
     return Contact3D, RigidBox
 
@@ -140,7 +144,7 @@ def add_rigid(fr, document, to_mass, each, g=None) -> None:
             J=None if b.J is None else b.J * to_mass, restitution=b.restitution, mu=b.mu, g=g, on=b.on))
         return
     scaled = lambda J: None if J is None else J * to_mass
-    each(document, "rigid_blocks", lambda b: _vertical(document) or fr.rigid_box(
+    each(document, "rigid_blocks", lambda b: _vertical(document) or _stacked_order(document, b) or fr.rigid_box(
         b.name, b.node, width_x=b.width, width_y=b.width_y, height=b.height, mass=b.mass * to_mass, Jx=scaled(b.Jx),
         Jy=scaled(b.Jy), Jz=scaled(b.Jz), restitution=b.restitution, mu=b.mu, facets=b.facets, g=g,
         on=b.on))

@@ -310,7 +310,7 @@ class Output3D(Output):
         "The point [x, y, z] the base moments Mx, My, Mz are taken about (default: the centre of the base)."))
 
 
-Contact3D, RigidBox = rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNegative)  # modelfile/rigid.py
+Contact3D, RigidBox = rigid_tables_3d(Table, Contact, NodeRef, Name, Direction3, Positive, NonNegative, NodeId=NodeId)
 
 
 class ModelFile3D(ModelFile):

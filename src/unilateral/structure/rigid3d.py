@@ -5,7 +5,7 @@ The 3-D counterpart of :mod:`unilateral.structure.rigid` (whose assembly, model 
 :class:`~unilateral.constraints.RigidContact`, solved by ``method="moreau-jean"``).
 
 **Rigid contact** (``Frame3D.contact``, :meth:`RigidBoxes.contact`): a node against the fixed
-ground along a normal ``d`` (``"ux"``, ``"uy"``, ``"uz"`` or a vector), with Newton's coefficient
+ground (or against another node, ``on``: the columns of the relative motion) along a normal ``d`` (``"ux"``, ``"uy"``, ``"uz"`` or a vector), with Newton's coefficient
 of restitution and, with ``mu``, Coulomb friction in its tangent plane (axes ``t1``, ``t2``,
 :func:`~unilateral.structure.elements3d.tangents`): a polygonal cone of ``facets`` facets
 circumscribing Coulomb's circle ``|T| <= mu N`` (default 8; facet ``k`` of the normal ``(cos th_k,
@@ -23,7 +23,8 @@ about an edge parallel to y (tilt ``ry``, the x-z plane) is then Housner's block
 ``by``, ``I0 = Jx + m (by^2 + h^2)`` (:meth:`RigidBox.plane`). A box with ``Jx = Jy`` (a square
 plan, solid) rocking about a corner with its tilt axis perpendicular to the diagonal stays in that
 plane: Housner's block of half-width ``d = sqrt(bx^2 + by^2)`` (:meth:`RigidBox.diagonal`).
-See ``docs/rocking.md``.
+``on=`` stands a box on a frame's floor or on another box (a stack: :mod:`.stacks`). See
+``docs/rocking.md``.
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ import numpy as np
 from ..loads.units import STANDARD_GRAVITY
 from . import elements as el
 from . import elements3d as el3
+from . import stacks
 from .rigid import RigidBlock, RigidContact, _number, _parts
 
 #: The corners of a box: name suffix -> (sign of x, sign of y) from the base centre.
@@ -72,6 +74,10 @@ class RigidBox:
     bx, by, h : half-widths along x and y and half-height, length
     mass : mass;  Jx, Jy, Jz : rotary inertias about the centre, mass length^2
     g : gravity of the second-order term, length/time^2 (0: none)
+    on : what it stands on: None (the ground), a node of the frame (a floor) or the name of a rigid
+        box (a stack; :mod:`.stacks`)
+    seat : the node its corners' bearing points are rigidly linked to (the floor node, the lower
+        box's base), or None on the ground
     """
 
     name: str
@@ -86,6 +92,8 @@ class RigidBox:
     Jy: float
     Jz: float
     g: float
+    on: object = None
+    seat: object = None
 
     @property
     def W(self) -> float:
@@ -104,7 +112,8 @@ class RigidBox:
         if axis not in ("x", "y"):
             raise ValueError(f"axis={axis!r} is not valid; use 'x' or 'y' (the direction of the edge)")
         b, J = (self.bx, self.Jy) if axis == "y" else (self.by, self.Jx)
-        return RigidBlock(self.name, self.node, self.base, self.corners, b, self.h, self.mass, J, self.g)
+        return RigidBlock(self.name, self.node, self.base, self.corners, b, self.h, self.mass, J, self.g, self.on,
+                          self.seat)
 
     def diagonal(self) -> RigidBlock:
         """The 2-D block of the rocking about a corner with the tilt axis perpendicular to the
@@ -129,8 +138,8 @@ class RigidBoxes:
 
     def contact(self, name, node, *, direction="uz", gap=0.0, mu=None, restitution=0.0, facets=None,
                 tangent=None, on=None) -> None:
-        """Rigid unilateral contact of ``node`` with the fixed ground (no compliance, ``H = 0``), as
-        :meth:`Frame2D.contact <unilateral.structure.Frame2D.contact>`.
+        """Rigid unilateral contact of ``node`` with the fixed ground, or with the node ``on`` (no
+        compliance, ``H = 0``), as :meth:`Frame2D.contact <unilateral.structure.Frame2D.contact>`.
 
         Parameters
         ----------
@@ -145,7 +154,10 @@ class RigidBoxes:
         facets : int, even, >= 4 (default 8; with ``mu`` only): the facets of the friction polygon
         tangent : (3,) vector, optional: the first tangent axis ``t1`` (projected on the tangent
             plane; default global X, or Y for a normal along X), ``t2 = d x t1`` (with ``mu`` only)
-        on : None only: a contact between two nodes is not available in 3-D (``ValueError``)
+        on : the node the contact bears on, or None (default: the fixed ground). The columns (the
+            normal's, and the tangents' with ``mu``) are those of the relative motion,
+            ``N = T^T (e_d(node) - e_d(on))``; the force pushes ``node`` along ``d`` and ``on``
+            back (internal: the ground's reactions do not count it; :mod:`.stacks`)
 
         The contact's unknown ``v`` is the compressive force (force), ``-psi`` the opening (length).
 
@@ -161,7 +173,11 @@ class RigidBoxes:
         """
         where = self._label("contact", name)
         self._node(where, "node", node)
-        _not_on(where, on)
+        if on is not None:
+            self._node(where, "on", on)
+            if on == node:
+                raise ValueError(f"{where}: on={on!r} is the node itself; give the node it bears on, or None "
+                                 "(the ground)")
         terms = el.direction_terms(where, direction, el3.DOF_NAMES, el3.AXES)
         if any(dof in el3.ROTATIONS for dof, _ in terms):
             raise ValueError(f"{where}: direction={direction!r} is not a normal; use 'ux', 'uy', 'uz' or a vector "
@@ -171,7 +187,7 @@ class RigidBoxes:
                      for t in el3.tangents(where, terms, tangent)) if mu else ()
         e = _restitution(where, restitution)
         _parts(self)["contacts"].append(RigidContact3D(name, node, terms, _number(where, "gap", gap, ">=0"), e,
-                                                       mu or 0.0, axes=axes, facets=facets))
+                                                       mu or 0.0, on, axes=axes, facets=facets))
         self._names.add(name)
 
     def rigid_box(self, name, node, *, width_x, width_y, height, mass, Jx=None, Jy=None, Jz=None, base=None,
@@ -204,8 +220,14 @@ class RigidBoxes:
             acceleration above ``mu g`` slides before it can rock)
         facets : the facets of the corners' friction polygons (with ``mu``; an even int >= 4, default
             8), on the axes x, y (:meth:`contact`)
-        on : None only: a box stands on the ground; on a floor or on another box is not available in
-            3-D (``ValueError``; in 2-D ``Frame2D.rigid_block(..., on=)``)
+        on : None (default): the box stands on the ground; a node ``f`` of the frame: on its floor at
+            ``f`` (the base centre at ``f``: give ``node`` ``height / 2`` above it; the corners bear on
+            points ``"<name>.on.sw"``, ... rigidly linked to ``f``, the base's ``ux``, ``uy``, ``rz``
+            tied to ``f``'s rigid motion without ``mu``); the name of a rigid box ``L``: on ``L``'s top
+            face (a stack; the plan within ``L``'s, the corners on points rigidly linked to ``L``'s
+            base). The corners' contacts are then between the two bodies, the weight's second-order
+            terms those of a box on a moving base, ``-W_c dz`` on the seat's ``rx`` and ``ry``
+            (:mod:`.stacks`)
 
         Returns
         -------
@@ -213,7 +235,6 @@ class RigidBoxes:
         """
         where = self._label("rigid_box", name)
         self._node(where, "node", node)
-        _not_on(where, on)
         mu, facets = _friction(where, mu, facets, None)
         bx = _number(where, "width_x", width_x, ">0") / 2
         by = _number(where, "width_y", width_y, ">0") / 2
@@ -224,21 +245,26 @@ class RigidBoxes:
         J = {k: m * solid[k] / 3.0 if given[k] is None else _number(where, k, given[k], ">=0") for k in solid}
         g = _number(where, "g", g, ">=0")
         e = _restitution(where, restitution)
+        below = None if on is None else stacks.support(self, where, name, node, on, b=(bx, by), h=h)
+        stacks.check_centre(self, where, name, node)
         base = f"{name}.base" if base is None else base
         corners = tuple(f"{name}.{c}" for c in CORNERS)
         x, y, z = (float(c) for c in self._coords[node])
         self.node(base, x, y, z - h)
         for corner, (sx, sy) in zip(corners, CORNERS.values()):
             self.node(corner, x + sx * bx, y + sy * by, z - h)
-        if mu is None:
+        if mu is None and below is None:
             self.support(base, ux=True, uy=True, uz=False, rx=False, ry=False, rz=True)
         for slave in (node, *corners):
             self.rigid_link(base, slave)
+        seat, bearings = (None, (None,) * 4) if below is None else stacks.seat(
+            self, name, base, corners, *below, tie=mu is None)
         self.mass(node, m, Jx=J["Jx"], Jy=J["Jy"], Jz=J["Jz"])
         self._names.add(name)
-        for corner in corners:
-            self.contact(corner, corner, direction="uz", restitution=e, mu=mu, facets=facets if mu is not None else None)
-        box = RigidBox(name, node, base, corners, bx, by, h, m, J["Jx"], J["Jy"], J["Jz"], g)
+        for corner, bearing in zip(corners, bearings):
+            self.contact(corner, corner, direction="uz", restitution=e, mu=mu, on=bearing,
+                         facets=facets if mu is not None else None)
+        box = RigidBox(name, node, base, corners, bx, by, h, m, J["Jx"], J["Jy"], J["Jz"], g, on, seat)
         _parts(self)["blocks"][name] = box
         return box
 
@@ -258,13 +284,6 @@ def _friction(where, mu, facets, tangent) -> tuple:
         raise ValueError(f"{where}: facets={facets!r} is not valid; give the facets of the friction polygon, an "
                          "even int >= 4 (opposite facets in pairs; fewer than 4 do not bound the tangent plane)")
     return mu, int(facets)
-
-
-def _not_on(where, on) -> None:
-    if on is not None:
-        raise ValueError(f"{where}: on={on!r}: a rigid contact between two nodes (a box on a floor or on another "
-                         "box) is not available in 3-D, only with the ground; leave on out (in 2-D: "
-                         "Frame2D.contact(..., on=), Frame2D.rigid_block(..., on=))")
 
 
 def _restitution(where, restitution) -> float:

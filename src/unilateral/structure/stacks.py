@@ -36,6 +36,13 @@ block on a block ``dy = 2 h_L``: a stack held together then has the second-order
 monolith, ``-sum W_i y_i`` (``y_i`` the height of each centre above the ground's corners), as
 ``docs/rocking.md`` derives it for one block. On a floor ``dy = 0`` (the bearing points at the
 node's level). Like P-Delta, this takes the carried force at its static value.
+
+**In 3-D** (:meth:`Frame3D.rigid_box(..., on=) <unilateral.structure.Frame3D.rigid_box>`) the same
+with four corners (bearing points ``"<name>.on.sw"``, ...), the plan of an upper box within the
+lower's top face along x and y, the base's ``ux``, ``uy``, ``rz`` tied to ``"<name>.on"`` (a partial
+rigid link of the 3-D frame; none with ``mu``), and the carried term ``-W_c dz`` on the seat's
+``rx`` and on its ``ry`` (the drop ``dz (rx^2 + ry^2) / 2``; the products with the seat's twist
+``rz`` are left out).
 """
 
 from __future__ import annotations
@@ -46,7 +53,8 @@ import math
 def support(frame, where, name, node, on, *, b, h):
     """``("node", f)`` or ``("block", L)``: what the block ``name`` (centre ``node``, half-width
     ``b``, half-height ``h``) stands on, checked, its placement too, before anything is added;
-    ``on`` the name of a rigid block or a node of ``frame``."""
+    ``on`` the name of a rigid block or a node of ``frame``. A 3-D box gives ``b = (bx, by)`` (its
+    plan half-widths; the vertical is z)."""
     blocks = frame.__dict__.get("_rigid", {}).get("blocks", {})
     if isinstance(on, str) and on == name:
         raise ValueError(f"{where}: on={on!r} is the block itself; give the node or the rigid block it stands on")
@@ -72,15 +80,16 @@ def support(frame, where, name, node, on, *, b, h):
     if below[1] is not None and below[1] == node:
         raise ValueError(f"{where}: on={on!r} closes a cycle of stacks: {' on '.join(map(repr, chain))} on node "
                          f"{node!r}, the centre of {name!r}")
-    x, y = float(frame._coords[node][0]), float(frame._coords[node][1]) - h
+    at = [float(c) for c in frame._coords[node]]
+    at[-1] -= h                                 # the base centre (the vertical: y in 2-D, z in 3-D)
     if is_block:
-        _on_top(where, blocks[on], frame._coords[blocks[on].base], x, y, b)
+        _on_top(where, blocks[on], frame._coords[blocks[on].base], at, b)
         return ("block", on)
-    xf, yf = (float(c) for c in frame._coords[on])
-    if not (_near(x, xf, b) and _near(y, yf, b)):
-        raise ValueError(f"{where}: the block's base centre ({x:g}, {y:g}) must be at node on={on!r} "
-                         f"({xf:g}, {yf:g}): put the centre node height/2 above it")
-    held = [dof for dof in ("ux", "uy") if (on, dof) in frame._restrained]
+    floor = [float(c) for c in frame._coords[on]]
+    if not all(_near(a, f, max(_widths(b))) for a, f in zip(at, floor)):
+        raise ValueError(f"{where}: the block's base centre ({_xyz(at)}) must be at node on={on!r} "
+                         f"({_xyz(floor)}): put the centre node height/2 above it")
+    held = [dof for dof in ("ux", "uy", "uz")[:len(at)] if (on, dof) in frame._restrained]
     if held:
         raise ValueError(f"{where}: node on={on!r} is supported ({', '.join(held)}): it is the ground; give "
                          "on=None")
@@ -96,30 +105,47 @@ def check_centre(frame, where, name, node) -> None:
                          f"cannot carry another block; stand that block on this one (on={name!r})")
 
 
-def _on_top(where, lower, at, x, y, b) -> None:
-    """Raise unless the base line ``y`` and the base ``[x - b, x + b]`` lie on the top face of the
-    block ``lower`` (its base centre at ``at``)."""
-    xl, yl = float(at[0]), float(at[1])
-    if not _near(y, yl + 2 * lower.h, b):
-        raise ValueError(f"{where}: the block's base line y = {y:g} must lie on the top face of rigid block "
-                         f"{lower.name!r}, y = {yl + 2 * lower.h:g}")
-    if abs(x - xl) + b > lower.b * (1 + 1e-12) + 1e-12 * max(1.0, abs(xl)):
-        raise ValueError(f"{where}: the block's base [{x - b:g}, {x + b:g}] must lie within the top face of "
-                         f"rigid block {lower.name!r}, [{xl - lower.b:g}, {xl + lower.b:g}] (no overhang)")
+def _on_top(where, lower, at_lower, at, b) -> None:
+    """Raise unless the base centre ``at`` (its last coordinate the base level) and the base's
+    half-widths ``b`` (a float in 2-D, ``(bx, by)`` in 3-D) lie on the top face of the block
+    ``lower`` (its base centre at ``at_lower``): no overhang."""
+    low = [float(c) for c in at_lower]
+    top = low[-1] + 2 * lower.h
+    if not _near(at[-1], top, max(_widths(b))):
+        axis = "yz"[len(at) - 2]
+        raise ValueError(f"{where}: the block's base at {axis} = {at[-1]:g} must lie on the top face of rigid "
+                         f"block {lower.name!r}, {axis} = {top:g}")
+    half = _widths(lower.b if hasattr(lower, "b") else (lower.bx, lower.by))
+    for axis, x, xl, bi, bl in zip("xy", at[:-1], low[:-1], _widths(b), half):
+        if abs(x - xl) + bi > bl * (1 + 1e-12) + 1e-12 * max(1.0, abs(xl)):
+            raise ValueError(f"{where}: the block's base {axis} in [{x - bi:g}, {x + bi:g}] must lie within the top "
+                             f"face of rigid block {lower.name!r}, [{xl - bl:g}, {xl + bl:g}] (no overhang)")
+
+
+def _widths(b) -> tuple:
+    return (float(b),) if isinstance(b, (int, float)) else tuple(float(x) for x in b)
+
+
+def _xyz(at) -> str:
+    return ", ".join(f"{x:g}" for x in at)
 
 
 def seat(frame, name, base, corners, kind, on, *, tie) -> tuple:
     """Add the bearing points of the block ``name`` on ``on`` (``kind`` ``"node"`` or ``"block"``,
-    checked by :func:`support`): ``"<name>.on"`` under the base centre and ``"<name>.on.left"``,
-    ``".right"`` under the corners, rigidly linked to the floor node or to the lower block's base;
-    tie the base's ``ux`` to the first (``tie``: no slip). Returns ``(master, bearings)``: the node
-    the points are linked to and the bearing point of each corner."""
+    checked by :func:`support`): ``"<name>.on"`` under the base centre and ``"<name>.on.<corner>"``
+    (``.left``, ``.right``; a box's ``.sw``, ``.se``, ``.ne``, ``.nw``) under the corners, rigidly
+    linked to the floor node or to the lower block's base; tie the base to the first (``tie``: no
+    slip; its ``ux`` in 2-D, a DofMap tie; a box's ``ux``, ``uy``, ``rz``, a partial rigid link of
+    the 3-D frame). Returns ``(master, bearings)``: the node the points are linked to and the
+    bearing point of each corner."""
     master = on if kind == "node" else _parts_blocks(frame)[on].base
-    points = (f"{name}.on", f"{name}.on.left", f"{name}.on.right")
+    points = (f"{name}.on", *(f"{name}.on.{corner[len(name) + 1:]}" for corner in corners))
     for point, at in zip(points, (base, *corners)):
         frame.node(point, *(float(c) for c in frame._coords[at]))
         frame.rigid_link(master, point)
-    if tie:
+    if tie and len(frame._coords[base]) == 3:
+        frame._tie(f"rigid_box({name!r}): the base on {on!r}", points[0], base, ("ux", "uy", "rz"))
+    elif tie:
         ties(frame)[(base, "ux")] = points[0]
     return master, points[1:]
 
@@ -131,16 +157,18 @@ def ties(frame) -> dict:
 
 def carried_terms(frame, blocks, dofs) -> list:
     """The geometric stiffness of the weights the bearing points carry (see the module): ``[(row,
-    -W_c dy)]`` on the rotation of the master of each block's bearing points."""
+    -W_c dy)]`` on the rotation of the master of each block's bearing points (``rz`` in 2-D; ``rx``
+    and ``ry`` for a 3-D box, ``dy`` then the height ``dz``)."""
     out = []
     for block in blocks.values():
         master = getattr(block, "seat", None)
         if master is None or not block.g:
             continue
         root = dofs.masters.get(master, master)
-        dy = float(frame._coords[block.base][1] - frame._coords[root][1])
-        if dy and (root, "rz") in dofs.free:
-            out.append((dofs.index(root, "rz"), -carried_weight(blocks, block) * dy))
+        dy = float(frame._coords[block.base][-1] - frame._coords[root][-1])
+        for dof in ("rx", "ry") if len(frame._coords[root]) == 3 else ("rz",):
+            if dy and (root, dof) in dofs.free:
+                out.append((dofs.index(root, dof), -carried_weight(blocks, block) * dy))
     return out
 
 
@@ -150,8 +178,7 @@ def carried_weight(blocks, block) -> float:
 
 
 def stack_of(blocks, block) -> list:
-    """``block`` and every block standing on it, directly or up a stack (blocks in 2-D; a 3-D box
-    carries nothing)."""
+    """``block`` and every block standing on it, directly or up a stack (2-D blocks or 3-D boxes)."""
     out = [block]
     for b in blocks.values():
         if getattr(b, "seat", None) == block.base and b is not block:
@@ -163,13 +190,15 @@ def _owner(frame, node):
     """The name of the rigid block ``node`` belongs to (its centre, base, corners or bearing
     points' master chain ending at a block's base), or None."""
     blocks = _parts_blocks(frame)
-    links = frame._links
-    root = node
-    while root in links:
-        root = links[root]
     for block in blocks.values():
-        if root == block.base or node in (block.node, *block.corners):
+        if node in (block.node, block.base, *block.corners):
             return block.name
+    root = node
+    while frame._master(root) is not None:
+        root = frame._master(root)
+        for block in blocks.values():
+            if root == block.base:
+                return block.name
     return None
 
 
