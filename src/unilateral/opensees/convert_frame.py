@@ -179,9 +179,6 @@ def _equal_dofs(domain, between, links) -> list:
             for (m, s), dofs in sorted(pairs.items(), key=lambda item: (order[item[0][1]], order[item[0][0]]))]
 
 
-    return {tag: tuple(flags) for tag, flags in fixed.items()}, links
-
-
 def _elements(domain):
     """The ``[[elements]]`` and ``[[unilateral]]`` entries and ``{entry name: element tag}``."""
     elements, unilateral, owners = [], [], {}
